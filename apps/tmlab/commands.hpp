@@ -1,0 +1,23 @@
+// The tmlab sub-commands, one function each (commands.cpp).
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace tmlab::cli {
+
+struct UsageError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// The tmlab source tree (cases/, meshes/, results/): $TMLAB_ROOT, else the tree this binary was built from.
+std::string tmlab_root();
+
+int cmd_demo(const std::vector<std::string>& args, const std::string& command_line);
+int cmd_run(const std::vector<std::string>& args, const std::string& command_line);
+int cmd_cases(const std::vector<std::string>& args);
+int cmd_mesh(const std::vector<std::string>& args);
+int cmd_version();
+
+}  // namespace tmlab::cli

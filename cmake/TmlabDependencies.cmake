@@ -1,0 +1,21 @@
+# Third-party dependencies, all from Debian 12 packages (no downloads at build time).
+find_package(Eigen3 3.4 REQUIRED NO_MODULE)
+find_package(nlohmann_json 3.10 REQUIRED)
+find_package(Threads REQUIRED)
+
+# HDF5: deal.II (reference_fem) links the OpenMPI flavour, so every tmlab program uses that same
+# flavour (libhdf5-openmpi-dev) and never the serial one. The C API needs mpi.h on the include path.
+find_package(MPI REQUIRED COMPONENTS C)
+find_path(TMLAB_HDF5_INCLUDE_DIR hdf5.h PATHS /usr/include/hdf5/openmpi NO_DEFAULT_PATH REQUIRED)
+find_library(TMLAB_HDF5_LIBRARY hdf5 PATHS /usr/lib/x86_64-linux-gnu/hdf5/openmpi NO_DEFAULT_PATH REQUIRED)
+add_library(tmlab_hdf5 INTERFACE)
+add_library(tmlab::hdf5 ALIAS tmlab_hdf5)
+target_include_directories(tmlab_hdf5 SYSTEM INTERFACE ${TMLAB_HDF5_INCLUDE_DIR})
+target_link_libraries(tmlab_hdf5 INTERFACE ${TMLAB_HDF5_LIBRARY} MPI::MPI_C)
+
+if(TMLAB_BUILD_TESTS)
+  find_package(GTest 1.12 REQUIRED)
+endif()
+if(TMLAB_BUILD_BENCHMARKS)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,91 @@
+#include "tmlab/tensormass/static_solver.hpp"
+
+#include "tmlab/core/error.hpp"
+
+#include <sstream>
+
+namespace tmlab::tm {
+
+namespace {
+/// R(u) = f_int(u) - f_ext(u, t);  J = K(u) - d f_ext/du.
+class StaticResidual final : public NonlinearSystem {
+ public:
+  StaticResidual(const MechanicalSystem& s, double t) : s_(s), t_(t) {
+    VecX f;
+    s_.loads().assemble(VecX::Zero(s_.num_dofs()), t_, f);
+    scale_ = f.norm();
+  }
+  void residual(const VecX& u, VecX& r) override {
+    s_.model().internal_force(u, r);
+    s_.loads().assemble(u, t_, fext_);
+    r -= fext_;
+  }
+  void jacobian(const VecX& u, SpMat& J) override {
+    s_.model().tangent(u, J);
+    if (s_.loads().has_follower()) {
+      std::vector<Eigen::Triplet<double>> trip;
+      s_.loads().add_load_stiffness(u, t_, trip);
+      SpMat kl(J.rows(), J.cols());
+      kl.setFromTriplets(trip.begin(), trip.end());
+      J += kl;
+    }
+  }
+  bool symmetric() const override { return !s_.loads().has_follower(); }
+  double force_scale() const override { return scale_; }
+
+ private:
+  const MechanicalSystem& s_;
+  double t_;
+  double scale_ = 0.0;
+  VecX fext_;
+};
+}  // namespace
+
+StaticSolver::StaticSolver(const MechanicalSystem& system, NewtonOptions options, int max_cutbacks)
+    : system_(system), options_(options), max_cutbacks_(max_cutbacks) {}
+
+NewtonResult StaticSolver::solve(double t, VecX& u) {
+  StaticResidual r(system_, t);
+  return newton_solve(r, system_.bc(), t, u, options_, linear_);
+}
+
+StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
+  StaticStepReport report;
+  double t_done = t_prev;
+  double h = t_next - t_prev;
+  int depth = 0;
+  while (t_done < t_next) {
+    const double t_try = (t_next - t_done <= h * (1.0 + 1e-12)) ? t_next : t_done + h;
+    VecX u_try = u;
+    NewtonResult nr;
+    bool ok = false;
+    try {
+      nr = solve(t_try, u_try);
+      ok = nr.converged;
+    } catch (const Error&) {
+      ok = false;  // a non-finite residual in a too-large increment: cut back like non-convergence
+      if (depth >= max_cutbacks_) throw;
+    }
+    report.newton_iterations += nr.iterations;
+    if (ok) {
+      u.swap(u_try);
+      t_done = t_try;
+      report.newton = nr;
+      continue;
+    }
+    if (depth >= max_cutbacks_) {
+      std::ostringstream msg;
+      msg << "static Newton did not converge at t = " << t_try << " after " << max_cutbacks_
+          << " cut-backs of the load increment (last residual " << nr.residual_final << " from " << nr.residual_initial
+          << "); the load may exceed what the model can carry (St Venant-Kirchhoff softens and inverts elements "
+             "under strong compression)";
+      throw Error(msg.str());
+    }
+    h *= 0.5;
+    ++depth;
+    ++report.cutbacks;
+  }
+  return report;
+}
+
+}  // namespace tmlab::tm
