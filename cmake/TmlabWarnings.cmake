@@ -7,3 +7,8 @@ if(TMLAB_SANITIZE)
                                                  -fno-sanitize-recover=undefined)
   target_link_options(tmlab_options INTERFACE -fsanitize=address,undefined)
 endif()
+# GCC 12 with -march=native reports -Wmaybe-uninitialized false positives inside Eigen's AVX-512
+# intrinsics (avx512fintrin.h) once they are inlined into our code; the warning is unreliable there.
+if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+  target_compile_options(tmlab_options INTERFACE -Wno-maybe-uninitialized)
+endif()

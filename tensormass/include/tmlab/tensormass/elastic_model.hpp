@@ -31,6 +31,20 @@ class ElasticModel {
   /// K = d^2 W / du^2 at u, assembled in full (both triangles). The sparsity pattern is the mesh
   /// graph; implementations reuse it between calls when K already has it.
   virtual void tangent(const VecX& u, SpMat& K) const = 0;
+
+  // ---- History (viscoelastic models). Elastic models keep the no-op defaults. ----
+  // A solver step from t to t + dt calls begin_step(dt) once, then evaluates energy/force/tangent
+  // as often as it needs (Newton iterations, line search, rejected attempts: the *trial* state,
+  // which depends on the committed history and u), and commit_step(u) once when the step is
+  // accepted; only commit_step advances the history. A rejected step calls begin_step again
+  // with a smaller dt and never commits.
+
+  /// True when the model carries history (begin_step/commit_step matter).
+  virtual bool has_history() const { return false; }
+  /// Sets the trial step size from the committed state (dt >= 0; dt = 0 gives the instantaneous response).
+  virtual void begin_step(double /*dt*/) {}
+  /// Accepts the step ending at displacement u: advances the committed history.
+  virtual void commit_step(const VecX& /*u*/) {}
 };
 
 }  // namespace tmlab::tm

@@ -1,0 +1,120 @@
+// The tmlab command line as a user meets it: exit codes, messages naming the file/key/element,
+// no result that looks complete after a failure, and the embedded demo equal to cases/liver-probe.json.
+#include "../demo_case.hpp"
+
+#include "tmlab/core/config_reader.hpp"
+#include "tmlab/core/mesh_generator.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string("TMLAB_ROOT='") + TMLAB_SOURCE_DIR + "' '" + TMLAB_CLI + "' " + args + " 2>&1";
+  Result r;
+  FILE* p = popen(cmd.c_str(), "r");
+  if (!p) return r;
+  std::array<char, 4096> buf{};
+  while (fgets(buf.data(), buf.size(), p)) r.output += buf.data();
+  const int st = pclose(p);
+  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("tmlab_cli_" + std::to_string(::getpid()) + "_" +
+                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path write(const std::string& name, const std::string& text) const {
+    std::ofstream(dir_ / name) << text;
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+TEST_F(Cli, HelpAndUsageErrors) {
+  EXPECT_EQ(run("help").status, 0);
+  const Result none = run("");
+  EXPECT_EQ(none.status, 2);
+  const Result bad = run("frobnicate");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("unknown command 'frobnicate'"), std::string::npos) << bad.output;
+  EXPECT_EQ(run("run").status, 2);
+  EXPECT_EQ(run("run liver-probe --bogus").status, 2);
+}
+
+TEST_F(Cli, CasesListsTheShippedCases) {
+  const Result r = run("cases");
+  EXPECT_EQ(r.status, 0);
+  EXPECT_NE(r.output.find("liver-probe"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, EmbeddedDemoEqualsTheShippedCaseFile) {
+  const auto shipped = tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) + "/cases/liver-probe.json");
+  EXPECT_EQ(nlohmann::json::parse(tmlab::cli::kDemoCase), shipped);
+}
+
+TEST_F(Cli, UnknownKeyInCaseFileIsNamed) {
+  tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 1, 1, 1), (dir_ / "m.msh").string());
+  const fs::path c = write("c.json", R"({"name": "c", "mesh": {"file": "m.msh"},
+    "material": {"E": 1000, "nu": 0.3, "density": 1000, "colour": "red"},
+    "solver": {"type": "static"}})");
+  const Result r = run("run '" + c.string() + "' --results '" + (dir_ / "res").string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("c.json: unknown key 'material.colour'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "c" / "summary.json"));
+}
+
+TEST_F(Cli, MalformedMeshNamesFileAndLine) {
+  const fs::path m = write("bad.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 0 zero 0\n$EndNodes\n");
+  const Result r = run("mesh info '" + m.string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("bad.msh:7"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, MeshCheckFailsOnInvertedTetAndRepairFixesIt) {
+  const fs::path m = write("inv.msh",
+                           "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
+                           "$Elements\n1\n1 4 2 0 1 1 3 2 4\n$EndElements\n");
+  const Result r = run("mesh check '" + m.string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("first inverted: tet 0"), std::string::npos) << r.output;
+  const fs::path fixed = dir_ / "fixed.msh";
+  EXPECT_EQ(run("mesh check '" + m.string() + "' --repair '" + fixed.string() + "'").status, 0);
+  EXPECT_EQ(run("mesh check '" + fixed.string() + "'").status, 0);
+}
+
+TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
+  const Result r = run("demo --no-plots --results '" + (dir_ / "res").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("reaction    probe"), std::string::npos) << r.output;
+  const fs::path out = dir_ / "res" / "liver-probe";
+  EXPECT_TRUE(fs::exists(out / "summary.json"));
+  std::ifstream in(out / "summary.json");
+  const auto s = nlohmann::json::parse(in);
+  EXPECT_EQ(s["mesh"]["tets"], 2704);
+  EXPECT_GT(s["min_volume_ratio"].get<double>(), 0.0);
+  // The probe is pushed down 15 mm: the support pushes the body down (negative z reaction).
+  EXPECT_LT(s["final_reactions_N"]["probe"][2].get<double>(), 0.0);
+}
+
+}  // namespace
