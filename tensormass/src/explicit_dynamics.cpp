@@ -82,6 +82,8 @@ void CentralDifference::initialize(double t0, const VecX& u0, const VecX& v0) {
   u_ = u0;
   system_.bc().apply(t0, u_);
   v_ = v0;
+  system_.model().begin_step(0.0);
+  system_.model().commit_step(u_);
   // v^{-1/2} = v^0 - dt/2 a^0 so that the first leapfrog update gives v^{1/2} = v^0 + dt/2 a^0.
   system_.model().internal_force(u_, fint_);
   system_.loads().assemble(u_, t_, fext_);
@@ -94,7 +96,15 @@ void CentralDifference::step(double t, double dt) {
   if (std::abs(t - t_) > 1e-9 * std::max(1.0, std::abs(t_)) || std::abs(dt - dt_) > 1e-12 * dt_)
     throw Error("CentralDifference::step called with (t, dt) inconsistent with its state");
   const double a = system_.damping().alpha;
-  system_.model().internal_force(u_, fint_);
+  // History models: the force at u^n uses the history advanced over the step that reached t_n,
+  // which is then committed (explicit stepping accepts every step).
+  if (n_ > 0 && system_.model().has_history()) {
+    system_.model().begin_step(dt_);
+    system_.model().internal_force(u_, fint_);
+    system_.model().commit_step(u_);
+  } else {
+    system_.model().internal_force(u_, fint_);
+  }
   system_.loads().assemble(u_, t_, fext_);
   fdamp_.setZero(u_.size());
   if (system_.damping().beta != 0.0) fdamp_ = system_.damping().beta * (system_.reference_tangent() * v_half_);

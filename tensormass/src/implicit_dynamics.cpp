@@ -86,6 +86,9 @@ void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
   u_ = u0;
   system_.bc().apply(t0, u_);
   v_ = v0;
+  // The initial state is the committed one: an initial displacement is applied instantaneously.
+  system_.model().begin_step(0.0);
+  system_.model().commit_step(u_);
   VecX fint, fext, fd;
   system_.model().internal_force(u_, fint);
   system_.loads().assemble(u_, t0, fext);
@@ -100,6 +103,7 @@ NewtonResult ImplicitDynamics::step(double t, double dt) {
     throw Error("ImplicitDynamics::step called with t inconsistent with its state");
   const Coefficients c = coefficients(scheme_, dt);
   StepResidual res(system_, t + dt, c, u_, v_, a_);
+  system_.model().begin_step(dt);
   // Predictor: constant velocity.
   VecX u = u_ + dt * v_;
   NewtonResult nr = newton_solve(res, system_.bc(), t + dt, u, options_, linear_);
@@ -110,6 +114,7 @@ NewtonResult ImplicitDynamics::step(double t, double dt) {
         << "); reduce solver.dt";
     throw Error(msg.str());
   }
+  system_.model().commit_step(u);
   VecX a, v;
   res.acc_vel(u, a, v);
   u_.swap(u);

@@ -6,7 +6,7 @@
 
 namespace tmlab::tm {
 
-MechanicalSystem::MechanicalSystem(const ElasticModel& model, VecX dof_mass, DirichletSet bc, ExternalLoads loads,
+MechanicalSystem::MechanicalSystem(ElasticModel& model, VecX dof_mass, DirichletSet bc, ExternalLoads loads,
                                    RayleighDamping damping)
     : model_(model), mass_(std::move(dof_mass)), bc_(std::move(bc)), loads_(std::move(loads)), damping_(damping) {
   if (mass_.size() != model_.num_dofs()) throw Error("mass vector size does not match the model's DOF count");

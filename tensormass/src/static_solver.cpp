@@ -59,6 +59,7 @@ StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
     VecX u_try = u;
     NewtonResult nr;
     bool ok = false;
+    system_.model().begin_step(t_try - t_done);  // trial history for this (sub-)increment
     try {
       nr = solve(t_try, u_try);
       ok = nr.converged;
@@ -68,6 +69,7 @@ StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
     }
     report.newton_iterations += nr.iterations;
     if (ok) {
+      system_.model().commit_step(u_try);  // the increment is accepted: advance the history once
       u.swap(u_try);
       t_done = t_try;
       report.newton = nr;

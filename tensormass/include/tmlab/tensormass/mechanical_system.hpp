@@ -17,10 +17,11 @@ struct RayleighDamping {
 
 class MechanicalSystem {
  public:
-  MechanicalSystem(const ElasticModel& model, VecX dof_mass, DirichletSet bc, ExternalLoads loads,
+  MechanicalSystem(ElasticModel& model, VecX dof_mass, DirichletSet bc, ExternalLoads loads,
                    RayleighDamping damping = {});
 
-  const ElasticModel& model() const { return model_; }
+  /// The model; non-const because solvers advance its history (begin_step/commit_step).
+  ElasticModel& model() const { return model_; }
   const VecX& mass() const { return mass_; }  ///< diagonal of M (per DOF)
   const DirichletSet& bc() const { return bc_; }
   const ExternalLoads& loads() const { return loads_; }
@@ -33,7 +34,7 @@ class MechanicalSystem {
   const SpMat& reference_tangent() const;
 
  private:
-  const ElasticModel& model_;
+  ElasticModel& model_;
   VecX mass_;
   DirichletSet bc_;
   ExternalLoads loads_;
