@@ -10,10 +10,18 @@
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
+#include "tmlab/core/hdf5_file.hpp"
+#include "tmlab/core/result_compare.hpp"
 #include "tmlab/tensormass/case_runner.hpp"
+#include "tmlab/tensormass/paper_experiments.hpp"
+
+#ifdef TMLAB_HAVE_REFERENCE
+#include "tmlab/reference_fem/reference_runner.hpp"
+#endif
 
 #include <algorithm>
 #include <cstdlib>
+#include <fstream>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -106,6 +114,20 @@ void print_summary(const tm::RunResult& r) {
             << "results     " << r.dir << "/ (summary.json, timeseries.h5, fields.xdmf, result.pvd, *.png)\n";
 }
 
+tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model, int degree) {
+  if (model == "reference") {
+#ifdef TMLAB_HAVE_REFERENCE
+    ref::ReferenceOptions ro;
+    ro.degree = degree;
+    return ref::run_reference_case(cfg, opt, ro);
+#else
+    (void)degree;
+    throw Error("this tmlab was built without the deal.II reference (reference_fem/): install libdeal.ii-dev and rebuild");
+#endif
+  }
+  return tm::run_case(cfg, opt);
+}
+
 int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& command_line) {
   tm::RunOptions opt;
   opt.tmlab_root = tmlab_root();
@@ -113,8 +135,10 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   opt.command_line = split_words(command_line);
   opt.plots = !p.has("--no-plots");
   opt.log = &std::cerr;
-  std::cerr << "tmlab: running '" << cfg.name << "' (" << cfg.model << ")\n";
-  const tm::RunResult r = tm::run_case(cfg, opt);
+  const std::string model = p.get("--model", cfg.model);
+  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
+  const tm::RunResult r = run_model(cfg, opt, model, degree);
   print_summary(r);
   return 0;
 }
@@ -130,7 +154,7 @@ int cmd_demo(const std::vector<std::string>& args, const std::string& command_li
 }
 
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line) {
-  Parsed p = parse(args, {"--results", "--model"}, {"--no-plots"});
+  Parsed p = parse(args, {"--results", "--model", "--degree"}, {"--no-plots"});
   if (p.positional.size() != 1) throw UsageError("run needs exactly one case name or case file");
   std::string path = p.positional[0];
   if (!fs::exists(path)) {
@@ -141,11 +165,78 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
   CaseConfig cfg = load_case(path, tmlab_root());
   if (p.has("--model")) {
     const std::string m = p.get("--model");
-    if (m != "tensor_mass" && m != "tl_oracle") throw UsageError("--model must be tensor_mass or tl_oracle");
-    cfg.model = m;
-    cfg.effective["model"] = m;
+    if (m != "tensor_mass" && m != "tl_oracle" && m != "reference")
+      throw UsageError("--model must be tensor_mass, tl_oracle or reference");
+    if (m != "reference") {
+      cfg.model = m;
+      cfg.effective["model"] = m;
+    }
   }
   return run_config(cfg, p, command_line);
+}
+
+std::string resolve_case(const std::string& arg) {
+  if (fs::exists(arg)) return arg;
+  const fs::path named = fs::path(tmlab_root()) / "cases" / (arg + ".json");
+  if (!fs::exists(named)) throw Error(arg + ": no such case file, and no shipped case of that name (see 'tmlab cases')");
+  return named.string();
+}
+
+int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--results", "--against", "--degree"}, {"--no-plots"});
+  if (p.positional.size() != 1) throw UsageError("compare needs exactly one case name or case file");
+  const CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
+  const std::string against = p.get("--against", "reference");
+  if (against != "reference" && against != "tl_oracle") throw UsageError("--against must be reference or tl_oracle");
+  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+
+  tm::RunOptions opt;
+  opt.tmlab_root = tmlab_root();
+  opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
+  opt.command_line = split_words(command_line);
+  opt.plots = false;
+  opt.log = &std::cerr;
+  CaseConfig tm_cfg = cfg;
+  tm_cfg.model = "tensor_mass";
+  tm_cfg.effective["model"] = "tensor_mass";
+  std::cerr << "tmlab compare: tensor-mass run\n";
+  const tm::RunResult a = tm::run_case(tm_cfg, opt);
+  tm::RunResult b;
+  if (against == "reference") {
+    std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
+    b = run_model(cfg, opt, "reference", degree);
+  } else {
+    CaseConfig o = cfg;
+    o.name = cfg.name + "-tl_oracle";
+    o.model = "tl_oracle";
+    o.effective["model"] = "tl_oracle";
+    o.effective["name"] = o.name;
+    std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
+    b = tm::run_case(o, opt);
+  }
+  ComparisonSeries series;
+  nlohmann::json cmp = compare_results(a.dir, b.dir, &series);
+  cmp["case"] = cfg.name;
+  cmp["a"] = a.dir;
+  cmp["b"] = b.dir;
+  cmp["against"] = against;
+  const fs::path dir = a.dir;
+  {
+    std::ofstream(dir / "compare.json") << cmp.dump(2) << "\n";
+    H5File h5 = H5File::create((dir / "compare.h5").string());
+    h5.write("/series/time", series.time, {series.time.size()});
+    h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
+    h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
+    h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
+    h5.close();
+  }
+  std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
+            << "  quantity                          max over steps\n"
+            << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
+            << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
+            << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
+            << "written: " << (dir / "compare.json").string() << ", compare.h5\n";
+  return 0;
 }
 
 int cmd_cases(const std::vector<std::string>& args) {
@@ -205,6 +296,50 @@ int cmd_mesh(const std::vector<std::string>& args) {
     return 0;
   }
   throw UsageError("unknown mesh sub-command '" + sub + "' (info or check)");
+}
+
+int cmd_paper(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots"});
+  if (p.positional.size() != 1) throw UsageError("paper needs one figure: fig5, fig6 or fig7");
+  const std::string params_file =
+      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
+  const nlohmann::json params = ConfigReader::parse_file(params_file);
+  const tm::PaperFigure fig = tm::paper_figure(p.positional[0], params, params_file);
+  const fs::path dir = fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
+  fs::create_directories(dir);
+  nlohmann::json spec = {{"name", fig.name}, {"title", fig.title}, {"xlabel", fig.xlabel}, {"ylabel", fig.ylabel},
+                         {"params", params_file}, {"runs", nlohmann::json::array()}};
+  std::size_t k = 0;
+  for (const auto& run : fig.runs) {
+    ++k;
+    std::cerr << "tmlab paper " << fig.name << ": run " << k << "/" << fig.runs.size() << " " << run.id << "\n";
+    const CaseConfig cfg = parse_case(run.case_doc, params_file + " (" + fig.name + "/" + run.id + ")", {tmlab_root()});
+    tm::RunOptions opt;
+    opt.tmlab_root = tmlab_root();
+    opt.results_root = dir.string();
+    opt.command_line = split_words(command_line);
+    opt.plots = false;
+    const tm::RunResult r = tm::run_case(cfg, opt);
+    spec["runs"].push_back({{"id", run.id}, {"label", run.label}, {"scheme", run.scheme}, {"dir", r.dir}, {"x", run.x},
+                            {"y", run.y}, {"x_sign", run.x_sign}, {"y_sign", run.y_sign}});
+  }
+  std::ofstream(dir / "figure.json") << spec.dump(2) << "\n";
+  if (p.has("--no-plots")) return 0;
+  const fs::path script = fs::path(tmlab_root()) / "core" / "python" / "tmlab_paper_figure.py";
+  const char* env_py = std::getenv("TMLAB_PYTHON");
+  const std::string python = env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+  const std::string cmd = python + " '" + script.string() + "' '" + dir.string() + "'";
+  if (std::system(cmd.c_str()) != 0) throw Error("drawing " + fig.name + " failed (" + cmd + ")");
+  if (fig.name == "fig7") {
+    std::ifstream in(dir / "fig7_energy.json");
+    const auto e = nlohmann::json::parse(in);
+    std::cout << "hysteresis: loop area vs dissipated energy\n";
+    for (const auto& row : e)
+      std::cout << "  " << std::left << std::setw(28) << row["run"].get<std::string>() << " loop "
+                << row["loop_area_J"].get<double>() << " J, dissipated " << row["dissipation_J"].get<double>()
+                << " J, relative difference " << row["relative_difference"].get<double>() << "\n";
+  }
+  return 0;
 }
 
 int cmd_version() {

@@ -18,6 +18,8 @@ int cmd_demo(const std::vector<std::string>& args, const std::string& command_li
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_cases(const std::vector<std::string>& args);
 int cmd_mesh(const std::vector<std::string>& args);
+int cmd_paper(const std::vector<std::string>& args, const std::string& command_line);
+int cmd_compare(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_version();
 
 }  // namespace tmlab::cli

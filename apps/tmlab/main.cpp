@@ -19,14 +19,21 @@ void print_usage(std::ostream& os) {
         "commands:\n"
         "  demo                      the liver pressed by a probe, on embedded defaults\n"
         "  run NAME|PATH [options]   run a case (a name from 'tmlab cases' or a case file)\n"
-        "      --model M             override the case's model: tensor_mass | tl_oracle\n"
+        "      --model M             override the case's model: tensor_mass | tl_oracle | reference\n"
+        "      --degree 1|2          reference element degree (P1 default)\n"
         "      --results DIR         results root (default: <tmlab>/results)\n"
         "      --no-plots            skip the PNG plots\n"
+        "  compare NAME|PATH [--against reference|tl_oracle] [--degree 1|2]\n"
+        "                            run the case with tensormass and the reference; write\n"
+        "                            results/<case>/compare.json (max relative differences)\n"
         "  cases                     list the shipped case files\n"
         "  mesh info FILE [--scale F]            counts, volume, bounding box, quality\n"
         "  mesh check FILE [--scale F] [--repair OUT.msh]\n"
         "                            exit 1 if any tet is inverted or degenerate;\n"
         "                            --repair writes a re-oriented copy\n"
+        "  paper fig5|fig6|fig7 [--params FILE] [--results DIR] [--no-plots]\n"
+        "                            the liver experiments of Xu et al. 2011 (creep, relaxation,\n"
+        "                            hysteresis) from cases/paper/xu2011_liver.json\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -50,6 +57,8 @@ int main(int argc, char** argv) {
     if (cmd == "run") return tmlab::cli::cmd_run(args, command_line);
     if (cmd == "cases") return tmlab::cli::cmd_cases(args);
     if (cmd == "mesh") return tmlab::cli::cmd_mesh(args);
+    if (cmd == "compare") return tmlab::cli::cmd_compare(args, command_line);
+    if (cmd == "paper") return tmlab::cli::cmd_paper(args, command_line);
     if (cmd == "version") return tmlab::cli::cmd_version();
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);

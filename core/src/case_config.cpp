@@ -82,6 +82,60 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
     if (!(c.material.poisson > -1.0 && c.material.poisson < 0.5))
       throw m.error("nu", "must satisfy -1 < nu < 0.5 (got " + std::to_string(c.material.poisson) + ")");
     c.material.density = m.positive("density");
+    if (m.has("viscoelastic")) {
+      ConfigReader v = m.child("viscoelastic");
+      ViscoelasticSpec& vs = c.material.viscoelastic;
+      vs.enabled = true;
+      if (v.has("scheme")) {
+        vs.scheme = v.require<std::string>("scheme");
+        if (v.has("history") || v.has("integration"))
+          throw v.error("scheme", "is a shorthand for history + integration: give either it or them");
+        if (vs.scheme == "seed") {
+          vs.history = "nodal_force", vs.integration = "midpoint";
+        } else if (vs.scheme == "seed_exact_linear") {
+          vs.history = "nodal_force", vs.integration = "exact_linear";
+        } else if (vs.scheme == "backward_euler") {
+          vs.history = "nodal_force", vs.integration = "backward_euler";
+        } else if (vs.scheme == "objective") {
+          vs.history = "pk2", vs.integration = "exact_linear";
+        } else {
+          throw v.error("scheme", "unknown scheme '" + vs.scheme +
+                                      "' (expected seed, seed_exact_linear, backward_euler or objective)");
+        }
+      } else {
+        vs.history = v.get<std::string>("history", "pk2");
+        vs.integration = v.get<std::string>("integration", "exact_linear");
+      }
+      if (vs.history != "nodal_force" && vs.history != "pk2")
+        throw v.error("history", "must be 'nodal_force' or 'pk2' (got '" + vs.history + "')");
+      if (vs.integration != "midpoint" && vs.integration != "exact_linear" && vs.integration != "backward_euler")
+        throw v.error("integration", "must be 'midpoint', 'exact_linear' or 'backward_euler' (got '" + vs.integration + "')");
+      vs.relaxation = v.get<std::string>("relaxation", "full");
+      if (vs.relaxation != "full" && vs.relaxation != "deviatoric")
+        throw v.error("relaxation", "must be 'full' or 'deviatoric' (got '" + vs.relaxation + "')");
+      if (vs.relaxation == "deviatoric" && vs.history != "pk2")
+        throw v.error("relaxation", "'deviatoric' needs the pk2 (objective) history: nodal forces have no deviatoric part");
+      ConfigReader p = v.child("prony");
+      vs.convention = p.get<std::string>("convention", "long_term");
+      if (vs.convention != "long_term" && vs.convention != "instantaneous")
+        throw p.error("convention", "must be 'long_term' or 'instantaneous' (got '" + vs.convention + "')");
+      const auto& terms = p.raw("terms");
+      if (!terms.is_array() || terms.empty()) throw p.error("terms", "must be a non-empty list of {weight, tau}");
+      double gsum = 0.0;
+      for (std::size_t k = 0; k < terms.size(); ++k) {
+        ConfigReader t(terms[k], where, p.key_path("terms") + "[" + std::to_string(k) + "]");
+        const double w = t.positive("weight", /*allow_zero=*/true);
+        const double tau = t.positive("tau");
+        t.finish();
+        vs.weights.push_back(w);
+        vs.taus.push_back(tau);
+        gsum += w;
+      }
+      if (vs.convention == "instantaneous" && !(gsum < 1.0))
+        throw p.error("terms", "instantaneous weights g_j must sum to less than 1 (got " + std::to_string(gsum) + ")");
+      p.finish();
+      v.finish();
+    }
     m.finish();
   }
   if (root.has("boundary")) {

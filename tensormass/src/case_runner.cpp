@@ -15,6 +15,7 @@
 #include "tmlab/tensormass/static_solver.hpp"
 #include "tmlab/tensormass/tensor_mass.hpp"
 #include "tmlab/tensormass/tl_oracle.hpp"
+#include "tmlab/tensormass/viscoelastic_model.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -125,10 +126,26 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   // ---- Material and elastic model. ----
   const StVenantKirchhoff material = StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson);
   std::unique_ptr<ElasticModel> model;
-  if (cfg.model == "tl_oracle")
+  const ViscoelasticStVK* visco = nullptr;
+  const ViscoelasticSpec& vs = cfg.material.viscoelastic;
+  if (vs.enabled) {
+    // Prony-series viscoelasticity on the tensor-mass model; material.E is the long-term modulus.
+    if (cfg.model == "tl_oracle")
+      throw Error(cfg.file + ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass for a viscoelastic material");
+    const PronySeries prony = vs.convention == "instantaneous" ? PronySeries::from_instantaneous(vs.weights, vs.taus)
+                                                               : PronySeries::from_long_term(vs.weights, vs.taus);
+    ViscoelasticOptions vo;
+    vo.history = ViscoelasticOptions::parse_history(vs.history);
+    vo.integration = ViscoelasticOptions::parse_integration(vs.integration);
+    vo.relaxation = ViscoelasticOptions::parse_relaxation(vs.relaxation);
+    auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
+    visco = vm.get();
+    model = std::move(vm);
+  } else if (cfg.model == "tl_oracle") {
     model = std::make_unique<TotalLagrangianStVK>(mesh, material);
-  else
+  } else {
     model = std::make_unique<TensorMassStVK>(mesh, material);
+  }
   const TotalLagrangianStVK fields_kernel(mesh, material);  // per-tet F, E, S for output
 
   // ---- Boundary conditions and loads from the node/face selectors. ----
@@ -179,6 +196,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     if (cfg.output.xdmf) xdmf = std::make_unique<XdmfTimeSeries>(out.file("fields.xdmf"), mesh);
     std::unique_ptr<PvdWriter> pvd;
     if (cfg.output.vtu) pvd = std::make_unique<PvdWriter>(out.file("result.pvd"));
+    // Nodal displacements at every field frame, in mesh node order: what `tmlab compare` diffs
+    // against the deal.II reference (which writes the same file).
+    H5File disp_h5 = H5File::create(out.file("displacement.h5"));
 
     SeriesTable table;
     VecX u = VecX::Zero(system.num_dofs());
@@ -187,6 +207,11 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     long total_newton = 0, total_cutbacks = 0;
     int field_frames = 0;
     double jmin_overall = 1.0;
+    // Work of the loads and supports on the body, by the trapezoidal rule over the recorded steps:
+    // W += 1/2 (F_n + F_{n+1}) . (u_{n+1} - u_n), F = f_ext + reactions (exact for quasi-static
+    // runs; in dynamics the reactions leave out the inertia of the prescribed nodes).
+    double external_work = 0.0;
+    VecX f_applied_prev = VecX::Zero(system.num_dofs()), u_prev = VecX::Zero(system.num_dofs());
 
     // Writes the scalar series of one step and, when asked, the fields.
     auto record = [&](int step, double t, int newton_its, bool write_fields) {
@@ -201,11 +226,24 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       model->internal_force(u, fint);
       system.loads().assemble(u, t, fext);
       const VecX r = fint - fext;
+      VecX f_applied = fext;
+      for (Index d : system.bc().dofs()) f_applied[d] += r[d];
+      external_work += 0.5 * (f_applied_prev + f_applied).dot(u - u_prev);
+      f_applied_prev = f_applied;
+      u_prev = u;
       double umax = 0.0;
       for (Index i = 0; i < mesh.num_points(); ++i) umax = std::max(umax, u.segment<3>(3 * i).norm());
       table.add("time", "s", t);
       table.add("max_displacement", "m", umax);
-      table.add("elastic_energy", "J", model->energy(u));
+      // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
+      // the Maxwell-branch energies of the committed state; dissipation is the model's own count.
+      table.add("elastic_energy", "J", visco ? visco->committed_elastic_energy() : model->energy(u));
+      if (visco) {
+        table.add("branch_energy", "J", visco->committed_branch_energy());
+        table.add("dissipated_energy", "J", visco->total_dissipation());
+        table.add("step_dissipation", "J", visco->step_dissipation());
+      }
+      table.add("external_work", "J", external_work);
       table.add("kinetic_energy", "J", 0.5 * v.dot(system.mass().cwiseProduct(v)));
       table.add("min_volume_ratio", "1", jmin);
       table.add("newton_iterations", "1", newton_its);
@@ -225,6 +263,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         table.add("probe_" + n + "_norm", "m", up.norm());
       }
       if (!write_fields) return;
+      disp_h5.append_row("/u", std::vector<double>(u.data(), u.data() + u.size()));
+      disp_h5.append("/time", t);
       // Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
       std::vector<double> jratio(mesh.tets.size()), vm(mesh.tets.size());
       std::vector<Eigen::Matrix3d> strain(mesh.tets.size()), cauchy(mesh.tets.size());
@@ -352,6 +392,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       h5.set_attribute("/", "case", cfg.name);
       h5.close();
     }
+    disp_h5.set_attribute("/u", "unit", "m");
+    disp_h5.set_attribute("/u", "layout", "rows: field frames; columns: 3*node + component (tmlab node order)");
+    disp_h5.close();
     if (xdmf) xdmf->close();
     if (pvd) pvd->write();
 
@@ -364,7 +407,12 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     if (!reactions.empty())
       plots.push_back({{"file", "reaction.png"}, {"x", "time"}, {"y", reactions}, {"title", cfg.name + ": reaction forces"},
                        {"xlabel", "time [s]"}, {"ylabel", "|reaction| [N]"}});
-    plots.push_back({{"file", "energy.png"}, {"x", "time"}, {"y", {"elastic_energy", "kinetic_energy"}},
+    nlohmann::json energy_series = {"elastic_energy", "kinetic_energy", "external_work"};
+    if (visco) {
+      energy_series.push_back("branch_energy");
+      energy_series.push_back("dissipated_energy");
+    }
+    plots.push_back({{"file", "energy.png"}, {"x", "time"}, {"y", energy_series},
                      {"title", cfg.name + ": energies"}, {"xlabel", "time [s]"}, {"ylabel", "energy [J]"}});
     if (!probe_nodes.empty()) {
       nlohmann::json py = nlohmann::json::array();
@@ -408,6 +456,20 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       reac[c.name] = {table.last("reaction_" + c.name + "_x"), table.last("reaction_" + c.name + "_y"),
                       table.last("reaction_" + c.name + "_z")};
     summary["final_reactions_N"] = reac;
+    {
+      // Energy balance: work in = stored (+ kinetic) + dissipated.
+      const double stored = table.last("elastic_energy") + (visco ? visco->committed_branch_energy() : 0.0);
+      const double kinetic = table.last("kinetic_energy");
+      const double dissipated = visco ? visco->total_dissipation() : 0.0;
+      summary["energy"] = {{"external_work_J", external_work},
+                           {"stored_J", stored},
+                           {"kinetic_J", kinetic},
+                           {"total_dissipation_J", dissipated},
+                           {"balance_residual_J", external_work - stored - kinetic - dissipated}};
+    }
+    if (visco)
+      summary["viscoelastic"] = {{"history", vs.history}, {"integration", vs.integration}, {"relaxation", vs.relaxation},
+                                 {"prony_long_term", visco->prony().to_json()}};
     nlohmann::json probes = nlohmann::json::object();
     for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
       const std::string& n = cfg.output.probes[k].name;

@@ -2,6 +2,7 @@
 
 #include "tmlab/core/error.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -35,9 +36,10 @@ class StepResidual final : public NonlinearSystem {
  public:
   StepResidual(const MechanicalSystem& s, double t1, const Coefficients& c, const VecX& un, const VecX& vn, const VecX& an)
       : s_(s), t1_(t1), c_(c), un_(un), vn_(vn), an_(an) {
-    VecX f;
+    VecX f, fi;
     s_.loads().assemble(un_, t1_, f);
-    scale_ = std::max(f.norm(), s_.mass().cwiseProduct(an_).norm());
+    s_.model().internal_force(un_, fi);
+    scale_ = std::max({f.norm(), fi.norm(), s_.mass().cwiseProduct(an_).norm()});
   }
   void acc_vel(const VecX& u, VecX& a, VecX& v) const {
     a = c_.ca * (u - un_) - c_.cv * vn_ - c_.caa * an_;

@@ -2,6 +2,7 @@
 
 #include "tmlab/core/error.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace tmlab::tm {
@@ -10,10 +11,14 @@ namespace {
 /// R(u) = f_int(u) - f_ext(u, t);  J = K(u) - d f_ext/du.
 class StaticResidual final : public NonlinearSystem {
  public:
-  StaticResidual(const MechanicalSystem& s, double t) : s_(s), t_(t) {
-    VecX f;
-    s_.loads().assemble(VecX::Zero(s_.num_dofs()), t_, f);
-    scale_ = f.norm();
+  /// The force scale of the relative tolerance: the larger of |f_ext| and |f_int(u0)| (the latter
+  /// carries the reactions of prescribed displacements, the only forces in a displacement-driven
+  /// hold phase, where |R(u0)| itself is already at round-off).
+  StaticResidual(const MechanicalSystem& s, double t, const VecX& u0) : s_(s), t_(t) {
+    VecX f, fi;
+    s_.loads().assemble(u0, t_, f);
+    s_.model().internal_force(u0, fi);
+    scale_ = std::max(f.norm(), fi.norm());
   }
   void residual(const VecX& u, VecX& r) override {
     s_.model().internal_force(u, r);
@@ -45,7 +50,7 @@ StaticSolver::StaticSolver(const MechanicalSystem& system, NewtonOptions options
     : system_(system), options_(options), max_cutbacks_(max_cutbacks) {}
 
 NewtonResult StaticSolver::solve(double t, VecX& u) {
-  StaticResidual r(system_, t);
+  StaticResidual r(system_, t, u);
   return newton_solve(r, system_.bc(), t, u, options_, linear_);
 }
 

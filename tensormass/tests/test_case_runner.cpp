@@ -3,6 +3,7 @@
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/hdf5_file.hpp"
 #include "tmlab/core/mesh_generator.hpp"
+#include "tmlab/core/result_compare.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/tensormass/case_runner.hpp"
 
@@ -69,7 +70,8 @@ TEST_F(CaseRunnerTest, UniaxialStretchReactionMatchesClosedForm) {
 
   // The result directory is complete: summary last, numbers, fields, manifest.
   const fs::path out = r.dir;
-  for (const char* f : {"summary.json", "manifest.json", "timeseries.h5", "fields.xdmf", "result.pvd", "mesh_report.json"})
+  for (const char* f : {"summary.json", "manifest.json", "timeseries.h5", "displacement.h5", "fields.xdmf", "result.pvd",
+                        "mesh_report.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   EXPECT_FALSE(fs::exists(out / RunOutput::kStaging));
   H5File h5 = H5File::open_read((out / "timeseries.h5").string());
@@ -86,6 +88,26 @@ TEST_F(CaseRunnerTest, OracleAndTensorMassGiveTheSameAnswer) {
   const double fa = a.summary["final_reactions_N"]["pull"][0].get<double>();
   const double fb = b.summary["final_reactions_N"]["pull"][0].get<double>();
   EXPECT_NEAR(fa, fb, 1e-10 * std::abs(fb));
+
+  // The comparison tool sees the same: differences at round-off (the two kernels agree to ~1e-15;
+  // Newton stops at rtol 1e-10, so displacements agree to about that).
+  const nlohmann::json cmp = compare_results(a.dir, b.dir);
+  EXPECT_LT(cmp["rel_diff_displacement"].get<double>(), 1e-9) << cmp.dump();
+  EXPECT_LT(cmp["rel_diff_reaction"].get<double>(), 1e-9) << cmp.dump();
+  EXPECT_LT(cmp["rel_diff_energy"].get<double>(), 1e-9) << cmp.dump();
+  EXPECT_EQ(cmp["frames"].get<int>(), 5);
+
+  // A different material is seen as different.
+  j["material"]["E"] = 12000;
+  j["name"] = "uniaxial_stiffer";
+  const RunResult c = run(j);
+  const nlohmann::json cmp2 = compare_results(c.dir, a.dir);
+  EXPECT_NEAR(cmp2["rel_diff_reaction"].get<double>(), 0.2, 1e-6) << cmp2.dump();
+  // Different output frames cannot be compared.
+  j["solver"]["steps"] = 2;
+  j["name"] = "uniaxial_two_steps";
+  const RunResult d = run(j);
+  EXPECT_THROW(compare_results(d.dir, a.dir), Error);
 }
 
 TEST_F(CaseRunnerTest, InvertedElementStopsTheRunWithoutSummary) {

@@ -20,11 +20,24 @@ struct MeshSpec {
   bool repair_orientation = false;
 };
 
+/// Prony-series viscoelasticity (issue 3; docs/theory/viscoelasticity.md). Plain data here; the
+/// tensor-mass model validates and converts it (tmlab::tm::PronySeries).
+struct ViscoelasticSpec {
+  bool enabled = false;
+  std::string convention = "long_term";       ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
+  std::vector<double> weights, taus;          ///< one per Prony term
+  std::string history = "pk2";                ///< nodal_force (the seed's eq. 20) | pk2 (objective)
+  std::string integration = "exact_linear";   ///< midpoint | exact_linear | backward_euler
+  std::string relaxation = "full";            ///< full | deviatoric (pk2 only)
+  std::string scheme;                         ///< the shorthand given, if any (seed, objective, ...)
+};
+
 struct MaterialSpec {
   std::string law = "stvk";  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
-  double young = 0.0;        ///< Pa
+  double young = 0.0;        ///< Pa; the long-term modulus E_inf of a viscoelastic material
   double poisson = 0.0;
   double density = 0.0;      ///< kg/m^3
+  ViscoelasticSpec viscoelastic;
 };
 
 struct BoundarySpec {

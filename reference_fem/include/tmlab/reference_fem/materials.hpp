@@ -1,0 +1,220 @@
+// Constitutive laws of the reference solver, as stateless value types: strain energy density W(E),
+// second Piola-Kirchhoff stress S = dW/dE and material tangent D = dS/dE, all as functions of the
+// Green-Lagrange strain E = (F^T F - I)/2 (C = I + 2E). tests/test_reference_materials.cpp checks
+// S against finite differences of W and D against finite differences of S, for every law.
+//
+// Prony viscoelasticity (PronySeries) acts on the PK2 stress at each quadrature point, with the
+// update schemes of the tensor-mass model (docs/reference-fem.md, "Viscoelasticity").
+#pragma once
+
+#include <deal.II/base/symmetric_tensor.h>
+#include <deal.II/base/tensor.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace tmlab::ref {
+
+using SymTensor2 = dealii::SymmetricTensor<2, 3>;
+using SymTensor4 = dealii::SymmetricTensor<4, 3>;
+
+/// Identity (rank 2) and the "box" product (A (.) B)_ijkl = 1/2 (A_ik B_jl + A_il B_jk), which
+/// is dA^{-1}/dA = -(A^{-1} (.) A^{-1}) for symmetric A.
+inline SymTensor4 box_product(const SymTensor2& A, const SymTensor2& B) {
+  SymTensor4 out;
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = i; j < 3; ++j)
+      for (unsigned k = 0; k < 3; ++k)
+        for (unsigned l = k; l < 3; ++l) out[i][j][k][l] = 0.5 * (A[i][k] * B[j][l] + A[i][l] * B[j][k]);
+  return out;
+}
+
+/// St Venant-Kirchhoff: W = lambda/2 (tr E)^2 + mu tr(E^2), S = lambda tr(E) I + 2 mu E,
+/// D = lambda I (x) I + 2 mu II (constant). Identical to tmlab::tm::StVenantKirchhoff.
+struct StVenantKirchhoffLaw {
+  double lambda = 0.0, mu = 0.0;
+  double energy(const SymTensor2& E) const {
+    const double tr = dealii::trace(E);
+    return 0.5 * lambda * tr * tr + mu * (E * E);
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    return lambda * dealii::trace(E) * dealii::unit_symmetric_tensor<3>() + 2.0 * mu * E;
+  }
+  SymTensor4 tangent(const SymTensor2& /*E*/) const {
+    const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+    return lambda * dealii::outer_product(I, I) + 2.0 * mu * dealii::identity_tensor<3>();
+  }
+};
+
+/// Compressible neo-Hookean: W = mu/2 (I1 - 3) - mu ln J + lambda/2 (ln J)^2, I1 = tr C, J = det F.
+/// S = mu (I - C^-1) + lambda ln J C^-1, D = lambda C^-1 (x) C^-1 + 2 (mu - lambda ln J) C^-1 (.) C^-1.
+/// Linearises to the same Lame constants as St Venant-Kirchhoff.
+struct NeoHookeanLaw {
+  double lambda = 0.0, mu = 0.0;
+  double energy(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E;
+    const double lnJ = 0.5 * std::log(dealii::determinant(C));
+    return 0.5 * mu * (dealii::trace(C) - 3.0) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E;
+    const SymTensor2 Ci = dealii::invert(C);
+    const double lnJ = 0.5 * std::log(dealii::determinant(C));
+    return mu * (dealii::unit_symmetric_tensor<3>() - Ci) + lambda * lnJ * Ci;
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E;
+    const SymTensor2 Ci = dealii::invert(C);
+    const double lnJ = 0.5 * std::log(dealii::determinant(C));
+    return lambda * dealii::outer_product(Ci, Ci) + 2.0 * (mu - lambda * lnJ) * box_product(Ci, Ci);
+  }
+};
+
+/// Yeoh (strain-stiffening), decoupled: W = sum_i C_i0 (I1b - 3)^i + kappa/2 (ln J)^2 with the
+/// isochoric invariant I1b = J^(-2/3) I1. With C10 = mu/2 and kappa = lambda + 2mu/3 it linearises
+/// to the Lame constants (lambda, mu); C20, C30 > 0 stiffen it in shear at large strain.
+///   S = 2 Psi'(I1b) G + kappa ln J C^-1,  G = dI1b/dC = J^(-2/3) (I - I1/3 C^-1),
+///   D = 2 dS/dC = 4 Psi'' G (x) G + 4 Psi' dG/dC + kappa C^-1 (x) C^-1 - 2 kappa ln J C^-1 (.) C^-1,
+///   dG/dC = J^(-2/3) [ -1/3 (I (x) C^-1 + C^-1 (x) I) + I1/9 C^-1 (x) C^-1 + I1/3 C^-1 (.) C^-1 ].
+struct YeohLaw {
+  double c10 = 0.0, c20 = 0.0, c30 = 0.0, kappa = 0.0;
+  double energy(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E;
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    const double x = std::pow(detC, -1.0 / 3.0) * dealii::trace(C) - 3.0;
+    return c10 * x + c20 * x * x + c30 * x * x * x + 0.5 * kappa * lnJ * lnJ;
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+    const SymTensor2 C = I + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC), I1 = dealii::trace(C);
+    const double Jm23 = std::pow(detC, -1.0 / 3.0), x = Jm23 * I1 - 3.0;
+    const double d1 = c10 + 2.0 * c20 * x + 3.0 * c30 * x * x;
+    return 2.0 * d1 * Jm23 * (I - (I1 / 3.0) * Ci) + kappa * lnJ * Ci;
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+    const SymTensor2 C = I + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC), I1 = dealii::trace(C);
+    const double Jm23 = std::pow(detC, -1.0 / 3.0), x = Jm23 * I1 - 3.0;
+    const double d1 = c10 + 2.0 * c20 * x + 3.0 * c30 * x * x, d2 = 2.0 * c20 + 6.0 * c30 * x;
+    const SymTensor2 G = Jm23 * (I - (I1 / 3.0) * Ci);
+    const SymTensor4 CiCi = dealii::outer_product(Ci, Ci), box = box_product(Ci, Ci);
+    const SymTensor4 dG = Jm23 * (-1.0 / 3.0 * (dealii::outer_product(I, Ci) + dealii::outer_product(Ci, I)) +
+                                  (I1 / 9.0) * CiCi + (I1 / 3.0) * box);
+    return 4.0 * d2 * dealii::outer_product(G, G) + 4.0 * d1 * dG + kappa * CiCi - 2.0 * kappa * lnJ * box;
+  }
+};
+
+/// One of the laws above, chosen at run time (a closed set: a switch is clearer than virtuals).
+struct Material {
+  enum class Kind { StVK, NeoHookean, Yeoh };
+  Kind kind = Kind::StVK;
+  double lambda = 0.0, mu = 0.0;  ///< Lame constants of the small-strain limit
+  StVenantKirchhoffLaw stvk;
+  NeoHookeanLaw neo;
+  YeohLaw yeoh;
+
+  /// law: stvk | neo_hookean | yeoh; lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)).
+  static Material make(const std::string& law, double young, double poisson, double yeoh_c20_ratio = 1.0,
+                       double yeoh_c30_ratio = 0.0);
+  std::string name() const;
+
+  double energy(const SymTensor2& E) const {
+    switch (kind) {
+      case Kind::StVK: return stvk.energy(E);
+      case Kind::NeoHookean: return neo.energy(E);
+      default: return yeoh.energy(E);
+    }
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    switch (kind) {
+      case Kind::StVK: return stvk.stress(E);
+      case Kind::NeoHookean: return neo.stress(E);
+      default: return yeoh.stress(E);
+    }
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    switch (kind) {
+      case Kind::StVK: return stvk.tangent(E);
+      case Kind::NeoHookean: return neo.tangent(E);
+      default: return yeoh.tangent(E);
+    }
+  }
+};
+
+/// Prony series on the PK2 stress (the objective form of the tensor-mass model's viscoelasticity):
+///   S_total^{n+1} = S_e^{n+1} + sum_j alpha_j h_j^{n+1},
+///   h_j^{n+1} = a_j h_j^n + c_j (S_r^{n+1} - S_r^n),  a_j = exp(-dt/tau_j),
+/// with S_e = dW/dE (long-term law) and S_r the relaxing stress: S_e ("full") or, for St VK only,
+/// S_dev = 2 mu (E - tr(E)/3 I) ("deviatoric"). c_j: midpoint exp(-dt/(2 tau_j)); exact_linear
+/// (tau_j/dt)(1 - exp(-dt/tau_j)); backward_euler a_j = c_j = 1/(1 + dt/tau_j).
+/// alpha_j are long-term normalised; an instantaneous series g_j is converted alpha_j = g_j/(1-sum g).
+struct PronySeries {
+  enum class Integration { Midpoint, ExactLinear, BackwardEuler };
+  std::vector<double> alpha, tau;
+  Integration integration = Integration::ExactLinear;
+  bool deviatoric = false;
+
+  /// convention: long_term | instantaneous; integration: midpoint | exact_linear | backward_euler;
+  /// relaxation: full | deviatoric. Throws tmlab::Error for bad input.
+  static PronySeries make(const std::string& convention, const std::vector<double>& weights,
+                          const std::vector<double>& taus, const std::string& integration,
+                          const std::string& relaxation);
+  std::size_t size() const { return alpha.size(); }
+
+  /// Recursion factors (a_j, c_j) for a step dt > 0.
+  void factors(std::size_t j, double dt, double& a, double& c) const {
+    const double x = dt / tau[j];
+    switch (integration) {
+      case Integration::Midpoint: a = std::exp(-x), c = std::exp(-0.5 * x); break;
+      case Integration::ExactLinear: a = std::exp(-x), c = x > 1e-12 ? (1.0 - std::exp(-x)) / x : 1.0 - 0.5 * x; break;
+      default: a = c = 1.0 / (1.0 + x);
+    }
+  }
+  /// The relaxing stress S_r(E) and its tangent dS_r/dE.
+  SymTensor2 relaxing_stress(const Material& m, const SymTensor2& E) const {
+    if (!deviatoric) return m.stress(E);
+    return 2.0 * m.mu * (E - dealii::trace(E) / 3.0 * dealii::unit_symmetric_tensor<3>());
+  }
+  SymTensor4 relaxing_tangent(const Material& m, const SymTensor2& E) const {
+    if (!deviatoric) return m.tangent(E);
+    return 2.0 * m.mu * dealii::deviator_tensor<3>();
+  }
+};
+
+/// History of one quadrature point: the committed state (h_j^n, S_r^n) and the trial state of the
+/// step being solved; commit() makes the trial state the committed one (once per converged step).
+struct PronyState {
+  std::vector<SymTensor2> h, h_trial;
+  SymTensor2 s_r, s_r_trial;
+  void resize(std::size_t n) {
+    h.assign(n, SymTensor2());
+    h_trial.assign(n, SymTensor2());
+  }
+  void commit() {
+    h = h_trial;
+    s_r = s_r_trial;
+  }
+};
+
+/// Total stress of the trial state and its consistent tangent for step dt, updating state.h_trial.
+inline void prony_update(const Material& m, const PronySeries& p, const SymTensor2& E, double dt, PronyState& state,
+                         SymTensor2& S, SymTensor4* D) {
+  S = m.stress(E);
+  if (D) *D = m.tangent(E);
+  const SymTensor2 sr = p.relaxing_stress(m, E);
+  state.s_r_trial = sr;
+  double dfac = 0.0;
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    double a = 0.0, c = 0.0;
+    p.factors(j, dt, a, c);
+    state.h_trial[j] = a * state.h[j] + c * (sr - state.s_r);
+    S += p.alpha[j] * state.h_trial[j];
+    dfac += p.alpha[j] * c;
+  }
+  if (D && dfac != 0.0) *D += dfac * p.relaxing_tangent(m, E);
+}
+
+}  // namespace tmlab::ref
