@@ -5,6 +5,7 @@
 #include "tmlab/tensormass/picinbono_storage.hpp"
 #include "tmlab/tensormass/tensor_mass.hpp"
 #include "tmlab/tensormass/tl_oracle.hpp"
+#include "tmlab/tensormass/viscoelastic_model.hpp"
 
 #include <benchmark/benchmark.h>
 
@@ -121,7 +122,26 @@ void BM_TensorMassTangentAssembly(benchmark::State& state) {
 
 // cubes of 8^3, 16^3, 32^3 hexes x 6 = 3,072 / 24,576 / 196,608 tets
 #define TM_SIZES ->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond)
+/// Viscoelastic trial force (2 Prony terms) after one committed step: the overhead over the
+/// elastic tensor-mass force is the seed paper's "about 5 %" claim (errata "Flaws" 4).
+void visco_force_bench(benchmark::State& state, ViscoelasticOptions::History history) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  ViscoelasticOptions o;
+  o.history = history;
+  o.integration = ViscoelasticOptions::Integration::Midpoint;
+  o.energy_bookkeeping = false;
+  ViscoelasticStVK m(s.mesh, material(), PronySeries::from_long_term({0.8, 0.4}, {0.5, 5.0}), o);
+  m.begin_step(0.01);
+  m.commit_step(s.u);
+  m.begin_step(0.01);
+  force_bench(state, s, m);
+}
+void BM_ViscoSeedForce(benchmark::State& state) { visco_force_bench(state, ViscoelasticOptions::History::NodalForce); }
+void BM_ViscoObjectiveForce(benchmark::State& state) { visco_force_bench(state, ViscoelasticOptions::History::Pk2); }
+
 BENCHMARK(BM_OracleForce) TM_SIZES;
+BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
+BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;
 BENCHMARK(BM_TensorMassForce) TM_SIZES;
 BENCHMARK(BM_TensorMassEnergy) TM_SIZES;
 BENCHMARK(BM_PicinbonoAbsoluteForce) TM_SIZES;

@@ -58,13 +58,7 @@ class StepResidual final : public NonlinearSystem {
     const double mass_coef = c_.ca + c_.du * s_.damping().alpha;
     for (Eigen::Index i = 0; i < J.rows(); ++i) J.coeffRef(i, i) += mass_coef * s_.mass()[i];
     if (s_.damping().beta != 0.0) J += (c_.du * s_.damping().beta) * s_.reference_tangent();
-    if (s_.loads().has_follower()) {
-      std::vector<Eigen::Triplet<double>> trip;
-      s_.loads().add_load_stiffness(u, t1_, trip);
-      SpMat kl(J.rows(), J.cols());
-      kl.setFromTriplets(trip.begin(), trip.end());
-      J += kl;
-    }
+    s_.add_load_stiffness(u, t1_, J);
   }
   bool symmetric() const override { return !s_.loads().has_follower(); }
   double force_scale() const override { return scale_; }

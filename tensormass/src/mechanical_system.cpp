@@ -22,6 +22,15 @@ const SpMat& MechanicalSystem::reference_tangent() const {
   return k0_;
 }
 
+void MechanicalSystem::add_load_stiffness(const VecX& u, double t, SpMat& J) const {
+  if (!loads_.has_follower()) return;
+  std::vector<Eigen::Triplet<double>> trip;
+  loads_.add_load_stiffness(u, t, trip);
+  SpMat kl(J.rows(), J.cols());
+  kl.setFromTriplets(trip.begin(), trip.end());
+  J += kl;
+}
+
 void MechanicalSystem::damping_force(const VecX& v, VecX& out) const {
   out = damping_.alpha * mass_.cwiseProduct(v);
   if (damping_.beta != 0.0) out += damping_.beta * (reference_tangent() * v);

@@ -27,13 +27,7 @@ class StaticResidual final : public NonlinearSystem {
   }
   void jacobian(const VecX& u, SpMat& J) override {
     s_.model().tangent(u, J);
-    if (s_.loads().has_follower()) {
-      std::vector<Eigen::Triplet<double>> trip;
-      s_.loads().add_load_stiffness(u, t_, trip);
-      SpMat kl(J.rows(), J.cols());
-      kl.setFromTriplets(trip.begin(), trip.end());
-      J += kl;
-    }
+    s_.add_load_stiffness(u, t_, J);
   }
   bool symmetric() const override { return !s_.loads().has_follower(); }
   double force_scale() const override { return scale_; }

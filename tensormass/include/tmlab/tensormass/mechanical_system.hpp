@@ -30,6 +30,8 @@ class MechanicalSystem {
 
   /// C v = alpha M v + beta K_0 v.
   void damping_force(const VecX& v, VecX& out) const;
+  /// J += -d f_ext/du at (u, t): the load stiffness of follower pressure (no-op without follower loads).
+  void add_load_stiffness(const VecX& u, double t, SpMat& J) const;
   /// K_0, the tangent at u = 0 (assembled once, lazily).
   const SpMat& reference_tangent() const;
 
