@@ -478,18 +478,18 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     return free_norm(out);
   };
 
-  // Force scale for the relative tolerance: |f_ext(t)| (as the tensor-mass solver).
-  double fext_norm = 0.0;
-  {
-    TrilinosWrappers::MPI::Vector fe(owned_, comm_);
-    assemble(g, t, dt, Mode::External, nullptr, fe, nullptr, nullptr);
-    fext_norm = fe.l2_norm();
-  }
+  // Force scale for the relative tolerance, as the tensor-mass solver: the larger of |f_ext(t)|
+  // and |f_int(u0)| over all DOFs. The latter carries the reactions of prescribed displacements,
+  // the only forces in a displacement-driven hold phase, where |R(u0)| is already at round-off.
+  TrilinosWrappers::MPI::Vector fe(owned_, comm_);
+  assemble(g, t, dt, Mode::External, nullptr, fe, nullptr, nullptr);
+  const double fext_norm = fe.l2_norm();
 
   double rnorm = residual(u, r);
   stats.residuals.assign(1, rnorm);
   if (!std::isfinite(rnorm)) throw Error("reference: non-finite residual at the start of the Newton iteration (t = " + std::to_string(t) + ")");
-  double scale = std::max(rnorm, fext_norm);
+  fe += r;  // f_int(u0) = R(u0) + f_ext
+  double scale = std::max({rnorm, fext_norm, fe.l2_norm()});
   bool converged = false;
   int iterations = 0;
   for (int k = 0; k < newton_.max_iterations; ++k) {

@@ -117,6 +117,29 @@ TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
   EXPECT_LT(s["final_reactions_N"]["probe"][2].get<double>(), 0.0);
 }
 
+/// `tmlab compare`: the shipped uniaxial case with the tensor-mass model and the deal.II P1 reference
+/// (same mesh, same discretisation: same answer to solver tolerance), and against the oracle.
+TEST_F(Cli, CompareWritesTheDifferences) {
+  for (const std::string against : {"tl_oracle", "reference"}) {
+#ifndef TMLAB_HAVE_REFERENCE
+    if (against == "reference") {
+      const Result r = run("compare cube-uniaxial --results '" + (dir_ / "res").string() + "'");
+      EXPECT_EQ(r.status, 1);
+      EXPECT_NE(r.output.find("without the deal.II reference"), std::string::npos) << r.output;
+      continue;
+    }
+#endif
+    const Result r = run("compare cube-uniaxial --against " + against + " --results '" + (dir_ / "res").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(dir_ / "res" / "cube-uniaxial" / "compare.json");
+    const auto c = nlohmann::json::parse(in);
+    EXPECT_EQ(c["against"], against);
+    EXPECT_LT(c["rel_diff_displacement"].get<double>(), 1e-8) << c.dump();
+    EXPECT_LT(c["rel_diff_reaction"].get<double>(), 1e-8) << c.dump();
+    EXPECT_LT(c["rel_diff_energy"].get<double>(), 1e-8) << c.dump();
+  }
+}
+
 /// `tmlab paper fig7` end to end on a reduced parameter file (one scheme, one short cycle): the
 /// figure, its HDF5 curves and the energy table exist, and the objective scheme's energy balance
 /// (loop area = dissipated + stored) closes to the time-discretisation error.
