@@ -225,17 +225,48 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     std::ofstream(dir / "compare.json") << cmp.dump(2) << "\n";
     H5File h5 = H5File::create((dir / "compare.h5").string());
     h5.write("/series/time", series.time, {series.time.size()});
+    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
     h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
     h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
     h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
     h5.close();
+  }
+  // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
+  std::string plot_note;
+  if (!p.has("--no-plots")) {
+    const fs::path pdir = dir / "compare";
+    fs::create_directories(pdir);
+    auto floored = [](std::vector<double> v) {
+      for (double& x : v) x = std::max(x, 1e-17);
+      return v;
+    };
+    H5File h5 = H5File::create((pdir / "timeseries.h5").string());
+    h5.write("/series/time", series.time, {series.time.size()});
+    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
+    h5.write("/series/rel_diff_displacement", floored(series.rel_displacement), {series.rel_displacement.size()});
+    h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
+    h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
+    h5.close();
+    const nlohmann::json plots = nlohmann::json::array(
+        {{{"file", "compare_displacement.png"}, {"x", "time"}, {"y", {"rel_diff_displacement"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"}, {"xlabel", "time [s]"},
+          {"ylabel", "|u_a - u_b| / |u_b|"}, {"logy", true}},
+         {{"file", "compare_reaction_energy.png"}, {"x", "step_time"}, {"y", {"rel_diff_reaction", "rel_diff_energy"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"}, {"xlabel", "time [s]"},
+          {"ylabel", "relative difference"}, {"logy", true}}});
+    std::ofstream(pdir / "plots.json") << plots.dump(2) << "\n";
+    const char* env_py = std::getenv("TMLAB_PYTHON");
+    const std::string python = env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+    const std::string cmd = python + " '" + (fs::path(tmlab_root()) / "core" / "python" / "tmlab_plot.py").string() + "' '" +
+                            pdir.string() + "' > /dev/null";
+    plot_note = std::system(cmd.c_str()) == 0 ? ", compare/*.png" : " (plotting failed)";
   }
   std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
             << "  quantity                          max over steps\n"
             << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
             << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
             << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
-            << "written: " << (dir / "compare.json").string() << ", compare.h5\n";
+            << "written: " << (dir / "compare.json").string() << ", compare.h5" << plot_note << "\n";
   return 0;
 }
 

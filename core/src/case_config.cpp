@@ -171,11 +171,16 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
         s.pressure = l.require<double>("pressure");
         if (!std::isfinite(s.pressure)) throw l.error("pressure", "must be finite");
         s.follower = l.get<bool>("follower", false);
+      } else if (type == "traction") {
+        // A dead traction vector per unit reference area on the selected boundary faces.
+        s.type = LoadSpec::Type::Traction;
+        s.selector = NodeSelector::from_json(l.raw("faces"), where + ": key '" + l.key_path("faces") + "'");
+        s.vector = read_vec3(l, "traction");
       } else if (type == "gravity") {
         s.type = LoadSpec::Type::Gravity;
         s.vector = read_vec3(l, "acceleration");
       } else {
-        throw l.error("type", "unknown load type '" + type + "' (expected nodal_force, pressure or gravity)");
+        throw l.error("type", "unknown load type '" + type + "' (expected nodal_force, pressure, traction or gravity)");
       }
       s.function = read_function(l);
       l.finish();

@@ -68,6 +68,7 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     const auto ta = ha.read_double("/series/time"), tb = hb.read_double("/series/time");
     if (ta.size() != tb.size()) throw Error("timeseries.h5 of " + a.string() + " and " + b.string() + " differ in steps");
     const std::size_t n = tb.size();
+    cs.step_time = tb;
     std::map<std::string, int> conditions;
     for (const auto& name : hb.list("/series")) {
       const std::string pre = "reaction_", suf = "_x";

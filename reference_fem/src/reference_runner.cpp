@@ -288,7 +288,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
           }
         }
       }
-    } else if (l.type == LoadSpec::Type::Pressure) {
+    } else if (l.type == LoadSpec::Type::Pressure || l.type == LoadSpec::Type::Traction) {
       std::set<std::vector<Index>> keys;
       std::vector<char> in;
       if (!hex) {
@@ -322,7 +322,10 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
             for (Index n : key) take = take && in[n];
           }
           if (take) {
-            solid.add_pressure(cell->id(), f, lf, l.pressure);
+            if (l.type == LoadSpec::Type::Pressure)
+              solid.add_pressure(cell->id(), f, lf, l.pressure);
+            else
+              solid.add_traction(cell->id(), f, lf, Tensor<1, 3>({l.vector.x(), l.vector.y(), l.vector.z()}));
             ++found;
           }
         }

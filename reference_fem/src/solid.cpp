@@ -217,8 +217,12 @@ int Solid::add_load_function(const TimeFunction& f) {
 
 void Solid::add_point_force(global_dof_index dof, int load, double value) { point_forces_.push_back({dof, load, value}); }
 
+void Solid::add_traction(const CellId& cell, unsigned face, int load, const Tensor<1, 3>& traction) {
+  pressures_.push_back({cell, face, load, 0.0, traction});
+}
+
 void Solid::add_pressure(const CellId& cell, unsigned face, int load, double pressure) {
-  pressures_.push_back({cell, face, load, pressure});
+  pressures_.push_back({cell, face, load, pressure, Tensor<1, 3>()});
 }
 
 void Solid::add_body_force(std::function<Tensor<1, 3>(const Point<3>&)> b0, int load) {
@@ -338,15 +342,19 @@ void Solid::assemble(const TrilinosWrappers::MPI::Vector& u_ghost, double t, dou
       for (unsigned i = 0; i < n; ++i)
         for (unsigned j = i + 1; j < n; ++j) cell_K(i, j) = cell_K(j, i);
 
-    // Dead pressure on the reference surface: f_ext,i = -int p N . phi_i dA (N outward).
+    // Dead pressure and traction on the reference surface:
+    // f_ext,i = int (t - p N) . phi_i dA (N outward), entering the residual r = f_int - f_ext.
     const auto it = faces.find(cell->id());
     if (it != faces.end())
       for (const Pressure* p : it->second) {
         fefv.reinit(cell, p->face);
-        const double pt = p->p * load_factor(p->load, t);
+        const double lf = load_factor(p->load, t);
+        const double pt = p->p * lf;
+        const Tensor<1, 3> tt = p->traction * lf;
         for (unsigned q = 0; q < fefv.n_quadrature_points; ++q) {
           const Tensor<1, 3> N = fefv.normal_vector(q);
-          for (unsigned i = 0; i < n; ++i) cell_r(i) += pt * N[comp[i]] * fefv.shape_value(i, q) * fefv.JxW(q);
+          for (unsigned i = 0; i < n; ++i)
+            cell_r(i) += (pt * N[comp[i]] - tt[comp[i]]) * fefv.shape_value(i, q) * fefv.JxW(q);
         }
       }
 

@@ -90,6 +90,8 @@ nlohmann::json cube_all_loads() {
       {"type": "gravity", "acceleration": [0, 0, -9.81]},
       {"type": "pressure", "faces": {"group": "zmax"}, "pressure": 400,
        "function": {"type": "smooth_ramp", "t0": 0, "t1": 1}},
+      {"type": "traction", "faces": {"group": "xmax"}, "traction": [0, 150, -80],
+       "function": {"type": "ramp", "t0": 0, "t1": 1}},
       {"type": "nodal_force", "nodes": {"box": {"min": [-1, -1, 0.0099], "max": [0.0001, 1, 1]}},
        "force": [0.01, 0, -0.005]}
     ],

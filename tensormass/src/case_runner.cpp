@@ -165,6 +165,10 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       NodalForce f{l.name, select_nodes(mesh, l.selector), l.vector, l.function};
       if (f.nodes.empty()) throw Error(where + " selects no nodes");
       loads.add(std::move(f));
+    } else if (l.type == LoadSpec::Type::Traction) {
+      SurfaceTraction tr{l.name, select_faces(mesh, l.selector), l.vector, l.function};
+      if (tr.faces.empty()) throw Error(where + " selects no boundary faces");
+      loads.add(std::move(tr));
     } else if (l.type == LoadSpec::Type::Pressure) {
       SurfacePressure p{l.name, select_faces(mesh, l.selector), l.pressure, l.follower, l.function};
       if (p.faces.empty()) throw Error(where + " selects no boundary faces");

@@ -28,6 +28,10 @@ void ExternalLoads::add(SurfacePressure p) {
   if (p.faces.empty()) throw Error("pressure '" + p.name + "' selects no boundary faces (check its face selector)");
   pressure_.push_back(std::move(p));
 }
+void ExternalLoads::add(SurfaceTraction t) {
+  if (t.faces.empty()) throw Error("traction '" + t.name + "' selects no boundary faces (check its face selector)");
+  traction_.push_back(std::move(t));
+}
 void ExternalLoads::add(Gravity g) { gravity_.push_back(std::move(g)); }
 
 bool ExternalLoads::has_follower() const {
@@ -47,6 +51,15 @@ void ExternalLoads::assemble(const VecX& u, double t, VecX& f) const {
   for (const auto& g : gravity_) {
     const Vec3 a = g.acceleration * g.function(t);
     for (Index i = 0; i < n; ++i) f.segment<3>(3 * i) += node_mass_[i] * a;
+  }
+  for (const auto& tr : traction_) {
+    // Dead traction: each node of a face carries traction * (reference area) / 3.
+    const Vec3 tt = tr.traction * tr.function(t);
+    for (const Tri& tri : tr.faces) {
+      const Vec3& x0 = mesh_->points[tri[0]];
+      const double area = 0.5 * (mesh_->points[tri[1]] - x0).cross(mesh_->points[tri[2]] - x0).norm();
+      for (int a = 0; a < 3; ++a) f.segment<3>(3 * tri[a]) += (area / 3.0) * tt;
+    }
   }
   for (const auto& p : pressure_) {
     const double pt = p.pressure * p.function(t);

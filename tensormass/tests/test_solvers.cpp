@@ -221,7 +221,7 @@ TEST(Newton, PrescribedDisplacementIsReachedAndReactionBalancesLoad) {
   EXPECT_NEAR(r_tip.z() + r_clamp.z(), 0.0, 1e-9 * std::abs(r_tip.z()));
 }
 
-TEST(ExternalLoads, DeadPressureResultantAndFollowerStiffnessByFiniteDifference) {
+TEST(ExternalLoads, DeadPressureAndTractionResultantsAndFollowerStiffnessByFiniteDifference) {
   Mesh mesh = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), 2, 2, 2);
   NodeSelector top;
   top.kind = NodeSelector::Kind::Plane;
@@ -236,6 +236,14 @@ TEST(ExternalLoads, DeadPressureResultantAndFollowerStiffnessByFiniteDifference)
   for (Index i = 0; i < mesh.num_points(); ++i) total += f.segment<3>(3 * i);
   EXPECT_NEAR(total.z(), -100.0, 1e-12);  // p * area, pushing into the body
   EXPECT_NEAR(total.x(), 0.0, 1e-12);
+
+  // A dead traction vector: its resultant is traction * reference area.
+  ExternalLoads trac(mesh, VecX::Ones(mesh.num_points()));
+  trac.add(SurfaceTraction{"top", select_faces(mesh, top), Vec3(10.0, -20.0, 5.0), TimeFunction::ramp(0.0, 2.0)});
+  trac.assemble(VecX::Zero(3 * mesh.num_points()), 1.0, f);
+  Vec3 ttotal = Vec3::Zero();
+  for (Index i = 0; i < mesh.num_points(); ++i) ttotal += f.segment<3>(3 * i);
+  EXPECT_LT((ttotal - Vec3(5.0, -10.0, 2.5)).norm(), 1e-12);
 
   p.follower = true;
   ExternalLoads fol(mesh, VecX::Ones(mesh.num_points()));

@@ -49,11 +49,11 @@ struct BoundarySpec {
 };
 
 struct LoadSpec {
-  enum class Type { NodalForce, Pressure, Gravity };
+  enum class Type { NodalForce, Pressure, Traction, Gravity };
   Type type = Type::NodalForce;
   std::string name;
   NodeSelector selector;       ///< nodes (nodal force) or faces (pressure)
-  Vec3 vector = Vec3::Zero();  ///< total force (N) or gravity acceleration (m/s^2)
+  Vec3 vector = Vec3::Zero();  ///< total force (N), traction (Pa, per reference area) or gravity (m/s^2)
   double pressure = 0.0;       ///< Pa
   bool follower = false;
   TimeFunction function = TimeFunction::constant(1.0);

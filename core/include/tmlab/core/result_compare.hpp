@@ -11,7 +11,8 @@
 namespace tmlab {
 
 struct ComparisonSeries {
-  std::vector<double> time;
+  std::vector<double> time;              ///< of the displacement frames
+  std::vector<double> step_time;         ///< of the steps (reaction and energy series)
   std::vector<double> rel_displacement;  ///< |u_a - u_b| / |u_b| per frame (absolute when |u_b| = 0)
   std::vector<double> rel_reaction;      ///< max over conditions of |R_a - R_b| / max_{c,t} |R_b|, per step
   std::vector<double> rel_energy;        ///< |W_a - W_b| / max_t |W_b|, per step

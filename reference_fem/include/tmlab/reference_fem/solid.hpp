@@ -101,6 +101,8 @@ class Solid {
   void add_point_force(global_dof_index dof, int load, double value);
   /// Dead pressure p * f(t) on a face of a locally owned cell (positive into the body).
   void add_pressure(const dealii::CellId& cell, unsigned face, int load, double pressure);
+  /// Dead traction vector t * f(t) (per unit reference area) on a face of a locally owned cell.
+  void add_traction(const dealii::CellId& cell, unsigned face, int load, const dealii::Tensor<1, 3>& traction);
   /// Body force per unit reference volume b0(X) * f(t) (gravity: rho g).
   void add_body_force(std::function<dealii::Tensor<1, 3>(const dealii::Point<3>&)> b0, int load);
   /// Builds the constraints and the sparsity pattern; called by the first advance() if needed.
@@ -154,7 +156,8 @@ class Solid {
     dealii::CellId cell;
     unsigned face;
     int load;
-    double p;
+    double p;                        ///< pressure (along -N)
+    dealii::Tensor<1, 3> traction;  ///< plus a traction vector (zero for a pure pressure)
   };
   struct BodyForce {
     std::function<dealii::Tensor<1, 3>(const dealii::Point<3>&)> b0;

@@ -29,6 +29,13 @@ struct SurfacePressure {
   TimeFunction function = TimeFunction::constant(1.0);
 };
 
+struct SurfaceTraction {
+  std::string name;
+  std::vector<Tri> faces;       ///< boundary faces (reference configuration)
+  Vec3 traction = Vec3::Zero(); ///< Pa per unit reference area at f(t) = 1 (dead load)
+  TimeFunction function = TimeFunction::constant(1.0);
+};
+
 struct Gravity {
   Vec3 acceleration = Vec3::Zero();  ///< m/s^2
   TimeFunction function = TimeFunction::constant(1.0);
@@ -42,6 +49,7 @@ class ExternalLoads {
 
   void add(NodalForce f);
   void add(SurfacePressure p);
+  void add(SurfaceTraction t);
   void add(Gravity g);
 
   /// f_ext(u, t), overwrites f (size 3n).
@@ -59,6 +67,7 @@ class ExternalLoads {
   VecX node_mass_;
   std::vector<NodalForce> nodal_;
   std::vector<SurfacePressure> pressure_;
+  std::vector<SurfaceTraction> traction_;
   std::vector<Gravity> gravity_;
 };
 
