@@ -5,7 +5,12 @@
 
 #include "tmlab/core/error.hpp"
 
+#ifdef TMLAB_HAVE_REFERENCE
+#include "tmlab/reference_fem/reference_runner.hpp"
+#endif
+
 #include <cstdio>
+#include <memory>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -53,6 +58,12 @@ int main(int argc, char** argv) {
   std::string command_line;
   for (int i = 0; i < argc; ++i) command_line += (i ? " " : "") + std::string(argv[i]);
   try {
+#ifdef TMLAB_HAVE_REFERENCE
+    // The deal.II reference runs on MPI (one rank here; mpirun tmlab_reference for more): only the
+    // commands that may use it start MPI, once, for the life of the process.
+    std::unique_ptr<tmlab::ref::MpiSession> mpi;
+    if (cmd == "run" || cmd == "compare") mpi = std::make_unique<tmlab::ref::MpiSession>(argc, argv);
+#endif
     if (cmd == "demo") return tmlab::cli::cmd_demo(args, command_line);
     if (cmd == "run") return tmlab::cli::cmd_run(args, command_line);
     if (cmd == "cases") return tmlab::cli::cmd_cases(args);

@@ -5,6 +5,7 @@
 #include "tmlab/core/mesh_quality.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <cassert>
 #include <cmath>
 #include <set>
@@ -386,6 +387,19 @@ std::vector<Tri> select_faces(const Mesh& mesh, const NodeSelector& s) {
     }
   }
   return out;
+}
+
+Index nearest_node(const Mesh& mesh, const Vec3& p) {
+  Index best = 0;
+  double d = std::numeric_limits<double>::infinity();
+  for (Index i = 0; i < mesh.num_points(); ++i) {
+    const double di = (mesh.points[i] - p).squaredNorm();
+    if (di < d) {
+      d = di;
+      best = i;
+    }
+  }
+  return best;
 }
 
 }  // namespace tmlab

@@ -18,6 +18,7 @@
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
 #include "tmlab/core/run_output.hpp"
+#include "tmlab/core/series_table.hpp"
 #include "tmlab/reference_fem/solid.hpp"
 
 #include <deal.II/base/data_out_base.h>
@@ -52,54 +53,7 @@ int MpiSession::size() { return static_cast<int>(Utilities::MPI::n_mpi_processes
 
 namespace {
 
-/// Initialises MPI for callers without an MpiSession (e.g. the tmlab CLI); finalised at exit.
-void ensure_mpi() {
-  int initialised = 0;
-  MPI_Initialized(&initialised);
-  if (initialised) return;
-  static int argc = 1;
-  static char name[] = "tmlab";
-  static char* args[] = {name, nullptr};
-  static char** argv = args;
-  static std::unique_ptr<Utilities::MPI::MPI_InitFinalize> holder =
-      std::make_unique<Utilities::MPI::MPI_InitFinalize>(argc, argv, 1);
-}
 
-/// The per-step scalar series of timeseries.h5 (same names and units as the tensor-mass runner).
-class SeriesTable {
- public:
-  void add(const std::string& name, const std::string& unit, double v) {
-    for (auto& s : series_)
-      if (s.name == name) {
-        s.values.push_back(v);
-        return;
-      }
-    series_.push_back({name, unit, {v}});
-  }
-  double last(const std::string& name) const {
-    for (const auto& s : series_)
-      if (s.name == name && !s.values.empty()) return s.values.back();
-    return 0.0;
-  }
-  struct Series {
-    std::string name, unit;
-    std::vector<double> values;
-  };
-  const std::vector<Series>& series() const { return series_; }
-
- private:
-  std::vector<Series> series_;
-};
-
-Index nearest_node(const Mesh& mesh, const Vec3& p) {
-  Index best = 0;
-  double d = std::numeric_limits<double>::infinity();
-  for (Index i = 0; i < mesh.num_points(); ++i) {
-    const double di = (mesh.points[i] - p).squaredNorm();
-    if (di < d) d = di, best = i;
-  }
-  return best;
-}
 
 /// Which cell vertices the mesh entity of local DoF i touches (vertex, line, face or the cell),
 /// found through the global vertex indices of the cell's lines and faces.
@@ -143,7 +97,12 @@ std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions&
 }
 
 tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& opt, const ReferenceOptions& ro) {
-  ensure_mpi();
+  {
+    int initialised = 0;
+    MPI_Initialized(&initialised);
+    if (!initialised)
+      throw Error("the deal.II reference needs MPI: create a tmlab::ref::MpiSession in main() before running it");
+  }
   const auto wall0 = std::chrono::steady_clock::now();
   const MPI_Comm comm = ro.serial ? MPI_COMM_SELF : MPI_COMM_WORLD;
   const unsigned rank = Utilities::MPI::this_mpi_process(comm), n_ranks = Utilities::MPI::n_mpi_processes(comm);

@@ -7,6 +7,7 @@
 #include "tmlab/core/mesh_quality.hpp"
 #include "tmlab/core/progress.hpp"
 #include "tmlab/core/run_output.hpp"
+#include "tmlab/core/series_table.hpp"
 #include "tmlab/core/vtu_writer.hpp"
 #include "tmlab/core/xdmf_writer.hpp"
 #include "tmlab/tensormass/explicit_dynamics.hpp"
@@ -35,33 +36,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-/// The per-step scalar series written to timeseries.h5 (name, unit, values).
-struct Series {
-  std::string name, unit;
-  std::vector<double> values;
-};
-
-class SeriesTable {
- public:
-  void add(const std::string& name, const std::string& unit, double v) {
-    for (auto& s : series_)
-      if (s.name == name) {
-        s.values.push_back(v);
-        return;
-      }
-    series_.push_back({name, unit, {v}});
-  }
-  const std::vector<Series>& series() const { return series_; }
-  double last(const std::string& name) const {
-    for (const auto& s : series_)
-      if (s.name == name && !s.values.empty()) return s.values.back();
-    return 0.0;
-  }
-
- private:
-  std::vector<Series> series_;
-};
-
 /// Smallest deformed-to-rest volume ratio J over all tets, and where it occurs.
 std::pair<double, Index> min_volume_ratio(const Mesh& mesh, const VecX& u) {
   double jmin = std::numeric_limits<double>::infinity();
@@ -89,18 +63,6 @@ std::vector<Vec3> as_vec3(const VecX& u) {
   return out;
 }
 
-Index nearest_node(const Mesh& mesh, const Vec3& p) {
-  Index best = 0;
-  double d = std::numeric_limits<double>::infinity();
-  for (Index i = 0; i < mesh.num_points(); ++i) {
-    const double di = (mesh.points[i] - p).squaredNorm();
-    if (di < d) {
-      d = di;
-      best = i;
-    }
-  }
-  return best;
-}
 
 
 }  // namespace

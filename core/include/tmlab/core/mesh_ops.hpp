@@ -70,6 +70,9 @@ struct NodeSelector {
   nlohmann::json to_json() const;
 };
 
+/// The mesh node closest to p (the first one on ties); 0 for an empty mesh.
+Index nearest_node(const Mesh& mesh, const Vec3& p);
+
 /// Sorted indices of the nodes the selector picks (possibly empty; callers decide whether an empty
 /// set is an error). Group lookups and out-of-range node indices throw tmlab::Error.
 std::vector<Index> select_nodes(const Mesh& mesh, const NodeSelector& selector);

@@ -39,7 +39,8 @@ struct ReferenceOptions {
 /// or -reference-p2 (P2): manifest.json, timeseries.h5, displacement.h5, vtu/ + result.pvd and
 /// summary.json last (FAILED on errors). Under mpirun every rank must call it; rank 0 writes the
 /// files and every rank returns the same summary. Input errors throw tmlab::Error.
-/// MPI is initialised on first use when the caller has not done it (prefer an MpiSession in main).
+/// MPI must be initialised by the caller: create an MpiSession in main() (tmlab_reference, the
+/// tmlab CLI and the reference tests do); otherwise a tmlab::Error says so.
 tmlab::tm::RunResult run_reference_case(const tmlab::CaseConfig& config, const tmlab::tm::RunOptions& options,
                                         const ReferenceOptions& reference = {});
 
