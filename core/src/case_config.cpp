@@ -2,6 +2,7 @@
 
 #include "tmlab/core/config_reader.hpp"
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/gmsh_reader.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -259,6 +260,21 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
   c.effective["mesh"]["file"] = c.mesh.file;
   c.effective["model"] = c.model;
   return c;
+}
+
+Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired) {
+  Mesh mesh = read_mesh(spec.file);
+  if (spec.scale != 1.0) scale_mesh(mesh, spec.scale);
+  repaired = spec.repair_orientation ? repair_orientation(mesh) : 0;
+  report = analyse_mesh(mesh);
+  if (!report.inverted.empty())
+    throw Error(spec.file + ": tet " + std::to_string(report.inverted.front()) + " is inverted (" +
+                std::to_string(report.inverted.size()) +
+                " inverted in all); set mesh.repair_orientation = true or run 'tmlab mesh check --repair'");
+  if (!report.degenerate.empty())
+    throw Error(spec.file + ": tet " + std::to_string(report.degenerate.front()) + " is degenerate (zero volume; " +
+                std::to_string(report.degenerate.size()) + " in all)");
+  return mesh;
 }
 
 CaseConfig load_case(const std::string& path, const std::string& tmlab_root) {

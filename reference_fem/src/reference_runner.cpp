@@ -126,16 +126,9 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       throw Error(cfg.file + ": load '" + l.name + "': follower pressure is not supported by the reference (dead loads only)");
 
   // ---- Geometry: the tmlab mesh (every rank), checked like the tensor-mass runner does. ----
-  Mesh mesh = read_mesh(cfg.mesh.file);
-  if (cfg.mesh.scale != 1.0) scale_mesh(mesh, cfg.mesh.scale);
+  MeshReport report;
   int repaired = 0;
-  if (cfg.mesh.repair_orientation) repaired = repair_orientation(mesh);
-  const MeshReport report = analyse_mesh(mesh);
-  if (!report.inverted.empty())
-    throw Error(cfg.mesh.file + ": tet " + std::to_string(report.inverted.front()) + " is inverted (" +
-                std::to_string(report.inverted.size()) + " inverted in all); set mesh.repair_orientation = true");
-  if (!report.degenerate.empty())
-    throw Error(cfg.mesh.file + ": tet " + std::to_string(report.degenerate.front()) + " is degenerate");
+  Mesh mesh = load_case_mesh(cfg.mesh, report, repaired);
 
   // The coarse triangulation: vertex i = tmlab node i and cell c = tet c (tet mode), or the
   // bounding box cut into hexahedra (hex mode; the node set is then the hex vertices).

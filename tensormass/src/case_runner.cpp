@@ -72,17 +72,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   std::ostream* log = opt.log;
 
   // ---- Geometry: read, scale, check. An inverted or degenerate tet stops the run here. ----
-  Mesh mesh = read_mesh(cfg.mesh.file);
-  if (cfg.mesh.scale != 1.0) scale_mesh(mesh, cfg.mesh.scale);
+  MeshReport report;
   int repaired = 0;
-  if (cfg.mesh.repair_orientation) repaired = repair_orientation(mesh);
-  const MeshReport report = analyse_mesh(mesh);
-  if (!report.inverted.empty())
-    throw Error(cfg.mesh.file + ": tet " + std::to_string(report.inverted.front()) + " is inverted (" +
-                std::to_string(report.inverted.size()) + " inverted in all); set mesh.repair_orientation = true or run 'tmlab mesh check --repair'");
-  if (!report.degenerate.empty())
-    throw Error(cfg.mesh.file + ": tet " + std::to_string(report.degenerate.front()) + " is degenerate (zero volume; " +
-                std::to_string(report.degenerate.size()) + " in all)");
+  Mesh mesh = load_case_mesh(cfg.mesh, report, repaired);
   const double size = (report.bbox_max - report.bbox_min).norm();
 
   // ---- Material and elastic model. ----

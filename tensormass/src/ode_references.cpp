@@ -13,19 +13,6 @@
 namespace tmlab::tm {
 namespace {
 
-void to_voigt(const Mat3& S, double* x) {
-  x[0] = S(0, 0);
-  x[1] = S(1, 1);
-  x[2] = S(2, 2);
-  x[3] = S(0, 1);
-  x[4] = S(0, 2);
-  x[5] = S(1, 2);
-}
-Mat3 from_voigt(const double* x) {
-  Mat3 S;
-  S << x[0], x[3], x[4], x[3], x[1], x[5], x[4], x[5], x[2];
-  return S;
-}
 /// 2 mu (E - tr(E)/3 I)
 Mat3 deviator_stress(double mu, const Mat3& E) { return 2.0 * mu * (E - (E.trace() / 3.0) * Mat3::Identity()); }
 

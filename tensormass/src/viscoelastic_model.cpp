@@ -17,17 +17,6 @@ using Opt = ViscoelasticOptions;
 using Mat12 = Eigen::Matrix<double, 12, 12>;
 
 // Voigt order of a symmetric 3x3 tensor: xx, yy, zz, xy, xz, yz.
-constexpr int kVi[6] = {0, 1, 2, 0, 0, 1};
-constexpr int kVj[6] = {0, 1, 2, 1, 2, 2};
-
-inline void to_voigt(const Mat3& A, double* v) {
-  for (int k = 0; k < 6; ++k) v[k] = A(kVi[k], kVj[k]);
-}
-inline Mat3 from_voigt(const double* v) {
-  Mat3 A;
-  A << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
-  return A;
-}
 /// A : A for a Voigt-stored symmetric tensor.
 inline double voigt_dot(const double* a, const double* b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
@@ -275,9 +264,8 @@ double ViscoelasticStVK::trial_potential(const VecX& u) const {
   if (elastic_only_) return elastic_.energy(u);
   if (!pk2()) return (1.0 + gain_) * elastic_.energy(u) + f_hist_.dot(u);  // (1+g) W_e + f_hist . u
   // sum_t V [ lambda_eff/2 (tr E)^2 + mu_eff E:E + S_hist : E ]
-  const double g = gain_, lam = material_.lambda, mu = material_.mu;
-  const double lam_eff = deviatoric() ? lam - 2.0 * g * mu / 3.0 : (1.0 + g) * lam;
-  const double mu_eff = (1.0 + g) * mu;
+  const StVenantKirchhoff eff = trial_elasticity();
+  const double lam_eff = eff.lambda, mu_eff = eff.mu;
   double w = 0.0;
   for (Index t = 0; t < num_tets(); ++t) {
     const Mat3 H = displacement_gradient(t, u);
@@ -326,9 +314,8 @@ void ViscoelasticStVK::internal_force(const VecX& u, VecX& f) const {
   assert(u.size() == num_dofs());
   f.setZero(num_dofs());
   // S_total = lambda_eff tr(E) I + 2 mu_eff E + S_hist, f_p = V F S_total a_p
-  const double g = gain_, lam = material_.lambda, mu = material_.mu;
-  const double lam_eff = deviatoric() ? lam - 2.0 * g * mu / 3.0 : (1.0 + g) * lam;
-  const double mu_eff = (1.0 + g) * mu;
+  const StVenantKirchhoff eff = trial_elasticity();
+  const double lam_eff = eff.lambda, mu_eff = eff.mu;
   const auto& tets = elastic_.tets();
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const TetRest& r = rest_[t];
@@ -340,6 +327,12 @@ void ViscoelasticStVK::internal_force(const VecX& u, VecX& f) const {
     const Mat3 VP = r.volume * ((Mat3::Identity() + H) * S);
     for (int p = 0; p < 4; ++p) f.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VP * r.grad[p];
   }
+}
+
+StVenantKirchhoff ViscoelasticStVK::trial_elasticity() const {
+  // Full: (1 + g) C.  Deviatoric: C + g 2 mu (I_sym - 1/3 I (x) I), i.e. mu (1 + g), lambda - 2 g mu / 3.
+  const double g = gain_, lam = material_.lambda, mu = material_.mu;
+  return {deviatoric() ? lam - 2.0 * g * mu / 3.0 : (1.0 + g) * lam, (1.0 + g) * mu};
 }
 
 void ViscoelasticStVK::tangent_apply(const VecX& u, const VecX& v, VecX& Kv) const {
@@ -354,9 +347,8 @@ void ViscoelasticStVK::tangent_apply(const VecX& u, const VecX& v, VecX& Kv) con
   }
   assert(u.size() == num_dofs() && v.size() == num_dofs());
   Kv.setZero(num_dofs());
-  const double g = gain_, lam = material_.lambda, mu = material_.mu;
-  const double lam_eff = deviatoric() ? lam - 2.0 * g * mu / 3.0 : (1.0 + g) * lam;
-  const double mu_eff = (1.0 + g) * mu;
+  const StVenantKirchhoff eff = trial_elasticity();
+  const double lam_eff = eff.lambda, mu_eff = eff.mu;
   const auto& tets = elastic_.tets();
   for (std::size_t t = 0; t < tets.size(); ++t) {
     const TetRest& r = rest_[t];
@@ -396,9 +388,8 @@ void ViscoelasticStVK::tangent(const VecX& u, SpMat& K) const {
   else
     std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
   double* values = K.valuePtr();
-  const double g = gain_, lam = material_.lambda, mu = material_.mu;
-  const double lam_eff = deviatoric() ? lam - 2.0 * g * mu / 3.0 : (1.0 + g) * lam;
-  const double mu_eff = (1.0 + g) * mu;
+  const StVenantKirchhoff eff = trial_elasticity();
+  const double lam_eff = eff.lambda, mu_eff = eff.mu;
   const auto& tets = elastic_.tets();
   Mat12 Kt;
   for (std::size_t t = 0; t < tets.size(); ++t) {

@@ -112,14 +112,6 @@ struct Prescribed {
   double dg(double t) const { return 2 * kPi * freq * std::cos(2 * kPi * freq * t); }
 };
 
-void voigt(const Mat3& S, double* x) {
-  x[0] = S(0, 0);
-  x[1] = S(1, 1);
-  x[2] = S(2, 2);
-  x[3] = S(0, 1);
-  x[4] = S(0, 2);
-  x[5] = S(1, 2);
-}
 
 /// dX_e/dt of every tet at time t for u = g(t) U (analytic): pk2 C : sym(F^T dF/dt) (or its
 /// deviator), dF/dt = g' grad U; nodal_force K_e(u) g' U.
@@ -138,7 +130,7 @@ void driver_rate(const Prescribed& p, const Opt& opt, const TotalLagrangianStVK&
       const Mat3 dS = opt.relaxation == Opt::Relaxation::Deviatoric
                           ? Mat3(2.0 * p.mat.mu * (dE - dE.trace() / 3.0 * Mat3::Identity()))
                           : p.mat.pk2_stress(dE);
-      voigt(dS, r.data() + e * w);
+      to_voigt(dS, r.data() + e * w);
     } else {
       const Tet& tet = tm.tets()[static_cast<std::size_t>(e)];
       Eigen::Matrix<double, 12, 1> du;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "tmlab/core/mesh_ops.hpp"
+#include "tmlab/core/mesh_quality.hpp"
 #include "tmlab/core/time_function.hpp"
 
 #include <nlohmann/json.hpp>
@@ -105,6 +106,11 @@ struct CaseConfig {
 /// Parses a case document. `where` names it in messages; relative mesh paths are looked up in
 /// `search_dirs` in order (the case file's directory first, then the tmlab root).
 CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const std::vector<std::string>& search_dirs);
+/// Reads the case's mesh, scales it, re-orients tets when asked, and refuses a mesh with inverted
+/// or degenerate tets (tmlab::Error naming the file and the first bad tet). Every model's runner
+/// starts here. `report` receives the mesh report, `repaired` the number of re-oriented tets.
+Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired);
+
 /// Reads and parses a case file.
 CaseConfig load_case(const std::string& path, const std::string& tmlab_root);
 

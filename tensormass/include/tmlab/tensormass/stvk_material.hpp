@@ -36,4 +36,20 @@ struct StVenantKirchhoff {
   double poisson() const { return lambda / (2.0 * (lambda + mu)); }
 };
 
+/// Symmetric 3x3 tensors stored as 6 values in Voigt order (xx, yy, zz, xy, xz, yz): the layout
+/// of the viscoelastic stress histories.
+inline void to_voigt(const Mat3& A, double* v) {
+  v[0] = A(0, 0);
+  v[1] = A(1, 1);
+  v[2] = A(2, 2);
+  v[3] = A(0, 1);
+  v[4] = A(0, 2);
+  v[5] = A(1, 2);
+}
+inline Mat3 from_voigt(const double* v) {
+  Mat3 A;
+  A << v[0], v[3], v[4], v[3], v[1], v[5], v[4], v[5], v[2];
+  return A;
+}
+
 }  // namespace tmlab::tm

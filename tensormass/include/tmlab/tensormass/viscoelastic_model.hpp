@@ -136,6 +136,8 @@ class ViscoelasticStVK : public ElasticModel {
   void driver(Index t, const VecX& u, double* x) const;
   /// sum_j alpha_j h_j : M : h_j / tau_j-weighted quadratic forms of tet t for a set of histories.
   double branch_form(Index t, const double* h, double* rate) const;
+  /// The elasticity scaled by the trial gain g (pk2): the Lame pair of the trial S(E) part.
+  StVenantKirchhoff trial_elasticity() const;
   /// Recomputes the constant trial parts (f_hist or S_hist) from the committed state.
   void update_trial();
   /// pk2: grad u of tet t from relative displacements.
