@@ -1,5 +1,7 @@
 #include "commands.hpp"
 
+#include "cli_args.hpp"
+
 #include "demo_case.hpp"
 
 #include "tmlab/build_info.hpp"
@@ -7,10 +9,10 @@
 #include "tmlab/core/config_reader.hpp"
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/gmsh_reader.hpp"
+#include "tmlab/core/hdf5_file.hpp"
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
-#include "tmlab/core/hdf5_file.hpp"
 #include "tmlab/core/result_compare.hpp"
 #include "tmlab/tensormass/case_runner.hpp"
 #include "tmlab/tensormass/paper_experiments.hpp"
@@ -21,8 +23,8 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <sstream>
@@ -42,59 +44,6 @@ std::string tmlab_root() {
 
 namespace {
 
-/// Splits "--key value" options (listed in `with_value`) and flags from positional arguments.
-struct Parsed {
-  std::vector<std::string> positional;
-  std::vector<std::pair<std::string, std::string>> options;
-  std::string get(const std::string& key, const std::string& fallback = "") const {
-    for (const auto& o : options)
-      if (o.first == key) return o.second;
-    return fallback;
-  }
-  bool has(const std::string& key) const {
-    return std::any_of(options.begin(), options.end(), [&](const auto& o) { return o.first == key; });
-  }
-};
-
-Parsed parse(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
-             const std::vector<std::string>& flags) {
-  Parsed p;
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a.rfind("--", 0) == 0) {
-      if (std::find(with_value.begin(), with_value.end(), a) != with_value.end()) {
-        if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
-        p.options.emplace_back(a, args[++i]);
-      } else if (std::find(flags.begin(), flags.end(), a) != flags.end()) {
-        p.options.emplace_back(a, "");
-      } else {
-        throw UsageError("unknown option " + a);
-      }
-    } else {
-      p.positional.push_back(a);
-    }
-  }
-  return p;
-}
-
-double parse_double(const std::string& key, const std::string& s) {
-  try {
-    std::size_t pos = 0;
-    const double v = std::stod(s, &pos);
-    if (pos != s.size()) throw std::invalid_argument(s);
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(key + " needs a number (got '" + s + "')");
-  }
-}
-
-std::vector<std::string> split_words(const std::string& s) {
-  std::istringstream in(s);
-  std::vector<std::string> w;
-  for (std::string x; in >> x;) w.push_back(x);
-  return w;
-}
-
 void print_summary(const tm::RunResult& r) {
   const auto& s = r.summary;
   std::cout << "case        " << s.value("case", "") << " (" << s.value("model", "") << ")\n"
@@ -106,23 +55,29 @@ void print_summary(const tm::RunResult& r) {
             << "energy      " << s["elastic_energy_J"].get<double>() << " J\n";
   for (auto it = s["final_reactions_N"].begin(); it != s["final_reactions_N"].end(); ++it) {
     const auto& v = it.value();
-    std::cout << "reaction    " << it.key() << ": (" << v[0].get<double>() << ", " << v[1].get<double>() << ", "
-              << v[2].get<double>() << ") N\n";
+    std::cout << "reaction    " << it.key() << ": (" << v[0].get<double>() << ", " << v[1].get<double>()
+              << ", " << v[2].get<double>() << ") N\n";
   }
-  std::cout << "min J       " << s["min_volume_ratio"].get<double>() << " (smallest deformed/rest tet volume)\n"
+  std::cout << "min J       " << s["min_volume_ratio"].get<double>()
+            << " (smallest deformed/rest tet volume)\n"
             << "wall time   " << s["run_seconds"].get<double>() << " s\n"
             << "results     " << r.dir << "/ (summary.json, timeseries.h5, fields.xdmf, result.pvd, *.png)\n";
 }
 
-tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model, int degree) {
+tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model,
+                        int degree, const std::string& time_integration = "fixed_step") {
   if (model == "reference") {
 #ifdef TMLAB_HAVE_REFERENCE
     ref::ReferenceOptions ro;
     ro.degree = degree;
+    ro.time_integration = time_integration;
     return ref::run_reference_case(cfg, opt, ro);
 #else
     (void)degree;
-    throw Error("this tmlab was built without the deal.II reference (reference_fem/): install libdeal.ii-dev and rebuild");
+    (void)time_integration;
+    throw Error(
+        "this tmlab was built without the deal.II reference (reference_fem/): install libdeal.ii-dev and "
+        "rebuild");
 #endif
   }
   return tm::run_case(cfg, opt);
@@ -137,8 +92,13 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   opt.log = &std::cerr;
   const std::string model = p.get("--model", cfg.model);
   const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  const std::string time_integration = p.get("--time-integration", "fixed_step");
+  if (time_integration != "fixed_step" && time_integration != "ida")
+    throw UsageError("--time-integration must be fixed_step or ida");
+  if (time_integration == "ida" && model != "reference")
+    throw UsageError("--time-integration ida needs --model reference");
   std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
-  const tm::RunResult r = run_model(cfg, opt, model, degree);
+  const tm::RunResult r = run_model(cfg, opt, model, degree, time_integration);
   print_summary(r);
   return 0;
 }
@@ -154,12 +114,13 @@ int cmd_demo(const std::vector<std::string>& args, const std::string& command_li
 }
 
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line) {
-  Parsed p = parse(args, {"--results", "--model", "--degree"}, {"--no-plots"});
+  Parsed p = parse(args, {"--results", "--model", "--degree", "--time-integration"}, {"--no-plots"});
   if (p.positional.size() != 1) throw UsageError("run needs exactly one case name or case file");
   std::string path = p.positional[0];
   if (!fs::exists(path)) {
     const fs::path named = fs::path(tmlab_root()) / "cases" / (path + ".json");
-    if (!fs::exists(named)) throw Error(path + ": no such case file, and no shipped case of that name (see 'tmlab cases')");
+    if (!fs::exists(named))
+      throw Error(path + ": no such case file, and no shipped case of that name (see 'tmlab cases')");
     path = named.string();
   }
   CaseConfig cfg = load_case(path, tmlab_root());
@@ -178,17 +139,24 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
 std::string resolve_case(const std::string& arg) {
   if (fs::exists(arg)) return arg;
   const fs::path named = fs::path(tmlab_root()) / "cases" / (arg + ".json");
-  if (!fs::exists(named)) throw Error(arg + ": no such case file, and no shipped case of that name (see 'tmlab cases')");
+  if (!fs::exists(named))
+    throw Error(arg + ": no such case file, and no shipped case of that name (see 'tmlab cases')");
   return named.string();
 }
 
 int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results", "--against", "--degree"}, {"--no-plots"});
+  const Parsed p = parse(args, {"--results", "--against", "--degree", "--time-integration"}, {"--no-plots"});
   if (p.positional.size() != 1) throw UsageError("compare needs exactly one case name or case file");
   const CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
   const std::string against = p.get("--against", "reference");
-  if (against != "reference" && against != "tl_oracle") throw UsageError("--against must be reference or tl_oracle");
+  if (against != "reference" && against != "tl_oracle")
+    throw UsageError("--against must be reference or tl_oracle");
   const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  const std::string time_integration = p.get("--time-integration", "fixed_step");
+  if (time_integration != "fixed_step" && time_integration != "ida")
+    throw UsageError("--time-integration must be fixed_step or ida");
+  if (time_integration == "ida" && against != "reference")
+    throw UsageError("--time-integration ida needs --against reference");
 
   tm::RunOptions opt;
   opt.tmlab_root = tmlab_root();
@@ -204,7 +172,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   tm::RunResult b;
   if (against == "reference") {
     std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
-    b = run_model(cfg, opt, "reference", degree);
+    b = run_model(cfg, opt, "reference", degree, time_integration);
   } else {
     CaseConfig o = cfg;
     o.name = cfg.name + "-tl_oracle";
@@ -243,21 +211,30 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     H5File h5 = H5File::create((pdir / "timeseries.h5").string());
     h5.write("/series/time", series.time, {series.time.size()});
     h5.write("/series/step_time", series.step_time, {series.step_time.size()});
-    h5.write("/series/rel_diff_displacement", floored(series.rel_displacement), {series.rel_displacement.size()});
+    h5.write("/series/rel_diff_displacement", floored(series.rel_displacement),
+             {series.rel_displacement.size()});
     h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
     h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
     h5.close();
     const nlohmann::json plots = nlohmann::json::array(
-        {{{"file", "compare_displacement.png"}, {"x", "time"}, {"y", {"rel_diff_displacement"}},
-          {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"}, {"xlabel", "time [s]"},
-          {"ylabel", "|u_a - u_b| / |u_b|"}, {"logy", true}},
-         {{"file", "compare_reaction_energy.png"}, {"x", "step_time"}, {"y", {"rel_diff_reaction", "rel_diff_energy"}},
-          {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"}, {"xlabel", "time [s]"},
-          {"ylabel", "relative difference"}, {"logy", true}}});
+        {{{"file", "compare_displacement.png"},
+          {"x", "time"},
+          {"y", {"rel_diff_displacement"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"},
+          {"xlabel", "time [s]"},
+          {"ylabel", "|u_a - u_b| / |u_b|"},
+          {"logy", true}},
+         {{"file", "compare_reaction_energy.png"},
+          {"x", "step_time"},
+          {"y", {"rel_diff_reaction", "rel_diff_energy"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"},
+          {"xlabel", "time [s]"},
+          {"ylabel", "relative difference"},
+          {"logy", true}}});
     std::ofstream(pdir / "plots.json") << plots.dump(2) << "\n";
-    const char* env_py = std::getenv("TMLAB_PYTHON");
-    const std::string python = env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-    const std::string cmd = python + " '" + (fs::path(tmlab_root()) / "core" / "python" / "tmlab_plot.py").string() + "' '" +
+    const std::string python = plot_python();
+    const std::string cmd = python + " '" +
+                            (fs::path(tmlab_root()) / "core" / "python" / "tmlab_plot.py").string() + "' '" +
                             pdir.string() + "' > /dev/null";
     plot_note = std::system(cmd.c_str()) == 0 ? ", compare/*.png" : " (plotting failed)";
   }
@@ -295,7 +272,8 @@ int cmd_cases(const std::vector<std::string>& args) {
 int cmd_mesh(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE");
   const std::string sub = args[0];
-  const Parsed p = parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"}, {"--json"});
+  const Parsed p =
+      parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"}, {"--json"});
   if (p.positional.size() != 1) throw UsageError("mesh " + sub + " needs exactly one mesh file");
   Mesh mesh = read_mesh(p.positional[0]);
   if (p.has("--scale")) scale_mesh(mesh, parse_double("--scale", p.get("--scale")));
@@ -336,29 +314,37 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
       p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
   const nlohmann::json params = ConfigReader::parse_file(params_file);
   const tm::PaperFigure fig = tm::paper_figure(p.positional[0], params, params_file);
-  const fs::path dir = fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
+  const fs::path dir =
+      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
   fs::create_directories(dir);
-  nlohmann::json spec = {{"name", fig.name}, {"title", fig.title}, {"xlabel", fig.xlabel}, {"ylabel", fig.ylabel},
-                         {"params", params_file}, {"runs", nlohmann::json::array()}};
+  nlohmann::json spec = {{"name", fig.name},     {"title", fig.title},    {"xlabel", fig.xlabel},
+                         {"ylabel", fig.ylabel}, {"params", params_file}, {"runs", nlohmann::json::array()}};
   std::size_t k = 0;
   for (const auto& run : fig.runs) {
     ++k;
-    std::cerr << "tmlab paper " << fig.name << ": run " << k << "/" << fig.runs.size() << " " << run.id << "\n";
-    const CaseConfig cfg = parse_case(run.case_doc, params_file + " (" + fig.name + "/" + run.id + ")", {tmlab_root()});
+    std::cerr << "tmlab paper " << fig.name << ": run " << k << "/" << fig.runs.size() << " " << run.id
+              << "\n";
+    const CaseConfig cfg =
+        parse_case(run.case_doc, params_file + " (" + fig.name + "/" + run.id + ")", {tmlab_root()});
     tm::RunOptions opt;
     opt.tmlab_root = tmlab_root();
     opt.results_root = dir.string();
     opt.command_line = split_words(command_line);
     opt.plots = false;
     const tm::RunResult r = tm::run_case(cfg, opt);
-    spec["runs"].push_back({{"id", run.id}, {"label", run.label}, {"scheme", run.scheme}, {"dir", r.dir}, {"x", run.x},
-                            {"y", run.y}, {"x_sign", run.x_sign}, {"y_sign", run.y_sign}});
+    spec["runs"].push_back({{"id", run.id},
+                            {"label", run.label},
+                            {"scheme", run.scheme},
+                            {"dir", r.dir},
+                            {"x", run.x},
+                            {"y", run.y},
+                            {"x_sign", run.x_sign},
+                            {"y_sign", run.y_sign}});
   }
   std::ofstream(dir / "figure.json") << spec.dump(2) << "\n";
   if (p.has("--no-plots")) return 0;
   const fs::path script = fs::path(tmlab_root()) / "core" / "python" / "tmlab_paper_figure.py";
-  const char* env_py = std::getenv("TMLAB_PYTHON");
-  const std::string python = env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+  const std::string python = plot_python();
   const std::string cmd = python + " '" + script.string() + "' '" + dir.string() + "'";
   if (std::system(cmd.c_str()) != 0) throw Error("drawing " + fig.name + " failed (" + cmd + ")");
   if (fig.name == "fig7") {

@@ -21,5 +21,9 @@ int cmd_mesh(const std::vector<std::string>& args);
 int cmd_paper(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_compare(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_version();
+// Studies and verification, each in its own source file (cmd_<name>.cpp).
+int cmd_hereditary(const std::vector<std::string>& args, const std::string& command_line);
+int cmd_workprecision(const std::vector<std::string>& args, const std::string& command_line);
+int cmd_verify(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

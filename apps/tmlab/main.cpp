@@ -10,9 +10,9 @@
 #endif
 
 #include <cstdio>
-#include <memory>
 #include <exception>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -26,9 +26,12 @@ void print_usage(std::ostream& os) {
         "  run NAME|PATH [options]   run a case (a name from 'tmlab cases' or a case file)\n"
         "      --model M             override the case's model: tensor_mass | tl_oracle | reference\n"
         "      --degree 1|2          reference element degree (P1 default)\n"
+        "      --time-integration fixed_step|ida\n"
+        "                            reference viscoelastic time integration (IDA: the DAE, serial)\n"
         "      --results DIR         results root (default: <tmlab>/results)\n"
         "      --no-plots            skip the PNG plots\n"
         "  compare NAME|PATH [--against reference|tl_oracle] [--degree 1|2]\n"
+        "          [--time-integration fixed_step|ida]\n"
         "                            run the case with tensormass and the reference; write\n"
         "                            results/<case>/compare.json (max relative differences)\n"
         "  cases                     list the shipped case files\n"
@@ -39,6 +42,18 @@ void print_usage(std::ostream& os) {
         "  paper fig5|fig6|fig7 [--params FILE] [--results DIR] [--no-plots]\n"
         "                            the liver experiments of Xu et al. 2011 (creep, relaxation,\n"
         "                            hysteresis) from cases/paper/xu2011_liver.json\n"
+        "  hereditary [--histories ramp_hold,sine,random] [--no-liver] [--liver-history "
+        "nodal_force|pk2|both]\n"
+        "             [--quick] [--seed N] [--params FILE] [--results DIR] [--no-plots]\n"
+        "                            the Prony recursions (seed midpoint, exact_linear, backward_euler)\n"
+        "                            against the exact hereditary integral: strain histories, haptic\n"
+        "                            steps, the liver relaxation; results/hereditary/ (docs/hereditary.md)\n"
+        "  workprecision [--problem liver|incompressible|all] [--quick] [--reference-rtol R]\n"
+        "                [--results DIR] [--no-plots]\n"
+        "                            error against CPU time: fixed-step schemes and SUNDIALS;\n"
+        "                            results/workprecision/ (workprecision.h5, .md, PNG per problem)\n"
+        "  verify [--full] [--case NAME] [--label L] [--list]\n"
+        "                            the verification catalogue; report in results/verification/\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -62,7 +77,8 @@ int main(int argc, char** argv) {
     // The deal.II reference runs on MPI (one rank here; mpirun tmlab_reference for more): only the
     // commands that may use it start MPI, once, for the life of the process.
     std::unique_ptr<tmlab::ref::MpiSession> mpi;
-    if (cmd == "run" || cmd == "compare") mpi = std::make_unique<tmlab::ref::MpiSession>(argc, argv);
+    if (cmd == "run" || cmd == "compare" || cmd == "verify")
+      mpi = std::make_unique<tmlab::ref::MpiSession>(argc, argv);
 #endif
     if (cmd == "demo") return tmlab::cli::cmd_demo(args, command_line);
     if (cmd == "run") return tmlab::cli::cmd_run(args, command_line);
@@ -71,6 +87,9 @@ int main(int argc, char** argv) {
     if (cmd == "compare") return tmlab::cli::cmd_compare(args, command_line);
     if (cmd == "paper") return tmlab::cli::cmd_paper(args, command_line);
     if (cmd == "version") return tmlab::cli::cmd_version();
+    if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
+    if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
+    if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

@@ -55,13 +55,15 @@ std::string resolve(const std::string& file, const std::vector<std::string>& dir
 
 }  // namespace
 
-CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const std::vector<std::string>& search_dirs) {
+CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
+                      const std::vector<std::string>& search_dirs) {
   CaseConfig c;
   c.file = where;
   ConfigReader root(doc, where);
   c.name = root.require<std::string>("name");
   if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos)
-    throw root.error("name", "must be a non-empty name without spaces or slashes (it names the result directory)");
+    throw root.error("name",
+                     "must be a non-empty name without spaces or slashes (it names the result directory)");
   c.description = root.get<std::string>("description", "");
   c.model = root.get<std::string>("model", "tensor_mass");
   if (c.model != "tensor_mass" && c.model != "tl_oracle")
@@ -77,7 +79,8 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
   {
     ConfigReader m = root.child("material");
     c.material.law = m.get<std::string>("law", "stvk");
-    if (c.material.law != "stvk") throw m.error("law", "must be 'stvk' (St Venant-Kirchhoff; got '" + c.material.law + "')");
+    if (c.material.law != "stvk")
+      throw m.error("law", "must be 'stvk' (St Venant-Kirchhoff; got '" + c.material.law + "')");
     c.material.young = m.positive("E");
     c.material.poisson = m.require<double>("nu");
     if (!(c.material.poisson > -1.0 && c.material.poisson < 0.5))
@@ -109,19 +112,23 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
       }
       if (vs.history != "nodal_force" && vs.history != "pk2")
         throw v.error("history", "must be 'nodal_force' or 'pk2' (got '" + vs.history + "')");
-      if (vs.integration != "midpoint" && vs.integration != "exact_linear" && vs.integration != "backward_euler")
-        throw v.error("integration", "must be 'midpoint', 'exact_linear' or 'backward_euler' (got '" + vs.integration + "')");
+      if (vs.integration != "midpoint" && vs.integration != "exact_linear" &&
+          vs.integration != "backward_euler")
+        throw v.error("integration", "must be 'midpoint', 'exact_linear' or 'backward_euler' (got '" +
+                                         vs.integration + "')");
       vs.relaxation = v.get<std::string>("relaxation", "full");
       if (vs.relaxation != "full" && vs.relaxation != "deviatoric")
         throw v.error("relaxation", "must be 'full' or 'deviatoric' (got '" + vs.relaxation + "')");
       if (vs.relaxation == "deviatoric" && vs.history != "pk2")
-        throw v.error("relaxation", "'deviatoric' needs the pk2 (objective) history: nodal forces have no deviatoric part");
+        throw v.error("relaxation",
+                      "'deviatoric' needs the pk2 (objective) history: nodal forces have no deviatoric part");
       ConfigReader p = v.child("prony");
       vs.convention = p.get<std::string>("convention", "long_term");
       if (vs.convention != "long_term" && vs.convention != "instantaneous")
         throw p.error("convention", "must be 'long_term' or 'instantaneous' (got '" + vs.convention + "')");
       const auto& terms = p.raw("terms");
-      if (!terms.is_array() || terms.empty()) throw p.error("terms", "must be a non-empty list of {weight, tau}");
+      if (!terms.is_array() || terms.empty())
+        throw p.error("terms", "must be a non-empty list of {weight, tau}");
       double gsum = 0.0;
       for (std::size_t k = 0; k < terms.size(); ++k) {
         ConfigReader t(terms[k], where, p.key_path("terms") + "[" + std::to_string(k) + "]");
@@ -133,7 +140,8 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
         gsum += w;
       }
       if (vs.convention == "instantaneous" && !(gsum < 1.0))
-        throw p.error("terms", "instantaneous weights g_j must sum to less than 1 (got " + std::to_string(gsum) + ")");
+        throw p.error("terms",
+                      "instantaneous weights g_j must sum to less than 1 (got " + std::to_string(gsum) + ")");
       p.finish();
       v.finish();
     }
@@ -181,7 +189,8 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
         s.type = LoadSpec::Type::Gravity;
         s.vector = read_vec3(l, "acceleration");
       } else {
-        throw l.error("type", "unknown load type '" + type + "' (expected nodal_force, pressure, traction or gravity)");
+        throw l.error(
+            "type", "unknown load type '" + type + "' (expected nodal_force, pressure, traction or gravity)");
       }
       s.function = read_function(l);
       l.finish();
@@ -220,7 +229,8 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const
       throw s.error("type", "unknown solver '" + type + "' (expected static, explicit or implicit)");
     }
     if (s.has("newton")) {
-      if (c.solver.type == SolverSpec::Type::Explicit) throw s.error("newton", "is not used by the explicit solver");
+      if (c.solver.type == SolverSpec::Type::Explicit)
+        throw s.error("newton", "is not used by the explicit solver");
       ConfigReader n = s.child("newton");
       c.solver.max_iterations = n.get<int>("max_iterations", 25);
       if (c.solver.max_iterations < 1) throw n.error("max_iterations", "must be >= 1");
@@ -272,8 +282,8 @@ Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired) {
                 std::to_string(report.inverted.size()) +
                 " inverted in all); set mesh.repair_orientation = true or run 'tmlab mesh check --repair'");
   if (!report.degenerate.empty())
-    throw Error(spec.file + ": tet " + std::to_string(report.degenerate.front()) + " is degenerate (zero volume; " +
-                std::to_string(report.degenerate.size()) + " in all)");
+    throw Error(spec.file + ": tet " + std::to_string(report.degenerate.front()) +
+                " is degenerate (zero volume; " + std::to_string(report.degenerate.size()) + " in all)");
   return mesh;
 }
 

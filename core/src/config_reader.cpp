@@ -43,7 +43,8 @@ ConfigReader ConfigReader::child(const std::string& key) {
 double ConfigReader::positive(const std::string& key, bool allow_zero) {
   const double v = require<double>(key);
   if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0))
-    throw error(key, std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + " (got " + j_.at(key).dump() + ")");
+    throw error(key,
+                std::string("must be ") + (allow_zero ? ">= 0" : "> 0") + " (got " + j_.at(key).dump() + ")");
   return v;
 }
 
@@ -59,7 +60,9 @@ void ConfigReader::finish() const {
   if (!unknown.empty()) throw Error(where_ + ": unknown key " + unknown + " (misspelt, or not valid here)");
 }
 
-std::string ConfigReader::key_path(const std::string& key) const { return path_.empty() ? key : path_ + "." + key; }
+std::string ConfigReader::key_path(const std::string& key) const {
+  return path_.empty() ? key : path_ + "." + key;
+}
 
 Error ConfigReader::error(const std::string& key, const std::string& reason) const {
   return Error(where_ + ": key '" + key_path(key) + "' " + reason);

@@ -5,9 +5,9 @@
 #include "tmlab/core/mesh_quality.hpp"
 
 #include <algorithm>
-#include <limits>
 #include <cassert>
 #include <cmath>
+#include <limits>
 #include <set>
 #include <utility>
 

@@ -43,8 +43,9 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     const auto ub = hb.read_double("/u", &db);
     if (da != db)
       throw Error("displacement.h5 of " + a.string() + " and " + b.string() + " differ in shape (" +
-                  std::to_string(da.at(0)) + "x" + std::to_string(da.at(1)) + " vs " + std::to_string(db.at(0)) + "x" +
-                  std::to_string(db.at(1)) + "): not the same mesh or output frames");
+                  std::to_string(da.at(0)) + "x" + std::to_string(da.at(1)) + " vs " +
+                  std::to_string(db.at(0)) + "x" + std::to_string(db.at(1)) +
+                  "): not the same mesh or output frames");
     const std::size_t rows = da.at(0), cols = da.at(1);
     const auto t = hb.read_double("/time");
     double worst = 0.0;
@@ -66,7 +67,8 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
   {
     H5File ha = open_result(a, "timeseries.h5"), hb = open_result(b, "timeseries.h5");
     const auto ta = ha.read_double("/series/time"), tb = hb.read_double("/series/time");
-    if (ta.size() != tb.size()) throw Error("timeseries.h5 of " + a.string() + " and " + b.string() + " differ in steps");
+    if (ta.size() != tb.size())
+      throw Error("timeseries.h5 of " + a.string() + " and " + b.string() + " differ in steps");
     const std::size_t n = tb.size();
     cs.step_time = tb;
     std::map<std::string, int> conditions;
@@ -86,12 +88,14 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
       const char* comp[3] = {"_x", "_y", "_z"};
       for (int k = 0; k < 3; ++k) {
         const std::string ds = "/series/reaction_" + c + comp[k];
-        if (!ha.exists(ds)) throw Error((a / "timeseries.h5").string() + ": no " + ds + " (different boundary conditions?)");
+        if (!ha.exists(ds))
+          throw Error((a / "timeseries.h5").string() + ": no " + ds + " (different boundary conditions?)");
         ra[c][k] = ha.read_double(ds);
         rb[c][k] = hb.read_double(ds);
       }
       for (std::size_t s = 0; s < n; ++s)
-        scale = std::max(scale, std::sqrt(rb[c][0][s] * rb[c][0][s] + rb[c][1][s] * rb[c][1][s] + rb[c][2][s] * rb[c][2][s]));
+        scale = std::max(scale, std::sqrt(rb[c][0][s] * rb[c][0][s] + rb[c][1][s] * rb[c][1][s] +
+                                          rb[c][2][s] * rb[c][2][s]));
     }
     if (scale == 0.0) scale = 1.0;
     std::vector<double> rel_reac(n, 0.0);
@@ -108,7 +112,8 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
         rel_reac[s] = std::max(rel_reac[s], e);
         w = std::max(w, e);
       }
-      per[c] = {{"rel_diff", w}, {"final_a_N", {A[0].back(), A[1].back(), A[2].back()}},
+      per[c] = {{"rel_diff", w},
+                {"final_a_N", {A[0].back(), A[1].back(), A[2].back()}},
                 {"final_b_N", {B[0].back(), B[1].back(), B[2].back()}}};
       worst_reac = std::max(worst_reac, w);
     }

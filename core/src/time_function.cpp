@@ -22,8 +22,9 @@ TimeFunction TimeFunction::constant(double value) {
 }
 
 TimeFunction TimeFunction::ramp(double t0, double t1) {
-  if (!(t1 > t0)) throw Error("ramp time function needs t1 > t0 (got t0=" + std::to_string(t0) +
-                              ", t1=" + std::to_string(t1) + ")");
+  if (!(t1 > t0))
+    throw Error("ramp time function needs t1 > t0 (got t0=" + std::to_string(t0) +
+                ", t1=" + std::to_string(t1) + ")");
   TimeFunction f;
   f.kind_ = Kind::Ramp;
   f.a_ = t0;
@@ -72,8 +73,9 @@ double TimeFunction::operator()(double t) const {
     case Kind::Table: {
       if (t <= table_.front().first) return table_.front().second;
       if (t >= table_.back().first) return table_.back().second;
-      const auto it = std::upper_bound(table_.begin(), table_.end(), t,
-                                       [](double x, const std::pair<double, double>& p) { return x < p.first; });
+      const auto it =
+          std::upper_bound(table_.begin(), table_.end(), t,
+                           [](double x, const std::pair<double, double>& p) { return x < p.first; });
       const auto& p1 = *it;
       const auto& p0 = *(it - 1);
       const double s = (t - p0.first) / (p1.first - p0.first);
@@ -109,8 +111,8 @@ TimeFunction TimeFunction::from_json(const nlohmann::json& j, const std::string&
     if (p.empty()) throw r.error("points", "needs at least one [t, value] pair");
     f = table(std::move(p));
   } else {
-    throw r.error("type", "unknown time function '" + type +
-                              "' (expected constant, ramp, smooth_ramp, sine or table)");
+    throw r.error(
+        "type", "unknown time function '" + type + "' (expected constant, ramp, smooth_ramp, sine or table)");
   }
   r.finish();
   return f;

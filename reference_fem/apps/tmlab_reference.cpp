@@ -1,6 +1,7 @@
 // tmlab_reference: runs one case file with the deal.II reference solver (docs/reference-fem.md).
 //   tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]
-//                   [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R] [--quiet]
+//                   [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]
+//                   [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] [--quiet]
 // Works under `mpirun -np N`: every rank runs the case, rank 0 writes the result directory.
 #include "tmlab/core/case_config.hpp"
 #include "tmlab/core/run_output.hpp"
@@ -14,9 +15,12 @@
 namespace {
 int usage(const char* msg) {
   if (tmlab::ref::MpiSession::rank() == 0)
-    std::cerr << "tmlab_reference: " << msg << "\n"
-              << "usage: tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]\n"
-                 "                       [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R] [--quiet]\n";
+    std::cerr
+        << "tmlab_reference: " << msg << "\n"
+        << "usage: tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]\n"
+           "                       [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]\n"
+           "                       [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] "
+           "[--quiet]\n";
   return 2;
 }
 }  // namespace
@@ -50,9 +54,16 @@ int main(int argc, char** argv) {
         ro.cells = value();
       else if (a == "--rtol")
         ro.newton_rtol = std::stod(value());
+      else if (a == "--time-integration")
+        ro.time_integration = value();
+      else if (a == "--ida-rtol")
+        ro.ida_rtol = std::stod(value());
+      else if (a == "--ida-atol")
+        ro.ida_atol = std::stod(value());
       else if (a == "--hex") {
         const std::string v = value();
-        if (std::sscanf(v.c_str(), "%u,%u,%u", &ro.hex_subdivisions[0], &ro.hex_subdivisions[1], &ro.hex_subdivisions[2]) != 3)
+        if (std::sscanf(v.c_str(), "%u,%u,%u", &ro.hex_subdivisions[0], &ro.hex_subdivisions[1],
+                        &ro.hex_subdivisions[2]) != 3)
           throw std::invalid_argument("--hex needs NX,NY,NZ");
       } else if (a == "--quiet")
         quiet = true;
@@ -72,7 +83,8 @@ int main(int argc, char** argv) {
     const tmlab::CaseConfig cfg = tmlab::load_case(case_file, TMLAB_SOURCE_DIR);
     const auto r = tmlab::ref::run_reference_case(cfg, opt, ro);
     if (tmlab::ref::MpiSession::rank() == 0 && !quiet)
-      std::cout << "results     " << r.dir << "/ (summary.json, timeseries.h5, displacement.h5, result.pvd)\n";
+      std::cout << "results     " << r.dir
+                << "/ (summary.json, timeseries.h5, displacement.h5, result.pvd)\n";
   } catch (const std::exception& e) {
     std::cerr << "tmlab_reference: error: " << e.what() << "\n";
     return 1;

@@ -19,6 +19,7 @@
 #include "tmlab/core/mesh_quality.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/core/series_table.hpp"
+#include "tmlab/reference_fem/ida_dae.hpp"
 #include "tmlab/reference_fem/solid.hpp"
 
 #include <deal.II/base/data_out_base.h>
@@ -53,12 +54,10 @@ int MpiSession::size() { return static_cast<int>(Utilities::MPI::n_mpi_processes
 
 namespace {
 
-
-
 /// Which cell vertices the mesh entity of local DoF i touches (vertex, line, face or the cell),
 /// found through the global vertex indices of the cell's lines and faces.
-std::vector<unsigned> dof_entity_vertices(const DoFHandler<3>::active_cell_iterator& cell, const FiniteElement<3>& fe,
-                                          unsigned i) {
+std::vector<unsigned> dof_entity_vertices(const DoFHandler<3>::active_cell_iterator& cell,
+                                          const FiniteElement<3>& fe, unsigned i) {
   const unsigned nv = cell->n_vertices(), dpv = fe.n_dofs_per_vertex(), dpl = fe.n_dofs_per_line();
   auto local_vertex = [&](unsigned global) {
     for (unsigned v = 0; v < nv; ++v)
@@ -76,7 +75,8 @@ std::vector<unsigned> dof_entity_vertices(const DoFHandler<3>::active_cell_itera
     const unsigned dpq = fe.n_dofs_per_quad(f);
     if (j < dpq) {
       std::vector<unsigned> out;
-      for (unsigned k = 0; k < cell->face(f)->n_vertices(); ++k) out.push_back(local_vertex(cell->face(f)->vertex_index(k)));
+      for (unsigned k = 0; k < cell->face(f)->n_vertices(); ++k)
+        out.push_back(local_vertex(cell->face(f)->vertex_index(k)));
       return out;
     }
     j -= dpq;
@@ -93,37 +93,70 @@ std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions&
   std::string s = cfg.name + "-reference";
   if (ro.cells == "hex") s += "-hex";
   if (ro.degree == 2) s += "-p2";
+  if (ro.time_integration == "ida") s += "-ida";
   return s;
 }
 
-tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& opt, const ReferenceOptions& ro) {
+tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& opt,
+                                 const ReferenceOptions& ro) {
   {
     int initialised = 0;
     MPI_Initialized(&initialised);
     if (!initialised)
-      throw Error("the deal.II reference needs MPI: create a tmlab::ref::MpiSession in main() before running it");
+      throw Error(
+          "the deal.II reference needs MPI: create a tmlab::ref::MpiSession in main() before running it");
   }
   const auto wall0 = std::chrono::steady_clock::now();
   const MPI_Comm comm = ro.serial ? MPI_COMM_SELF : MPI_COMM_WORLD;
-  const unsigned rank = Utilities::MPI::this_mpi_process(comm), n_ranks = Utilities::MPI::n_mpi_processes(comm);
+  const unsigned rank = Utilities::MPI::this_mpi_process(comm),
+                 n_ranks = Utilities::MPI::n_mpi_processes(comm);
   const bool root = rank == 0;
   std::ostream* log = root ? opt.log : nullptr;
 
   // ---- What the reference does not do: say so instead of silently doing something else. ----
   if (cfg.solver.type != SolverSpec::Type::Static)
-    throw Error(cfg.file + ": key 'solver.type': the deal.II reference solves quasi-static problems only (got a dynamic solver)");
+    throw Error(cfg.file +
+                ": key 'solver.type': the deal.II reference solves quasi-static problems only (got a dynamic "
+                "solver)");
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled && vs.history == "nodal_force")
-    throw Error(cfg.file + ": key 'material.viscoelastic': the deal.II reference implements only the objective "
-                           "form (history on the PK2 stress, 'history': 'pk2' or 'scheme': 'objective'); the seed's "
-                           "nodal_force history is not objective (docs/seed-errata.md) and has no continuum counterpart");
-  if (ro.degree != 1 && ro.degree != 2) throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
+    throw Error(
+        cfg.file +
+        ": key 'material.viscoelastic': the deal.II reference implements only the objective "
+        "form (history on the PK2 stress, 'history': 'pk2' or 'scheme': 'objective'); the seed's "
+        "nodal_force history is not objective (docs/seed-errata.md) and has no continuum counterpart");
+  if (ro.degree != 1 && ro.degree != 2)
+    throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
   if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
   if (vs.enabled && vs.relaxation == "deviatoric" && ro.law != "stvk")
-    throw Error("reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law '" + ro.law + "')");
+    throw Error(
+        "reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law "
+        "'" +
+        ro.law + "')");
+  const bool use_ida = ro.time_integration == "ida";
+  if (!use_ida && ro.time_integration != "fixed_step")
+    throw Error("reference: time_integration must be 'fixed_step' or 'ida' (got '" + ro.time_integration +
+                "')");
+  if (use_ida) {
+    if (!vs.enabled)
+      throw Error(cfg.file +
+                  ": the IDA time integration needs a viscoelastic material ('material.viscoelastic'): "
+                  "an elastic quasi-static problem has no differential variables");
+    if (n_ranks != 1)
+      throw Error("reference: the IDA time integration runs on one MPI rank only (started on " +
+                  std::to_string(n_ranks) + "); run it without mpirun or with the serial option");
+    if (!(ro.ida_rtol > 0.0) || !(ro.ida_atol >= 0.0))
+      throw Error("reference: ida_rtol must be > 0 and ida_atol >= 0");
+    if (ro.linear_solver != "direct" && ro.linear_solver != "direct_klu")
+      throw Error(
+          "reference: the IDA time integration needs a direct linear solver ('direct' or "
+          "'direct_klu'; got '" +
+          ro.linear_solver + "')");
+  }
   for (const auto& l : cfg.loads)
     if (l.type == LoadSpec::Type::Pressure && l.follower)
-      throw Error(cfg.file + ": load '" + l.name + "': follower pressure is not supported by the reference (dead loads only)");
+      throw Error(cfg.file + ": load '" + l.name +
+                  "': follower pressure is not supported by the reference (dead loads only)");
 
   // ---- Geometry: the tmlab mesh (every rank), checked like the tensor-mass runner does. ----
   MeshReport report;
@@ -137,7 +170,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   const bool hex = ro.cells == "hex";
   if (!hex) {
     std::vector<Point<3>> pts(mesh.points.size());
-    for (std::size_t i = 0; i < pts.size(); ++i) pts[i] = Point<3>(mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z());
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      pts[i] = Point<3>(mesh.points[i].x(), mesh.points[i].y(), mesh.points[i].z());
     std::vector<std::array<unsigned, 4>> tets(mesh.tets.size());
     for (std::size_t c = 0; c < tets.size(); ++c)
       for (int a = 0; a < 4; ++a) tets[c][a] = static_cast<unsigned>(mesh.tets[c][a]);
@@ -153,9 +187,11 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   const Index n_nodes = nodes.num_points();
 
   // ---- Material, viscoelasticity, solver. ----
-  const Material material = Material::make(ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio, ro.yeoh_c30_ratio);
+  const Material material =
+      Material::make(ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio, ro.yeoh_c30_ratio);
   std::optional<PronySeries> prony;
-  if (vs.enabled) prony = PronySeries::make(vs.convention, vs.weights, vs.taus, vs.integration, vs.relaxation);
+  if (vs.enabled)
+    prony = PronySeries::make(vs.convention, vs.weights, vs.taus, vs.integration, vs.relaxation);
   NewtonParameters np;
   np.max_iterations = cfg.solver.max_iterations;
   np.rtol = ro.newton_rtol;
@@ -175,7 +211,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   for (std::size_t k = 0; k < cfg.boundary.size(); ++k) {
     const auto& b = cfg.boundary[k];
     const auto sel = select_nodes(nodes, b.nodes);
-    if (sel.empty()) throw Error(cfg.file + ": boundary[" + std::to_string(k) + "] '" + b.name + "' selects no nodes");
+    if (sel.empty())
+      throw Error(cfg.file + ": boundary[" + std::to_string(k) + "] '" + b.name + "' selects no nodes");
     for (Index n : sel) {
       selected[k][n] = 1;
       for (int c = 0; c < 3; ++c) {
@@ -183,8 +220,9 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
         int& o = owner[3 * n + c];
         if (o >= 0 && o != static_cast<int>(k)) {
           if (cfg.boundary[o].value[c] == 0.0 && b.value[c] == 0.0) continue;
-          throw Error("boundary conditions '" + cfg.boundary[o].name + "' and '" + b.name + "' both prescribe component " +
-                      std::to_string(c) + " of node " + std::to_string(n) + " with different values");
+          throw Error("boundary conditions '" + cfg.boundary[o].name + "' and '" + b.name +
+                      "' both prescribe component " + std::to_string(c) + " of node " + std::to_string(n) +
+                      " with different values");
         }
         o = static_cast<int>(k);
       }
@@ -214,7 +252,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       if (k >= 0) solid.prescribe(dofs[i], c, k, cfg.boundary[k].value[c]);
     }
   }
-  if (cfg.boundary.empty()) throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
+  if (cfg.boundary.empty())
+    throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
 
   // ---- Loads. ----
   for (std::size_t li = 0; li < cfg.loads.size(); ++li) {
@@ -285,7 +324,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       found = Utilities::MPI::sum(found, comm);
       if (found == 0) throw Error(where + " selects no boundary faces");
       if (!hex && found != static_cast<long>(keys.size()))
-        throw Error(where + ": " + std::to_string(keys.size() - found) + " selected faces are not boundary faces of the mesh");
+        throw Error(where + ": " + std::to_string(keys.size() - found) +
+                    " selected faces are not boundary faces of the mesh");
     } else {
       Tensor<1, 3> rho_g;
       for (unsigned c = 0; c < 3; ++c) rho_g[c] = cfg.material.density * l.vector[static_cast<int>(c)];
@@ -337,9 +377,17 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       ManifestInput mi;
       mi.command_line = opt.command_line;
       mi.config = cfg.effective;
-      mi.config["reference"] = {{"degree", ro.degree}, {"law", ro.law}, {"cells", ro.cells},
-                                {"linear_solver", ro.linear_solver}, {"newton_rtol", ro.newton_rtol},
-                                {"mpi_ranks", n_ranks}};
+      mi.config["reference"] = {{"degree", ro.degree},
+                                {"law", ro.law},
+                                {"cells", ro.cells},
+                                {"linear_solver", ro.linear_solver},
+                                {"newton_rtol", ro.newton_rtol},
+                                {"mpi_ranks", n_ranks},
+                                {"time_integration", ro.time_integration}};
+      if (use_ida) {
+        mi.config["reference"]["ida_rtol"] = ro.ida_rtol;
+        mi.config["reference"]["ida_atol"] = ro.ida_atol;
+      }
       mi.input_files.push_back(cfg.mesh.file);
       if (fs::exists(cfg.file)) mi.input_files.push_back(cfg.file);
       out->write_json("manifest.json", make_manifest(mi));
@@ -355,7 +403,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       const double jmin = solid.min_volume_ratio();
       if (!(jmin > 0.0)) {
         std::ostringstream m;
-        m << "reference: an element inverted at t = " << t << " (step " << step << ", smallest det F " << jmin << ")";
+        m << "reference: an element inverted at t = " << t << " (step " << step << ", smallest det F " << jmin
+          << ")";
         throw Error(m.str());
       }
       jmin_overall = std::min(jmin_overall, jmin);
@@ -364,7 +413,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       const std::vector<double> U = vertex_displacements();
       double umax = 0.0;
       for (Index i = 0; i < n_nodes; ++i)
-        umax = std::max(umax, std::sqrt(U[3 * i] * U[3 * i] + U[3 * i + 1] * U[3 * i + 1] + U[3 * i + 2] * U[3 * i + 2]));
+        umax = std::max(
+            umax, std::sqrt(U[3 * i] * U[3 * i] + U[3 * i + 1] * U[3 * i + 1] + U[3 * i + 2] * U[3 * i + 2]));
       table.add("time", "s", t);
       table.add("max_displacement", "m", umax);
       table.add("elastic_energy", "J", energy);
@@ -384,7 +434,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
         table.add("probe_" + n + "_x", "m", U[i]);
         table.add("probe_" + n + "_y", "m", U[i + 1]);
         table.add("probe_" + n + "_z", "m", U[i + 2]);
-        table.add("probe_" + n + "_norm", "m", std::sqrt(U[i] * U[i] + U[i + 1] * U[i + 1] + U[i + 2] * U[i + 2]));
+        table.add("probe_" + n + "_norm", "m",
+                  std::sqrt(U[i] * U[i] + U[i + 1] * U[i + 1] + U[i + 2] * U[i + 2]));
       }
       if (!write_fields) return;
       if (root) {
@@ -406,7 +457,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
         data_out.add_data_vector(vm, "von_mises");
         data_out.add_data_vector(subdomain, "subdomain");
         data_out.build_patches(solid.mapping(), static_cast<unsigned>(ro.degree));
-        const std::string pvtu = data_out.write_vtu_with_pvtu_record(staging + "/vtu/", "step", field_frames, comm, 5, 0);
+        const std::string pvtu =
+            data_out.write_vtu_with_pvtu_record(staging + "/vtu/", "step", field_frames, comm, 5, 0);
         pvd.emplace_back(t, "vtu/" + pvtu);
       }
       ++field_frames;
@@ -419,24 +471,92 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
     long total_newton = 0, total_linear = 0, total_cutbacks = 0;
     double total_assembly = 0.0, total_solve = 0.0, total_newton_s = 0.0;
     if (log)
-      *log << "reference: " << cfg.name << ", " << material.name() << ", " << (hex ? "Q" : "P") << ro.degree << ", "
-           << solid.n_dofs() << " DoFs, " << n_ranks << " rank(s), " << ro.linear_solver << " solver\n";
-    record(0, 0.0, 0, true);
-    for (int k = 1; k <= n_steps; ++k) {
-      const double t0 = t_end * (k - 1) / n_steps, t1 = t_end * k / n_steps;
-      const StepStats st = solid.advance(t0, t1);
-      total_newton += st.newton_iterations;
-      total_linear += st.linear_iterations;
-      total_cutbacks += st.cutbacks;
-      total_assembly += st.assembly_seconds;
-      total_solve += st.solve_seconds;
-      total_newton_s += st.newton_seconds;
-      per_step.push_back({{"step", k}, {"t", t1}, {"newton_iterations", st.newton_iterations},
-                          {"linear_iterations", st.linear_iterations}, {"cutbacks", st.cutbacks},
-                          {"backtracks", st.backtracks}, {"assembly_seconds", st.assembly_seconds},
-                          {"solve_seconds", st.solve_seconds}, {"newton_seconds", st.newton_seconds},
-                          {"residuals", st.residuals}});
-      record(k, t1, st.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
+      *log << "reference: " << cfg.name << ", " << material.name() << ", " << (hex ? "Q" : "P") << ro.degree
+           << ", " << solid.n_dofs() << " DoFs, " << n_ranks << " rank(s), " << ro.linear_solver
+           << " solver\n";
+    nlohmann::json ida_summary;
+    if (!use_ida) {
+      record(0, 0.0, 0, true);
+      for (int k = 1; k <= n_steps; ++k) {
+        const double t0 = t_end * (k - 1) / n_steps, t1 = t_end * k / n_steps;
+        const StepStats st = solid.advance(t0, t1);
+        total_newton += st.newton_iterations;
+        total_linear += st.linear_iterations;
+        total_cutbacks += st.cutbacks;
+        total_assembly += st.assembly_seconds;
+        total_solve += st.solve_seconds;
+        total_newton_s += st.newton_seconds;
+        per_step.push_back({{"step", k},
+                            {"t", t1},
+                            {"newton_iterations", st.newton_iterations},
+                            {"linear_iterations", st.linear_iterations},
+                            {"cutbacks", st.cutbacks},
+                            {"backtracks", st.backtracks},
+                            {"assembly_seconds", st.assembly_seconds},
+                            {"solve_seconds", st.solve_seconds},
+                            {"newton_seconds", st.newton_seconds},
+                            {"residuals", st.residuals}});
+        record(k, t1, st.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
+      }
+    } else {
+      // The same problem as a DAE integrated by IDA (ida_dae.hpp), output at the fixed-step times.
+      const auto ida_start = std::chrono::steady_clock::now();
+      QuasiStaticDae dae(solid);
+      IdaParameters ip;
+      const double diag = (report.bbox_max - report.bbox_min).norm();
+      ip.rtol = ro.ida_rtol;
+      ip.atol_u = ro.ida_atol > 0.0 ? ro.ida_atol : 1e-3 * ro.ida_rtol * diag;
+      ip.atol_z = ip.atol_u * cfg.material.young / diag;
+      ip.linear_solver = ro.linear_solver;
+      IdaStats before;
+      const IdaStats st =
+          dae.integrate(0.0, t_end, n_steps, ip, [&](int k, double t, const Vector<double>& y) {
+            dae.apply_state(y);
+            const IdaStats& now = dae.stats();
+            const long its = now.newton_iterations - before.newton_iterations;
+            if (k > 0)
+              per_step.push_back(
+                  {{"step", k},
+                   {"t", t},
+                   {"newton_iterations", its},
+                   {"ida_steps", now.steps - before.steps},
+                   {"ida_step_attempts", now.step_attempts - before.step_attempts},
+                   {"residual_evaluations", now.residual_evaluations - before.residual_evaluations},
+                   {"jacobian_setups", now.jacobian_setups - before.jacobian_setups}});
+            if (log && k > 0)
+              *log << "    t = " << t << ": IDA " << now.step_attempts - before.step_attempts
+                   << " step attempts, " << its << " Newton iterations, "
+                   << now.jacobian_setups - before.jacobian_setups << " Jacobian setups\n";
+            before = now;
+            record(k, t, k == 0 ? 0 : static_cast<int>(its),
+                   k == 0 || k % cfg.output.every == 0 || k == n_steps);
+          });
+      total_newton = st.newton_iterations;
+      total_assembly = st.residual_seconds + st.jacobian_seconds;
+      total_solve = st.solve_seconds;
+      total_newton_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - ida_start).count();
+      ida_summary = {{"rtol", ip.rtol},
+                     {"atol_displacement_m", ip.atol_u},
+                     {"atol_internal_variables_Pa", ip.atol_z},
+                     {"steps", st.steps},
+                     {"step_attempts", st.step_attempts},
+                     {"residual_evaluations", st.residual_evaluations},
+                     {"newton_iterations", st.newton_iterations},
+                     {"jacobian_setups", st.jacobian_setups},
+                     {"recoverable_failures", st.recoverable_failures},
+                     {"output_projection_iterations", st.projection_iterations},
+                     {"output_projection_seconds", st.projection_seconds},
+                     {"internal_variables", dae.size() - dae.n_dofs()},
+                     {"residual_seconds", st.residual_seconds},
+                     {"jacobian_seconds", st.jacobian_seconds},
+                     {"solve_seconds", st.solve_seconds},
+                     {"counting",
+                      "steps and attempts are counted in the callbacks (deal.II 9.4 keeps IDA's "
+                      "memory private); Newton iterations = linear solves, initial values included"}};
+      if (log)
+        *log << "reference: IDA " << st.steps << " steps (" << st.step_attempts << " attempts), "
+             << st.residual_evaluations << " residuals, " << st.newton_iterations << " Newton iterations, "
+             << st.jacobian_setups << " Jacobian setups\n";
     }
 
     nlohmann::json summary;
@@ -450,8 +570,9 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       h5.set_attribute("/", "model", "reference");
       h5.close();
       disp_h5->set_attribute("/u", "unit", "m");
-      disp_h5->set_attribute("/u", "layout",
-                             "rows: field frames; columns: 3*node + component (tmlab node order; vertex values)");
+      disp_h5->set_attribute(
+          "/u", "layout",
+          "rows: field frames; columns: 3*node + component (tmlab node order; vertex values)");
       disp_h5->close();
       if (!pvd.empty()) {
         std::ofstream pvd_file(out->file("result.pvd"));
@@ -460,45 +581,72 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       fs::remove(out->file("vtu/.keep"));
 
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      summary = {
-          {"case", cfg.name},
-          {"description", cfg.description},
-          {"model", "reference"},
-          {"mesh", {{"file", cfg.mesh.file}, {"points", n_nodes}, {"tets", hex ? 0 : mesh.num_tets()},
-                    {"cells", coarse.n_active_cells()}, {"cell_type", hex ? "hex" : "tet"},
-                    {"volume_m3", report.total_volume}, {"orientation_repaired", repaired}}},
-          {"material", {{"law", material.name()}, {"E", cfg.material.young}, {"nu", cfg.material.poisson},
-                        {"density", cfg.material.density}, {"lambda", material.lambda}, {"mu", material.mu}}},
-          {"discretisation", {{"element", hex ? "FE_Q" : "FE_SimplexP"}, {"degree", ro.degree},
-                              {"n_dofs", solid.n_dofs()}, {"mpi_ranks", n_ranks}}},
-          {"solver", {{"type", "static"}, {"load_steps", n_steps}, {"newton_iterations", total_newton},
-                      {"linear_iterations", total_linear}, {"cutbacks", total_cutbacks},
-                      {"linear_solver", ro.linear_solver}, {"newton_rtol", ro.newton_rtol},
-                      {"assembly_seconds", total_assembly}, {"solve_seconds", total_solve},
-                      {"newton_seconds", total_newton_s}, {"steps", per_step}}},
-          {"final_time", table.last("time")},
-          {"max_displacement_m", table.last("max_displacement")},
-          {"elastic_energy_J", table.last("elastic_energy")},
-          {"min_volume_ratio", jmin_overall},
-          {"field_frames", field_frames},
-          {"plots", "skipped"},
-          {"run_seconds", wall}};
+      summary = {{"case", cfg.name},
+                 {"description", cfg.description},
+                 {"model", "reference"},
+                 {"mesh",
+                  {{"file", cfg.mesh.file},
+                   {"points", n_nodes},
+                   {"tets", hex ? 0 : mesh.num_tets()},
+                   {"cells", coarse.n_active_cells()},
+                   {"cell_type", hex ? "hex" : "tet"},
+                   {"volume_m3", report.total_volume},
+                   {"orientation_repaired", repaired}}},
+                 {"material",
+                  {{"law", material.name()},
+                   {"E", cfg.material.young},
+                   {"nu", cfg.material.poisson},
+                   {"density", cfg.material.density},
+                   {"lambda", material.lambda},
+                   {"mu", material.mu}}},
+                 {"discretisation",
+                  {{"element", hex ? "FE_Q" : "FE_SimplexP"},
+                   {"degree", ro.degree},
+                   {"n_dofs", solid.n_dofs()},
+                   {"mpi_ranks", n_ranks}}},
+                 {"solver",
+                  {{"type", "static"},
+                   {"load_steps", n_steps},
+                   {"newton_iterations", total_newton},
+                   {"linear_iterations", total_linear},
+                   {"cutbacks", total_cutbacks},
+                   {"linear_solver", ro.linear_solver},
+                   {"newton_rtol", ro.newton_rtol},
+                   {"assembly_seconds", total_assembly},
+                   {"solve_seconds", total_solve},
+                   {"newton_seconds", total_newton_s},
+                   {"steps", per_step},
+                   {"time_integration", ro.time_integration}}},
+                 {"final_time", table.last("time")},
+                 {"max_displacement_m", table.last("max_displacement")},
+                 {"elastic_energy_J", table.last("elastic_energy")},
+                 {"min_volume_ratio", jmin_overall},
+                 {"field_frames", field_frames},
+                 {"plots", "skipped"},
+                 {"run_seconds", wall}};
       if (vs.enabled)
-        summary["material"]["viscoelastic"] = {{"convention", vs.convention}, {"weights", vs.weights}, {"taus", vs.taus},
-                                               {"alpha", prony->alpha}, {"integration", vs.integration},
-                                               {"relaxation", vs.relaxation}, {"history", "pk2"}};
+        summary["material"]["viscoelastic"] = {{"convention", vs.convention},
+                                               {"weights", vs.weights},
+                                               {"taus", vs.taus},
+                                               {"alpha", prony->alpha},
+                                               {"integration", vs.integration},
+                                               {"relaxation", vs.relaxation},
+                                               {"history", "pk2"}};
+      if (use_ida) summary["solver"]["ida"] = ida_summary;
       nlohmann::json reac = nlohmann::json::object();
       for (int k = 0; k < solid.n_conditions(); ++k) {
         const std::string& n = solid.condition_name(k);
-        reac[n] = {table.last("reaction_" + n + "_x"), table.last("reaction_" + n + "_y"), table.last("reaction_" + n + "_z")};
+        reac[n] = {table.last("reaction_" + n + "_x"), table.last("reaction_" + n + "_y"),
+                   table.last("reaction_" + n + "_z")};
       }
       summary["final_reactions_N"] = reac;
       nlohmann::json probes = nlohmann::json::object();
       for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
         const std::string& n = cfg.output.probes[k].name;
         probes[n] = {{"node", probe_nodes[k]},
-                     {"displacement_m", {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"),
-                                         table.last("probe_" + n + "_z")}}};
+                     {"displacement_m",
+                      {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"),
+                       table.last("probe_" + n + "_z")}}};
       }
       summary["probes"] = probes;
       out->finalize(summary);

@@ -37,7 +37,9 @@ using namespace dealii;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-double seconds_since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+double seconds_since(Clock::time_point t0) {
+  return std::chrono::duration<double>(Clock::now() - t0).count();
+}
 }  // namespace
 
 // =====================================================================================================
@@ -46,14 +48,16 @@ double seconds_since(Clock::time_point t0) { return std::chrono::duration<double
 
 Material Material::make(const std::string& law, double young, double poisson, double yeoh_c20_ratio,
                         double yeoh_c30_ratio) {
-  if (!(young > 0.0) || !std::isfinite(young)) throw Error("material: E must be > 0 (got " + std::to_string(young) + ")");
+  if (!(young > 0.0) || !std::isfinite(young))
+    throw Error("material: E must be > 0 (got " + std::to_string(young) + ")");
   if (!(poisson > -1.0 && poisson < 0.5)) throw Error("material: nu must satisfy -1 < nu < 0.5");
   Material m;
   m.lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
   m.mu = young / (2.0 * (1.0 + poisson));
   m.stvk = {m.lambda, m.mu};
   m.neo = {m.lambda, m.mu};
-  m.yeoh = {0.5 * m.mu, 0.5 * m.mu * yeoh_c20_ratio, 0.5 * m.mu * yeoh_c30_ratio, m.lambda + 2.0 * m.mu / 3.0};
+  m.yeoh = {0.5 * m.mu, 0.5 * m.mu * yeoh_c20_ratio, 0.5 * m.mu * yeoh_c30_ratio,
+            m.lambda + 2.0 * m.mu / 3.0};
   if (law == "stvk")
     m.kind = Kind::StVK;
   else if (law == "neo_hookean")
@@ -68,16 +72,20 @@ Material Material::make(const std::string& law, double young, double poisson, do
 
 std::string Material::name() const {
   switch (kind) {
-    case Kind::StVK: return "stvk";
-    case Kind::NeoHookean: return "neo_hookean";
-    default: return "yeoh";
+    case Kind::StVK:
+      return "stvk";
+    case Kind::NeoHookean:
+      return "neo_hookean";
+    default:
+      return "yeoh";
   }
 }
 
 PronySeries PronySeries::make(const std::string& convention, const std::vector<double>& weights,
                               const std::vector<double>& taus, const std::string& integration,
                               const std::string& relaxation) {
-  if (weights.size() != taus.size() || weights.empty()) throw Error("prony: need one tau per weight (and at least one term)");
+  if (weights.size() != taus.size() || weights.empty())
+    throw Error("prony: need one tau per weight (and at least one term)");
   PronySeries p;
   double gsum = 0.0;
   for (double w : weights) {
@@ -113,8 +121,8 @@ PronySeries PronySeries::make(const std::string& convention, const std::vector<d
 // Mesh helpers
 // =====================================================================================================
 
-void build_tet_triangulation(const std::vector<Point<3>>& points, const std::vector<std::array<unsigned, 4>>& tets,
-                             Triangulation<3>& tria) {
+void build_tet_triangulation(const std::vector<Point<3>>& points,
+                             const std::vector<std::array<unsigned, 4>>& tets, Triangulation<3>& tria) {
   std::vector<CellData<3>> cells(tets.size());
   for (std::size_t c = 0; c < tets.size(); ++c) {
     cells[c].vertices.assign(tets[c].begin(), tets[c].end());
@@ -144,7 +152,8 @@ std::vector<std::vector<unsigned>> coarse_vertex_map(const Solid& solid, const T
       if (cell->vertex(v).distance(cv[cc->vertex_index(v)]) <= 1e-12 * h) found = cc->vertex_index(v);
       for (unsigned w = 0; w < cc->n_vertices() && found == numbers::invalid_unsigned_int; ++w)
         if (cell->vertex(v).distance(cv[cc->vertex_index(w)]) <= 1e-12 * h) found = cc->vertex_index(w);
-      if (found == numbers::invalid_unsigned_int) throw Error("reference: cell vertex not found in its coarse cell");
+      if (found == numbers::invalid_unsigned_int)
+        throw Error("reference: cell vertex not found in its coarse cell");
       row[v] = found;
     }
   }
@@ -157,7 +166,13 @@ std::vector<std::vector<unsigned>> coarse_vertex_map(const Solid& solid, const T
 
 Solid::Solid(MPI_Comm comm, Triangulation<3>& coarse, const Discretisation& disc, const Material& material,
              std::optional<PronySeries> prony, const NewtonParameters& newton, std::ostream* log)
-    : comm_(comm), log_(log), tria_(comm), disc_(disc), material_(material), prony_(std::move(prony)), newton_(newton) {
+    : comm_(comm),
+      log_(log),
+      tria_(comm),
+      disc_(disc),
+      material_(material),
+      prony_(std::move(prony)),
+      newton_(newton) {
   if (disc.degree < 1 || disc.degree > 2) throw Error("reference: degree must be 1 or 2");
   // The coarse mesh is the same on every rank; METIS partitions it (deterministically) and the
   // fully distributed triangulation keeps each rank's cells plus one layer of ghosts.
@@ -166,7 +181,8 @@ Solid::Solid(MPI_Comm comm, Triangulation<3>& coarse, const Discretisation& disc
     GridTools::partition_triangulation(n_ranks, coarse);
   else
     for (const auto& c : coarse.active_cell_iterators()) c->set_subdomain_id(0);
-  const auto description = TriangulationDescription::Utilities::create_description_from_triangulation(coarse, comm);
+  const auto description =
+      TriangulationDescription::Utilities::create_description_from_triangulation(coarse, comm);
   tria_.create_triangulation(description);
 
   // Element, mapping and quadrature: P_k on simplices (exact integration of P1 St VK with a
@@ -215,7 +231,9 @@ int Solid::add_load_function(const TimeFunction& f) {
   return static_cast<int>(load_functions_.size()) - 1;
 }
 
-void Solid::add_point_force(global_dof_index dof, int load, double value) { point_forces_.push_back({dof, load, value}); }
+void Solid::add_point_force(global_dof_index dof, int load, double value) {
+  point_forces_.push_back({dof, load, value});
+}
 
 void Solid::add_traction(const CellId& cell, unsigned face, int load, const Tensor<1, 3>& traction) {
   pressures_.push_back({cell, face, load, 0.0, traction});
@@ -297,40 +315,40 @@ void Solid::assemble(const TrilinosWrappers::MPI::Vector& u_ghost, double t, dou
     for (unsigned q = 0; q < nq; ++q) {
       const double JxW = fev.JxW(q);
       if (mode != Mode::External) {
-      // Kinematics: F = I + Grad u, E = (F^T F - I)/2.
-      const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-      const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - I);
-      // Constitutive update: S = dW/dE (+ Prony history), D = dS/dE.
-      SymTensor2 S;
-      SymTensor4 D;
-      if (prony_)
-        prony_update(material_, *prony_, E, dt, qp[q]->prony, S, tangent ? &D : nullptr);
-      else {
-        S = material_.stress(E);
-        if (tangent) D = material_.tangent(E);
-      }
-      // Shape function i is e_{c_i} N_i: Grad phi_i = e_c (x) grad N_i, and the strain variation
-      // dE_i = sym(F^T Grad phi_i) = sym((F^T e_c) (x) grad N_i).
-      for (unsigned i = 0; i < n; ++i) {
-        gradN[i] = fev.shape_grad_component(i, q, comp[i]);
-        Tensor<1, 3> Fc;  // row c of F = F^T e_c
-        for (unsigned k = 0; k < 3; ++k) Fc[k] = F[comp[i]][k];
-        dE[i] = symmetrize(outer_product(Fc, gradN[i]));
-        // Internal force: f_i = int S : dE_i dV.
-        cell_r(i) += (S * dE[i]) * JxW;
-        if (tangent) {
-          DdE[i] = D * dE[i];
-          SgradN[i] = S * gradN[i];
+        // Kinematics: F = I + Grad u, E = (F^T F - I)/2.
+        const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+        const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - I);
+        // Constitutive update: S = dW/dE (+ Prony history), D = dS/dE.
+        SymTensor2 S;
+        SymTensor4 D;
+        if (prony_)
+          prony_update(material_, *prony_, E, dt, qp[q]->prony, S, tangent ? &D : nullptr);
+        else {
+          S = material_.stress(E);
+          if (tangent) D = material_.tangent(E);
         }
-      }
-      if (tangent)
-        // K_ij = int dE_i : D : dE_j + delta_{c_i c_j} grad N_i . S grad N_j dV (symmetric).
-        for (unsigned i = 0; i < n; ++i)
-          for (unsigned j = 0; j <= i; ++j) {
-            double k = DdE[i] * dE[j];
-            if (comp[i] == comp[j]) k += SgradN[i] * gradN[j];
-            cell_K(i, j) += k * JxW;
+        // Shape function i is e_{c_i} N_i: Grad phi_i = e_c (x) grad N_i, and the strain variation
+        // dE_i = sym(F^T Grad phi_i) = sym((F^T e_c) (x) grad N_i).
+        for (unsigned i = 0; i < n; ++i) {
+          gradN[i] = fev.shape_grad_component(i, q, comp[i]);
+          Tensor<1, 3> Fc;  // row c of F = F^T e_c
+          for (unsigned k = 0; k < 3; ++k) Fc[k] = F[comp[i]][k];
+          dE[i] = symmetrize(outer_product(Fc, gradN[i]));
+          // Internal force: f_i = int S : dE_i dV.
+          cell_r(i) += (S * dE[i]) * JxW;
+          if (tangent) {
+            DdE[i] = D * dE[i];
+            SgradN[i] = S * gradN[i];
           }
+        }
+        if (tangent)
+          // K_ij = int dE_i : D : dE_j + delta_{c_i c_j} grad N_i . S grad N_j dV (symmetric).
+          for (unsigned i = 0; i < n; ++i)
+            for (unsigned j = 0; j <= i; ++j) {
+              double k = DdE[i] * dE[j];
+              if (comp[i] == comp[j]) k += SgradN[i] * gradN[j];
+              cell_K(i, j) += k * JxW;
+            }
       }
       // Body forces (per unit reference volume): f_ext,i = int b0 . phi_i dV.
       for (const auto& bf : body_forces_) {
@@ -415,6 +433,31 @@ void Solid::set_solution(const TrilinosWrappers::MPI::Vector& u_owned) {
   u_ghost_ = u_owned;
 }
 
+void Solid::external_force(double t, TrilinosWrappers::MPI::Vector& f) {
+  if (!setup_done_) finalize_setup();
+  f.reinit(owned_, comm_);
+  assemble(u_ghost_, t, 0.0, Mode::External, nullptr, f, nullptr, nullptr);
+  f *= -1.0;  // External mode assembles r = -f_ext
+}
+
+std::vector<std::pair<global_dof_index, double>> Solid::prescribed_values(double t) {
+  if (!setup_done_) finalize_setup();
+  std::vector<std::pair<global_dof_index, double>> out;
+  out.reserve(prescribed_.size());
+  for (const auto& p : prescribed_) out.emplace_back(p.dof, p.value * conditions_[p.condition].f(t));
+  return out;
+}
+
+void Solid::set_history(
+    const std::function<void(const Triangulation<3>::active_cell_iterator&, unsigned, PronyState&)>& f) {
+  if (!prony_) return;
+  for (const auto& cell : tria_.active_cell_iterators())
+    if (cell->is_locally_owned()) {
+      const auto data = qp_data_.get_data(cell);
+      for (unsigned q = 0; q < data.size(); ++q) f(cell, q, data[q]->prony);
+    }
+}
+
 // =====================================================================================================
 // Linear solver: MUMPS (direct, through Trilinos Amesos) or CG preconditioned with ML AMG
 // =====================================================================================================
@@ -423,13 +466,15 @@ int Solid::linear_solve(TrilinosWrappers::MPI::Vector& du, const TrilinosWrapper
   du = 0.0;
   if (newton_.linear_solver == "direct" || newton_.linear_solver == "direct_klu") {
     SolverControl control(1, 0.0);
-    TrilinosWrappers::SolverDirect::AdditionalData data(false, newton_.linear_solver == "direct" ? "Amesos_Mumps" : "Amesos_Klu");
+    TrilinosWrappers::SolverDirect::AdditionalData data(
+        false, newton_.linear_solver == "direct" ? "Amesos_Mumps" : "Amesos_Klu");
     TrilinosWrappers::SolverDirect solver(control, data);
     solver.solve(K_, du, rhs);
     return 0;
   }
   if (newton_.linear_solver != "cg_amg")
-    throw Error("reference: linear_solver must be 'direct', 'direct_klu' or 'cg_amg' (got '" + newton_.linear_solver + "')");
+    throw Error("reference: linear_solver must be 'direct', 'direct_klu' or 'cg_amg' (got '" +
+                newton_.linear_solver + "')");
   TrilinosWrappers::PreconditionAMG amg;
   TrilinosWrappers::PreconditionAMG::AdditionalData ad;
   ad.elliptic = true;
@@ -495,7 +540,9 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
 
   double rnorm = residual(u, r);
   stats.residuals.assign(1, rnorm);
-  if (!std::isfinite(rnorm)) throw Error("reference: non-finite residual at the start of the Newton iteration (t = " + std::to_string(t) + ")");
+  if (!std::isfinite(rnorm))
+    throw Error("reference: non-finite residual at the start of the Newton iteration (t = " +
+                std::to_string(t) + ")");
   fe += r;  // f_int(u0) = R(u0) + f_ext
   double scale = std::max({rnorm, fext_norm, fe.l2_norm()});
   bool converged = false;
@@ -540,8 +587,8 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
       const bool ok = std::isfinite(rt) && rt <= (1.0 - 1e-4 * alpha) * rref;
       if (ok || !newton_.line_search || backtracks >= newton_.max_backtracks || !std::isfinite(rref)) {
         if (!std::isfinite(rt))
-          throw Error("reference: non-finite residual in Newton iteration " + std::to_string(k + 1) + " at t = " +
-                      std::to_string(t) + " (step too large or element inversion)");
+          throw Error("reference: non-finite residual in Newton iteration " + std::to_string(k + 1) +
+                      " at t = " + std::to_string(t) + " (step too large or element inversion)");
         break;
       }
       alpha *= 0.5;
@@ -561,7 +608,8 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
   if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) {
     std::ostringstream s;
     s << "    t = " << std::setprecision(6) << t << ": " << iterations << " Newton iterations, |R| =";
-    for (double v : stats.residuals) s << " " << std::setprecision(3) << std::scientific << v << std::defaultfloat;
+    for (double v : stats.residuals)
+      s << " " << std::setprecision(3) << std::scientific << v << std::defaultfloat;
     s << (converged ? "" : "  (not converged)") << "\n";
     *log_ << s.str() << std::flush;
   }

@@ -91,7 +91,8 @@ TEST(ReferenceMaterials, YeohStiffensInShearBeyondNeoHookean) {
   for (double g : {0.1, 0.5, 1.0}) {
     dealii::Tensor<2, 3> F = dealii::unit_symmetric_tensor<3>();
     F[0][1] = g;
-    const SymTensor2 E = 0.5 * (dealii::symmetrize(dealii::transpose(F) * F) - dealii::unit_symmetric_tensor<3>());
+    const SymTensor2 E =
+        0.5 * (dealii::symmetrize(dealii::transpose(F) * F) - dealii::unit_symmetric_tensor<3>());
     const dealii::Tensor<2, 3> sigma = F * dealii::Tensor<2, 3>(y.stress(E)) * dealii::transpose(F);
     const double x = g * g, c10 = y.yeoh.c10;
     const double expect = 2.0 * (c10 + 2.0 * y.yeoh.c20 * x + 3.0 * y.yeoh.c30 * x * x) * g;

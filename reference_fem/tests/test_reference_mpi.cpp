@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 fs::path shared_dir(const std::string& test) {
   char buf[512] = {0};
   if (MpiSession::rank() == 0) {
-    const std::string d = (fs::temp_directory_path() / ("tmlab_refmpi_" + std::to_string(::getpid()) + "_" + test)).string();
+    const std::string d =
+        (fs::temp_directory_path() / ("tmlab_refmpi_" + std::to_string(::getpid()) + "_" + test)).string();
     std::snprintf(buf, sizeof buf, "%s", d.c_str());
     fs::remove_all(d);
     fs::create_directories(d);
@@ -50,7 +51,8 @@ double max_rel_diff(const std::string& a, const std::string& b) {
 
 /// Runs `cfg` on all ranks with `parallel`, then on rank 0 alone with `serial`; returns the
 /// difference on rank 0 (0 elsewhere).
-double parallel_vs_serial(const CaseConfig& cfg, ReferenceOptions parallel, ReferenceOptions serial, const std::string& test) {
+double parallel_vs_serial(const CaseConfig& cfg, ReferenceOptions parallel, ReferenceOptions serial,
+                          const std::string& test) {
   EXPECT_EQ(MpiSession::size(), 2) << "run under mpirun -np 2";
   const fs::path dir = shared_dir(test);
   tm::RunOptions o;
@@ -89,7 +91,8 @@ CaseConfig cube_case(bool viscoelastic, const std::string& mesh = "meshes/cube_n
   })");
   j["mesh"]["file"] = mesh;
   if (viscoelastic) {
-    j["material"]["viscoelastic"] = {{"scheme", "objective"}, {"relaxation", "deviatoric"},
+    j["material"]["viscoelastic"] = {{"scheme", "objective"},
+                                     {"relaxation", "deviatoric"},
                                      {"prony", {{"terms", {{{"weight", 1.0}, {"tau", 0.3}}}}}}};
     j["solver"]["t_end"] = 2.0;
     j["solver"]["steps"] = 6;
@@ -111,6 +114,29 @@ TEST(ReferenceMpi, CubeP2CgAmgReproducesSerialDirect) {
 
 TEST(ReferenceMpi, ViscoelasticCubeReproducesSerial) {
   EXPECT_LE(parallel_vs_serial(cube_case(true), {}, {}, "cube_visco"), 1e-12);
+}
+
+TEST(ReferenceMpi, IdaTimeIntegrationRefusesTwoRanksAndRunsWithTheSerialOption) {
+  const fs::path dir = shared_dir("ida");
+  tm::RunOptions o;
+  o.results_root = (dir / "results").string();
+  o.plots = false;
+  ReferenceOptions ida;
+  ida.time_integration = "ida";
+  try {
+    run_reference_case(cube_case(true), o, ida);
+    ADD_FAILURE() << "IDA accepted two ranks";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("one MPI rank"), std::string::npos) << e.what();
+  }
+  if (MpiSession::rank() == 0) {
+    ida.serial = true;
+    const auto r = run_reference_case(cube_case(true), o, ida);
+    EXPECT_EQ(r.summary["solver"]["time_integration"], "ida");
+    EXPECT_GT(r.summary["solver"]["ida"]["steps"].get<long>(), 0);
+  }
+  MPI_Barrier(MPI_COMM_WORLD);
+  if (MpiSession::rank() == 0 && !::testing::Test::HasFailure()) fs::remove_all(dir);
 }
 
 }  // namespace

@@ -127,7 +127,8 @@ TEST_F(ReferenceRunnerTest, P1StVKEqualsTensorMassOnCubeWithAllLoads) {
   RecordProperty("max_rel_diff", std::to_string(d));
   EXPECT_LE(d, 1e-8);
   // Reactions (sum of f_int - f_ext over the constrained DOFs) and energies agree too.
-  for (const std::string s : {"reaction_base_x", "reaction_base_z", "reaction_side_y", "elastic_energy", "probe_top_z"}) {
+  for (const std::string s :
+       {"reaction_base_x", "reaction_base_z", "reaction_side_y", "elastic_energy", "probe_top_z"}) {
     const auto x = series(a.dir, s), y = series(b.dir, s);
     ASSERT_EQ(x.size(), y.size());
     double scale = 0.0;
@@ -145,16 +146,21 @@ TEST_F(ReferenceRunnerTest, P1StVKEqualsTensorMassOnLiver) {
   EXPECT_LE(d, 1e-8);
   const auto ra = series(a.dir, "reaction_probe_z"), rb = series(b.dir, "reaction_probe_z");
   EXPECT_NEAR(ra.back(), rb.back(), 1e-8 * std::abs(ra.back()));
-  std::printf("[ measured ] liver-probe: max relative nodal difference %.3e, probe reaction %.6f N vs %.6f N\n", d,
-              ra.back(), rb.back());
+  std::printf(
+      "[ measured ] liver-probe: max relative nodal difference %.3e, probe reaction %.6f N vs %.6f N\n", d,
+      ra.back(), rb.back());
 }
 
 nlohmann::json viscoelastic_cube(const std::string& integration, const std::string& relaxation) {
   nlohmann::json j = cube_all_loads();
   j["name"] = "cube-visco";
-  j["material"]["viscoelastic"] = {{"history", "pk2"}, {"integration", integration}, {"relaxation", relaxation},
-                                   {"prony", {{"convention", "long_term"},
-                                              {"terms", {{{"weight", 1.5}, {"tau", 0.2}}, {{"weight", 0.5}, {"tau", 2.0}}}}}}};
+  j["material"]["viscoelastic"] = {
+      {"history", "pk2"},
+      {"integration", integration},
+      {"relaxation", relaxation},
+      {"prony",
+       {{"convention", "long_term"},
+        {"terms", {{{"weight", 1.5}, {"tau", 0.2}}, {{"weight", 0.5}, {"tau", 2.0}}}}}}};
   j["solver"]["t_end"] = 2.0;
   j["solver"]["steps"] = 10;
   j["boundary"][1]["function"] = {{"type", "ramp"}, {"t0", 0}, {"t1", 0.4}};
@@ -170,9 +176,10 @@ TEST_F(ReferenceRunnerTest, P1ViscoelasticEqualsTensorMassObjectiveForm) {
     const double d = max_rel_diff(a.dir, b.dir);
     EXPECT_LE(d, 1e-8) << integ << " " << relax;
     const auto ra = series(a.dir, "reaction_base_z"), rb = series(b.dir, "reaction_base_z");
-    for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_NEAR(ra[i], rb[i], 1e-8 * std::abs(ra.back())) << integ << " step " << i;
-    std::printf("[ measured ] viscoelastic cube (%s, %s): max relative nodal difference %.3e\n", integ.c_str(),
-                relax.c_str(), d);
+    for (std::size_t i = 0; i < ra.size(); ++i)
+      EXPECT_NEAR(ra[i], rb[i], 1e-8 * std::abs(ra.back())) << integ << " step " << i;
+    std::printf("[ measured ] viscoelastic cube (%s, %s): max relative nodal difference %.3e\n",
+                integ.c_str(), relax.c_str(), d);
   }
 }
 
@@ -193,9 +200,12 @@ TEST_F(ReferenceRunnerTest, P1ViscoelasticEqualsTensorMassOnLiver) {
   const double d = max_rel_diff(a.dir, b.dir);
   EXPECT_LE(d, 1e-8);
   const auto ra = series(a.dir, "reaction_probe_z"), rb = series(b.dir, "reaction_probe_z");
-  for (std::size_t i = 0; i < ra.size(); ++i) EXPECT_NEAR(ra[i], rb[i], 1e-8 * std::abs(ra[4])) << "step " << i;
-  std::printf("[ measured ] liver viscoelastic (pk2, exact_linear): max relative nodal difference %.3e, "
-              "probe reaction at 1 s %.6f N, at 2 s %.6f N\n", d, rb[4], rb.back());
+  for (std::size_t i = 0; i < ra.size(); ++i)
+    EXPECT_NEAR(ra[i], rb[i], 1e-8 * std::abs(ra[4])) << "step " << i;
+  std::printf(
+      "[ measured ] liver viscoelastic (pk2, exact_linear): max relative nodal difference %.3e, "
+      "probe reaction at 1 s %.6f N, at 2 s %.6f N\n",
+      d, rb[4], rb.back());
 }
 
 // ---- (2) homogeneous closed forms -------------------------------------------------------------------
@@ -210,8 +220,8 @@ TEST_F(ReferenceRunnerTest, UniaxialStVKReactionMatchesClosedFormP1AndP2) {
     const double f = r.summary["final_reactions_N"]["pull"][0].get<double>();
     EXPECT_NEAR(f, closed, 1e-10 * closed) << "P" << degree;
     // Lateral contraction of the homogeneous state: E22 = -nu E11 (uniaxial St VK stress).
-    std::printf("[ measured ] uniaxial St VK, P%d: reaction %.15f N, closed form %.15f N (rel. error %.1e)\n", degree, f,
-                closed, std::abs(f - closed) / closed);
+    std::printf("[ measured ] uniaxial St VK, P%d: reaction %.15f N, closed form %.15f N (rel. error %.1e)\n",
+                degree, f, closed, std::abs(f - closed) / closed);
   }
 }
 
@@ -222,7 +232,8 @@ TEST_F(ReferenceRunnerTest, NeoHookeanSimpleShearStressIsMuGamma) {
   const int n = 3;
   const double L = 0.01, gamma = 0.4, E = 3000.0, nu = 0.3, mu = E / (2 * (1 + nu));
   write_box("shear.msh", Vec3(L, L, L), n, n, n);
-  nlohmann::json j = {{"name", "shear"}, {"mesh", {{"file", "shear.msh"}}},
+  nlohmann::json j = {{"name", "shear"},
+                      {"mesh", {{"file", "shear.msh"}}},
                       {"material", {{"E", E}, {"nu", nu}, {"density", 1000}}},
                       {"solver", {{"type", "static"}, {"steps", 4}}}};
   auto layer = [&](const std::string& name, double y, bool whole_plane) {
@@ -239,7 +250,9 @@ TEST_F(ReferenceRunnerTest, NeoHookeanSimpleShearStressIsMuGamma) {
         if (side && std::abs(p.y() - y) < 1e-12) sel["nodes"].push_back(i);
       }
     }
-    return nlohmann::json{{"name", name}, {"nodes", sel}, {"value", {gamma * y, 0, 0}},
+    return nlohmann::json{{"name", name},
+                          {"nodes", sel},
+                          {"value", {gamma * y, 0, 0}},
                           {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 1}}}};
   };
   j["boundary"] = nlohmann::json::array({layer("top", L, true), layer("bottom", 0.0, true)});
@@ -251,8 +264,9 @@ TEST_F(ReferenceRunnerTest, NeoHookeanSimpleShearStressIsMuGamma) {
   const double fy = r.summary["final_reactions_N"]["top"][1].get<double>();
   EXPECT_NEAR(fx, mu * gamma * L * L, 1e-9 * mu * gamma * L * L);
   EXPECT_NEAR(fy, 0.0, 1e-9 * mu * gamma * L * L);
-  std::printf("[ measured ] neo-Hookean simple shear gamma = %.1f: shear force %.12e N, mu gamma A = %.12e N\n", gamma, fx,
-              mu * gamma * L * L);
+  std::printf(
+      "[ measured ] neo-Hookean simple shear gamma = %.1f: shear force %.12e N, mu gamma A = %.12e N\n",
+      gamma, fx, mu * gamma * L * L);
 }
 
 TEST_F(ReferenceRunnerTest, PronyRelaxationOfAStretchedCubeMatchesClosedForm) {
@@ -268,9 +282,10 @@ TEST_F(ReferenceRunnerTest, PronyRelaxationOfAStretchedCubeMatchesClosedForm) {
   j["boundary"][3]["function"] = {{"type", "ramp"}, {"t0", 0}, {"t1", dt}};
   j["solver"]["t_end"] = 1.0;
   j["solver"]["steps"] = 20;
-  j["material"]["viscoelastic"] = {{"scheme", "objective"},
-                                   {"prony", {{"terms", {{{"weight", alpha[0]}, {"tau", tau[0]}},
-                                                         {{"weight", alpha[1]}, {"tau", tau[1]}}}}}}};
+  j["material"]["viscoelastic"] = {
+      {"scheme", "objective"},
+      {"prony",
+       {{"terms", {{{"weight", alpha[0]}, {"tau", tau[0]}}, {{"weight", alpha[1]}, {"tau", tau[1]}}}}}}};
   const auto r = run_ref(j);
   const auto t = series(r.dir, "time"), f = series(r.dir, "reaction_pull_x");
   double worst = 0.0;
@@ -282,22 +297,30 @@ TEST_F(ReferenceRunnerTest, PronyRelaxationOfAStretchedCubeMatchesClosedForm) {
   }
   EXPECT_LE(worst, 1e-9);
   EXPECT_GT(f[1], 2.0 * Fe);  // instantaneous response well above the long-term one
-  std::printf("[ measured ] Prony relaxation: F(dt) = %.6f N, F(1 s) = %.6f N, F_e = %.6f N, max rel. error %.1e\n", f[1],
-              f.back(), Fe, worst);
+  std::printf(
+      "[ measured ] Prony relaxation: F(dt) = %.6f N, F(1 s) = %.6f N, F_e = %.6f N, max rel. error %.1e\n",
+      f[1], f.back(), Fe, worst);
 }
 
 TEST_F(ReferenceRunnerTest, DeviatoricRelaxationLeavesAHydrostaticStretchUnrelaxed) {
   // Equal stretch on the three symmetry-plane pairs: E is isotropic, S_dev = 0, no history.
   nlohmann::json j = uniaxial_cube(0.0005);
   j["name"] = "hydro";
-  j["boundary"].push_back({{"name", "pully"}, {"nodes", {{"group", "ymax"}}}, {"components", "y"},
-                           {"value", {0, 0.0005, 0}}, {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.1}}}});
-  j["boundary"].push_back({{"name", "pullz"}, {"nodes", {{"group", "zmax"}}}, {"components", "z"},
-                           {"value", {0, 0, 0.0005}}, {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.1}}}});
+  j["boundary"].push_back({{"name", "pully"},
+                           {"nodes", {{"group", "ymax"}}},
+                           {"components", "y"},
+                           {"value", {0, 0.0005, 0}},
+                           {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.1}}}});
+  j["boundary"].push_back({{"name", "pullz"},
+                           {"nodes", {{"group", "zmax"}}},
+                           {"components", "z"},
+                           {"value", {0, 0, 0.0005}},
+                           {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.1}}}});
   j["boundary"][3]["function"] = {{"type", "ramp"}, {"t0", 0}, {"t1", 0.1}};
   j["solver"]["t_end"] = 1.0;
   j["solver"]["steps"] = 10;
-  j["material"]["viscoelastic"] = {{"history", "pk2"}, {"relaxation", "deviatoric"},
+  j["material"]["viscoelastic"] = {{"history", "pk2"},
+                                   {"relaxation", "deviatoric"},
                                    {"prony", {{"terms", {{{"weight", 2.0}, {"tau", 0.2}}}}}}};
   const auto r = run_ref(j);
   const auto f = series(r.dir, "reaction_pull_x");
@@ -321,9 +344,12 @@ TEST_F(ReferenceRunnerTest, HexAndTetRunsOfABeamConverge) {
         {"mesh", {{"file", mesh}}},
         {"material", {{"E", 200000}, {"nu", 0.3}, {"density", 1000}}},
         {"boundary", {{{"name", "clamp"}, {"nodes", {{"plane", {{"axis", "x"}, {"value", 0}}}}}}}},
-        {"loads", {{{"type", "gravity"}, {"acceleration", {0, 0, -9.81}}, {"function", ramp}},
-                   {{"type", "pressure"}, {"faces", {{"box", {{"min", {0.03, -1, 0.0099}}, {"max", {1, 1, 1}}}}}},
-                    {"pressure", 20}, {"function", ramp}}}},
+        {"loads",
+         {{{"type", "gravity"}, {"acceleration", {0, 0, -9.81}}, {"function", ramp}},
+          {{"type", "pressure"},
+           {"faces", {{"box", {{"min", {0.03, -1, 0.0099}}, {"max", {1, 1, 1}}}}}},
+           {"pressure", 20},
+           {"function", ramp}}}},
         {"solver", {{"type", "static"}, {"steps", 2}}},
         {"output", {{"vtu", false}, {"probes", {{{"name", "tip"}, {"point", {0.04, 0.005, 0.005}}}}}}}};
     ReferenceOptions tet, hex;
@@ -333,10 +359,13 @@ TEST_F(ReferenceRunnerTest, HexAndTetRunsOfABeamConverge) {
     const auto a = run_ref(j, tet), b = run_ref(j, hex);
     const double za = a.summary["probes"]["tip"]["displacement_m"][2].get<double>();
     const double zb = b.summary["probes"]["tip"]["displacement_m"][2].get<double>();
-    const double wa = a.summary["elastic_energy_J"].get<double>(), wb = b.summary["elastic_energy_J"].get<double>();
+    const double wa = a.summary["elastic_energy_J"].get<double>(),
+                 wb = b.summary["elastic_energy_J"].get<double>();
     diff.push_back(std::abs(za - zb) / std::abs(zb));
-    std::printf("[ measured ] beam grid %dx%dx%d: tip z P2-tet %.6e m, Q2-hex %.6e m (rel. diff %.2e); energy %.6e / %.6e J\n",
-                nx, ny, nz, za, zb, diff.back(), wa, wb);
+    std::printf(
+        "[ measured ] beam grid %dx%dx%d: tip z P2-tet %.6e m, Q2-hex %.6e m (rel. diff %.2e); energy %.6e / "
+        "%.6e J\n",
+        nx, ny, nz, za, zb, diff.back(), wa, wb);
   }
   EXPECT_LT(diff[1], diff[0]);
   EXPECT_LT(diff[1], 5e-3);
@@ -371,8 +400,8 @@ TEST_F(ReferenceRunnerTest, WritesTheTensorMassResultFiles) {
     EXPECT_TRUE(fs::exists(fs::path(r.dir) / f)) << f;
   H5File::Dims dims;
   displacements(r.dir, &dims);
-  EXPECT_EQ(dims[0], 5u);                 // frames 0..4
-  EXPECT_EQ(dims[1], 3u * 125u);          // cube_n4: 5^3 nodes
+  EXPECT_EQ(dims[0], 5u);         // frames 0..4
+  EXPECT_EQ(dims[1], 3u * 125u);  // cube_n4: 5^3 nodes
   const auto h5 = H5File::open_read(r.dir + "/timeseries.h5");
   for (const char* s : {"time", "elastic_energy", "max_displacement", "newton_iterations", "reaction_base_x",
                         "reaction_base_norm", "probe_top_z", "probe_top_norm"}) {

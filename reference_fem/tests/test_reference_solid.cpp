@@ -46,7 +46,8 @@ double tangent_fd_error(const std::string& law, bool simplex, unsigned degree, b
   Solid s(MPI_COMM_SELF, coarse, Discretisation{simplex, degree}, m, p, NewtonParameters{});
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> d(-1.0, 1.0);
-  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), up(u), um(u), r0, rp, rm, Kv(u);
+  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), up(u), um(u), r0, rp, rm,
+      Kv(u);
   for (auto i : s.locally_owned_dofs()) {
     u[i] = 0.03 * d(rng);
     v[i] = d(rng);
@@ -72,10 +73,12 @@ double tangent_fd_error(const std::string& law, bool simplex, unsigned degree, b
 
 TEST(ReferenceSolid, TangentIsTheDerivativeOfTheResidual) {
   for (const std::string law : {"stvk", "neo_hookean", "yeoh"})
-    for (const auto& [simplex, degree] : std::vector<std::pair<bool, unsigned>>{{true, 1}, {true, 2}, {false, 2}}) {
+    for (const auto& [simplex, degree] :
+         std::vector<std::pair<bool, unsigned>>{{true, 1}, {true, 2}, {false, 2}}) {
       const double e = tangent_fd_error(law, simplex, degree, false);
       EXPECT_LE(e, 1e-7) << law << (simplex ? " P" : " Q") << degree;
-      std::printf("[ measured ] tangent vs central differences, %s %s%u: %.2e\n", law.c_str(), simplex ? "P" : "Q", degree, e);
+      std::printf("[ measured ] tangent vs central differences, %s %s%u: %.2e\n", law.c_str(),
+                  simplex ? "P" : "Q", degree, e);
     }
   const double e = tangent_fd_error("neo_hookean", true, 2, true);
   EXPECT_LE(e, 1e-7) << "with Prony history";
@@ -162,20 +165,24 @@ Errors mms_errors(unsigned degree, unsigned n, const std::string& solver = "dire
   s.advance(0.5, 1.0);
   Vector<float> cellwise(coarse.n_active_cells());
   const QGaussSimplex<3> q(degree + 2);
-  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q, VectorTools::L2_norm);
+  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q,
+                                    VectorTools::L2_norm);
   const double l2 = VectorTools::compute_global_error(s.triangulation(), cellwise, VectorTools::L2_norm);
-  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q, VectorTools::H1_seminorm);
+  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q,
+                                    VectorTools::H1_seminorm);
   const double h1 = VectorTools::compute_global_error(s.triangulation(), cellwise, VectorTools::H1_seminorm);
   return {l2, h1, s.n_dofs()};
 }
 
-void refinement_study(unsigned degree, const std::vector<unsigned>& ns, const std::string& solver = "direct") {
+void refinement_study(unsigned degree, const std::vector<unsigned>& ns,
+                      const std::string& solver = "direct") {
   std::vector<Errors> e;
   for (unsigned n : ns) {
     e.push_back(mms_errors(degree, n, solver));
     const std::size_t k = e.size() - 1;
     if (k == 0)
-      std::printf("[ measured ] P%u n=%2u dofs=%7u  L2 %.3e  H1 %.3e\n", degree, n, static_cast<unsigned>(e[k].dofs), e[k].l2, e[k].h1);
+      std::printf("[ measured ] P%u n=%2u dofs=%7u  L2 %.3e  H1 %.3e\n", degree, n,
+                  static_cast<unsigned>(e[k].dofs), e[k].l2, e[k].h1);
     else
       std::printf("[ measured ] P%u n=%2u dofs=%7u  L2 %.3e (rate %.2f)  H1 %.3e (rate %.2f)\n", degree, n,
                   static_cast<unsigned>(e[k].dofs), e[k].l2, std::log2(e[k - 1].l2 / e[k].l2), e[k].h1,
@@ -201,7 +208,8 @@ TEST(ReferenceSolid, TriangulationFromTmlabMeshIsTheOneGridInReads) {
   std::vector<Point<3>> pts;
   for (const auto& p : mesh.points) pts.emplace_back(p.x(), p.y(), p.z());
   std::vector<std::array<unsigned, 4>> tets;
-  for (const auto& t : mesh.tets) tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
+  for (const auto& t : mesh.tets)
+    tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
   Triangulation<3> ours, theirs;
   build_tet_triangulation(pts, tets, ours);
   GridIn<3> gi;
@@ -215,7 +223,8 @@ TEST(ReferenceSolid, TriangulationFromTmlabMeshIsTheOneGridInReads) {
   auto a = ours.begin_active();
   auto b = theirs.begin_active();
   for (; a != ours.end(); ++a, ++b)
-    for (unsigned v = 0; v < 4; ++v) EXPECT_EQ(a->vertex_index(v), b->vertex_index(v)) << "cell " << a->index();
+    for (unsigned v = 0; v < 4; ++v)
+      EXPECT_EQ(a->vertex_index(v), b->vertex_index(v)) << "cell " << a->index();
   // And vertex i is node i of the tmlab mesh (the same order, so displacement.h5 columns match).
   for (unsigned i = 0; i < ours.n_vertices(); ++i) EXPECT_EQ(ours.get_vertices()[i], pts[i]);
 }

@@ -41,9 +41,9 @@ StVenantKirchhoff material() { return StVenantKirchhoff::from_young_poisson(3000
 void set_counters(benchmark::State& state, Index ntets) {
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * ntets);
   state.counters["tets"] = static_cast<double>(ntets);
-  state.counters["time/tet"] = benchmark::Counter(static_cast<double>(ntets),
-                                                  benchmark::Counter::kIsIterationInvariantRate |
-                                                      benchmark::Counter::kInvert);
+  state.counters["time/tet"] =
+      benchmark::Counter(static_cast<double>(ntets),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 template <class Model>
@@ -136,8 +136,12 @@ void visco_force_bench(benchmark::State& state, ViscoelasticOptions::History his
   m.begin_step(0.01);
   force_bench(state, s, m);
 }
-void BM_ViscoSeedForce(benchmark::State& state) { visco_force_bench(state, ViscoelasticOptions::History::NodalForce); }
-void BM_ViscoObjectiveForce(benchmark::State& state) { visco_force_bench(state, ViscoelasticOptions::History::Pk2); }
+void BM_ViscoSeedForce(benchmark::State& state) {
+  visco_force_bench(state, ViscoelasticOptions::History::NodalForce);
+}
+void BM_ViscoObjectiveForce(benchmark::State& state) {
+  visco_force_bench(state, ViscoelasticOptions::History::Pk2);
+}
 
 BENCHMARK(BM_OracleForce) TM_SIZES;
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;

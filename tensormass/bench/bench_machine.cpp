@@ -31,7 +31,8 @@ void BM_FmaThroughput(benchmark::State& state) {
       for (int l = 0; l < kLanes; ++l) acc[l] = acc[l] * x + y;
     benchmark::DoNotOptimize(acc);
   }
-  state.counters["FLOP/s"] = benchmark::Counter(2.0 * kLanes * kIters, benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["FLOP/s"] =
+      benchmark::Counter(2.0 * kLanes * kIters, benchmark::Counter::kIsIterationInvariantRate);
 }
 BENCHMARK(BM_FmaThroughput);
 

@@ -63,8 +63,6 @@ std::vector<Vec3> as_vec3(const VecX& u) {
   return out;
 }
 
-
-
 }  // namespace
 
 RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
@@ -78,16 +76,20 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   const double size = (report.bbox_max - report.bbox_min).norm();
 
   // ---- Material and elastic model. ----
-  const StVenantKirchhoff material = StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson);
+  const StVenantKirchhoff material =
+      StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson);
   std::unique_ptr<ElasticModel> model;
   const ViscoelasticStVK* visco = nullptr;
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled) {
     // Prony-series viscoelasticity on the tensor-mass model; material.E is the long-term modulus.
     if (cfg.model == "tl_oracle")
-      throw Error(cfg.file + ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass for a viscoelastic material");
-    const PronySeries prony = vs.convention == "instantaneous" ? PronySeries::from_instantaneous(vs.weights, vs.taus)
-                                                               : PronySeries::from_long_term(vs.weights, vs.taus);
+      throw Error(
+          cfg.file +
+          ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass for a viscoelastic material");
+    const PronySeries prony = vs.convention == "instantaneous"
+                                  ? PronySeries::from_instantaneous(vs.weights, vs.taus)
+                                  : PronySeries::from_long_term(vs.weights, vs.taus);
     ViscoelasticOptions vo;
     vo.history = ViscoelasticOptions::parse_history(vs.history);
     vo.integration = ViscoelasticOptions::parse_integration(vs.integration);
@@ -108,7 +110,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   for (std::size_t i = 0; i < cfg.boundary.size(); ++i) {
     const auto& b = cfg.boundary[i];
     DirichletCondition c{b.name, select_nodes(mesh, b.nodes), b.components, b.value, b.function};
-    if (c.nodes.empty()) throw Error(cfg.file + ": boundary[" + std::to_string(i) + "] '" + b.name + "' selects no nodes");
+    if (c.nodes.empty())
+      throw Error(cfg.file + ": boundary[" + std::to_string(i) + "] '" + b.name + "' selects no nodes");
     conditions.push_back(std::move(c));
   }
   ExternalLoads loads(mesh, node_mass);
@@ -131,8 +134,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       loads.add(Gravity{l.vector, l.function});
     }
   }
-  const MechanicalSystem system(*model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), conditions),
-                                loads, RayleighDamping{cfg.solver.damping_alpha, cfg.solver.damping_beta});
+  const MechanicalSystem system(*model, lumped_dof_mass(node_mass),
+                                DirichletSet(mesh.num_points(), conditions), loads,
+                                RayleighDamping{cfg.solver.damping_alpha, cfg.solver.damping_beta});
   if (system.bc().dofs().empty() && cfg.solver.type == SolverSpec::Type::Static)
     throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
 
@@ -177,7 +181,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       if (!(jmin > 0.0)) {
         std::ostringstream m;
         m << "element " << jtet << " inverted at t = " << t << " (step " << step << ", volume ratio " << jmin
-          << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or refine the mesh";
+          << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or "
+             "refine the mesh";
         throw Error(m.str());
       }
       jmin_overall = std::min(jmin_overall, jmin);
@@ -196,8 +201,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
       // the Maxwell-branch energies of the committed state (the same definition as the deal.II
       // reference); dissipation is the model's own count.
-      table.add("elastic_energy", "J",
-                visco ? visco->committed_elastic_energy() + visco->committed_branch_energy() : model->energy(u));
+      table.add(
+          "elastic_energy", "J",
+          visco ? visco->committed_elastic_energy() + visco->committed_branch_energy() : model->energy(u));
       if (visco) {
         table.add("spring_energy", "J", visco->committed_elastic_energy());
         table.add("branch_energy", "J", visco->committed_branch_energy());
@@ -287,7 +293,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     nlohmann::json solver_info;
     record(0, 0.0, 0, true);
     if (cfg.solver.type == SolverSpec::Type::Static) {
-      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search, 12};
+      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search,
+                         12};
       StaticSolver solver(system, nopt, cfg.solver.max_cutbacks);
       for (int k = 1; k <= n_steps; ++k) {
         const double t0 = t_end * (k - 1) / n_steps, t1 = t_end * k / n_steps;
@@ -297,7 +304,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         record(k, t1, rep.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
         progress(k, t1);
       }
-      solver_info = {{"type", "static"}, {"load_steps", n_steps}, {"newton_iterations", total_newton},
+      solver_info = {{"type", "static"},
+                     {"load_steps", n_steps},
+                     {"newton_iterations", total_newton},
                      {"cutbacks", total_cutbacks}};
     } else if (cfg.solver.type == SolverSpec::Type::Explicit) {
       const double dt = cfg.solver.dt;
@@ -318,12 +327,18 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         }
       }
       const auto& st = integ.stability();
-      solver_info = {{"type", "explicit"}, {"scheme", "central_difference"}, {"dt", dt}, {"steps", n_steps},
-                     {"dt_critical_estimate", st.dt_critical}, {"dt_guaranteed", st.dt_guaranteed},
-                     {"omega_max", st.omega_max}, {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
+      solver_info = {{"type", "explicit"},
+                     {"scheme", "central_difference"},
+                     {"dt", dt},
+                     {"steps", n_steps},
+                     {"dt_critical_estimate", st.dt_critical},
+                     {"dt_guaranteed", st.dt_guaranteed},
+                     {"omega_max", st.omega_max},
+                     {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
     } else {
       const ImplicitScheme scheme = implicit_scheme_from_string(cfg.solver.scheme);
-      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search, 12};
+      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search,
+                         12};
       ImplicitDynamics integ(system, scheme, nopt);
       integ.initialize(0.0, u, v);
       double t = 0.0;
@@ -337,7 +352,10 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         record(k, t, nr.iterations, k % cfg.output.every == 0 || k == n_steps);
         progress(k, t);
       }
-      solver_info = {{"type", "implicit"}, {"scheme", cfg.solver.scheme}, {"dt", cfg.solver.dt}, {"steps", n_steps},
+      solver_info = {{"type", "implicit"},
+                     {"scheme", cfg.solver.scheme},
+                     {"dt", cfg.solver.dt},
+                     {"steps", n_steps},
                      {"newton_iterations", total_newton},
                      {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
     }
@@ -354,33 +372,50 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       h5.close();
     }
     disp_h5.set_attribute("/u", "unit", "m");
-    disp_h5.set_attribute("/u", "layout", "rows: field frames; columns: 3*node + component (tmlab node order)");
+    disp_h5.set_attribute("/u", "layout",
+                          "rows: field frames; columns: 3*node + component (tmlab node order)");
     disp_h5.close();
     if (xdmf) xdmf->close();
     if (pvd) pvd->write();
 
     // ---- Plots (PNG through matplotlib; a missing python3/matplotlib is reported, not fatal). ----
     nlohmann::json plots = nlohmann::json::array();
-    plots.push_back({{"file", "displacement.png"}, {"x", "time"}, {"y", {"max_displacement"}}, {"title", cfg.name + ": largest displacement"},
-                     {"xlabel", "time [s]"}, {"ylabel", "displacement [m]"}});
+    plots.push_back({{"file", "displacement.png"},
+                     {"x", "time"},
+                     {"y", {"max_displacement"}},
+                     {"title", cfg.name + ": largest displacement"},
+                     {"xlabel", "time [s]"},
+                     {"ylabel", "displacement [m]"}});
     nlohmann::json reactions = nlohmann::json::array();
     for (const auto& c : conditions) reactions.push_back("reaction_" + c.name + "_norm");
     if (!reactions.empty())
-      plots.push_back({{"file", "reaction.png"}, {"x", "time"}, {"y", reactions}, {"title", cfg.name + ": reaction forces"},
-                       {"xlabel", "time [s]"}, {"ylabel", "|reaction| [N]"}});
+      plots.push_back({{"file", "reaction.png"},
+                       {"x", "time"},
+                       {"y", reactions},
+                       {"title", cfg.name + ": reaction forces"},
+                       {"xlabel", "time [s]"},
+                       {"ylabel", "|reaction| [N]"}});
     nlohmann::json energy_series = {"elastic_energy", "kinetic_energy", "external_work"};
     if (visco) {
       energy_series.push_back("spring_energy");
       energy_series.push_back("branch_energy");
       energy_series.push_back("dissipated_energy");
     }
-    plots.push_back({{"file", "energy.png"}, {"x", "time"}, {"y", energy_series},
-                     {"title", cfg.name + ": energies"}, {"xlabel", "time [s]"}, {"ylabel", "energy [J]"}});
+    plots.push_back({{"file", "energy.png"},
+                     {"x", "time"},
+                     {"y", energy_series},
+                     {"title", cfg.name + ": energies"},
+                     {"xlabel", "time [s]"},
+                     {"ylabel", "energy [J]"}});
     if (!probe_nodes.empty()) {
       nlohmann::json py = nlohmann::json::array();
       for (const auto& p : cfg.output.probes) py.push_back("probe_" + p.name + "_norm");
-      plots.push_back({{"file", "probes.png"}, {"x", "time"}, {"y", py}, {"title", cfg.name + ": probe displacements"},
-                       {"xlabel", "time [s]"}, {"ylabel", "|u| [m]"}});
+      plots.push_back({{"file", "probes.png"},
+                       {"x", "time"},
+                       {"y", py},
+                       {"title", cfg.name + ": probe displacements"},
+                       {"xlabel", "time [s]"},
+                       {"ylabel", "|u| [m]"}});
     }
     out.write_json("plots.json", plots);
     std::string plot_status = "skipped";
@@ -388,31 +423,41 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       const fs::path script = fs::path(opt.tmlab_root) / "core" / "python" / "tmlab_plot.py";
       // Debian's interpreter carries python3-matplotlib/h5py; another python3 may come first on PATH.
       const char* env_py = std::getenv("TMLAB_PYTHON");
-      const std::string python = env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
+      const std::string python =
+          env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
       const std::string cmd = python + " '" + script.string() + "' '" + out.staging_dir().string() + "' > '" +
                               out.file("plots.log").string() + "' 2>&1";
       const int rc = std::system(cmd.c_str());
       plot_status = rc == 0 ? "ok" : "failed (see plots.log)";
-      if (rc != 0 && log) *log << "  warning: plotting failed (see plots.log); the numbers are in timeseries.h5\n";
+      if (rc != 0 && log)
+        *log << "  warning: plotting failed (see plots.log); the numbers are in timeseries.h5\n";
     }
 
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    nlohmann::json summary = {
-        {"case", cfg.name},
-        {"description", cfg.description},
-        {"model", cfg.model},
-        {"mesh", {{"file", cfg.mesh.file}, {"points", mesh.num_points()}, {"tets", mesh.num_tets()},
-                  {"volume_m3", report.total_volume}, {"orientation_repaired", repaired}}},
-        {"material", {{"law", "stvk"}, {"E", cfg.material.young}, {"nu", cfg.material.poisson},
-                      {"density", cfg.material.density}, {"lambda", material.lambda}, {"mu", material.mu}}},
-        {"solver", solver_info},
-        {"final_time", table.last("time")},
-        {"max_displacement_m", table.last("max_displacement")},
-        {"elastic_energy_J", table.last("elastic_energy")},
-        {"min_volume_ratio", jmin_overall},
-        {"field_frames", field_frames},
-        {"plots", plot_status},
-        {"run_seconds", wall}};
+    nlohmann::json summary = {{"case", cfg.name},
+                              {"description", cfg.description},
+                              {"model", cfg.model},
+                              {"mesh",
+                               {{"file", cfg.mesh.file},
+                                {"points", mesh.num_points()},
+                                {"tets", mesh.num_tets()},
+                                {"volume_m3", report.total_volume},
+                                {"orientation_repaired", repaired}}},
+                              {"material",
+                               {{"law", "stvk"},
+                                {"E", cfg.material.young},
+                                {"nu", cfg.material.poisson},
+                                {"density", cfg.material.density},
+                                {"lambda", material.lambda},
+                                {"mu", material.mu}}},
+                              {"solver", solver_info},
+                              {"final_time", table.last("time")},
+                              {"max_displacement_m", table.last("max_displacement")},
+                              {"elastic_energy_J", table.last("elastic_energy")},
+                              {"min_volume_ratio", jmin_overall},
+                              {"field_frames", field_frames},
+                              {"plots", plot_status},
+                              {"run_seconds", wall}};
     nlohmann::json reac = nlohmann::json::object();
     for (const auto& c : conditions)
       reac[c.name] = {table.last("reaction_" + c.name + "_x"), table.last("reaction_" + c.name + "_y"),
@@ -430,13 +475,17 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                            {"balance_residual_J", external_work - stored - kinetic - dissipated}};
     }
     if (visco)
-      summary["viscoelastic"] = {{"history", vs.history}, {"integration", vs.integration}, {"relaxation", vs.relaxation},
+      summary["viscoelastic"] = {{"history", vs.history},
+                                 {"integration", vs.integration},
+                                 {"relaxation", vs.relaxation},
                                  {"prony_long_term", visco->prony().to_json()}};
     nlohmann::json probes = nlohmann::json::object();
     for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
       const std::string& n = cfg.output.probes[k].name;
       probes[n] = {{"node", probe_nodes[k]},
-                   {"displacement_m", {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"), table.last("probe_" + n + "_z")}}};
+                   {"displacement_m",
+                    {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"),
+                     table.last("probe_" + n + "_z")}}};
     }
     summary["probes"] = probes;
     out.finalize(summary);

@@ -26,8 +26,9 @@ DirichletSet::DirichletSet(Index num_nodes, std::vector<DirichletCondition> cond
           const auto& p = conditions_[prev];
           const bool both_zero = p.value[comp] == 0.0 && c.value[comp] == 0.0;
           if (!both_zero)
-            throw Error("boundary conditions '" + p.name + "' and '" + c.name + "' both prescribe component " +
-                        std::to_string(comp) + " of node " + std::to_string(n) + " with different values");
+            throw Error("boundary conditions '" + p.name + "' and '" + c.name +
+                        "' both prescribe component " + std::to_string(comp) + " of node " +
+                        std::to_string(n) + " with different values");
           continue;
         }
         owner_[d] = static_cast<int>(k);

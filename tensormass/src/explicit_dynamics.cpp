@@ -68,7 +68,8 @@ CentralDifference::CentralDifference(const MechanicalSystem& system, double dt, 
   if (check_stability && dt > stability_.dt_critical) {
     std::ostringstream msg;
     msg << "explicit time step dt = " << dt << " s exceeds the critical time step " << stability_.dt_critical
-        << " s (omega_max = " << stability_.omega_max << " rad/s; guaranteed-stable dt = " << stability_.dt_guaranteed
+        << " s (omega_max = " << stability_.omega_max
+        << " rad/s; guaranteed-stable dt = " << stability_.dt_guaranteed
         << " s): reduce solver.dt, or use the implicit solver";
     throw Error(msg.str());
   }
@@ -107,9 +108,11 @@ void CentralDifference::step(double t, double dt) {
   }
   system_.loads().assemble(u_, t_, fext_);
   fdamp_.setZero(u_.size());
-  if (system_.damping().beta != 0.0) fdamp_ = system_.damping().beta * (system_.reference_tangent() * v_half_);
-  VecX v_new = ((1.0 - 0.5 * a * dt_) * v_half_ + dt_ * (fext_ - fint_ - fdamp_).cwiseQuotient(system_.mass())) /
-               (1.0 + 0.5 * a * dt_);
+  if (system_.damping().beta != 0.0)
+    fdamp_ = system_.damping().beta * (system_.reference_tangent() * v_half_);
+  VecX v_new =
+      ((1.0 - 0.5 * a * dt_) * v_half_ + dt_ * (fext_ - fint_ - fdamp_).cwiseQuotient(system_.mass())) /
+      (1.0 + 0.5 * a * dt_);
   // Prescribed DOFs follow g(t): their half-step velocity is the finite difference of g.
   VecX g = u_;
   system_.bc().apply(t_ + dt_, g);
@@ -122,7 +125,8 @@ void CentralDifference::step(double t, double dt) {
   if (!u_.allFinite() || !v_half_.allFinite() || u_.lpNorm<Eigen::Infinity>() > displacement_limit_) {
     std::ostringstream msg;
     msg << "explicit dynamics became unstable at step " << n_ << " (t = " << t_
-        << " s): displacement non-finite or beyond " << displacement_limit_ << " m; reduce solver.dt (critical estimate " << stability_.dt_critical
+        << " s): displacement non-finite or beyond " << displacement_limit_
+        << " m; reduce solver.dt (critical estimate " << stability_.dt_critical
         << " s) — the material stiffens under large strain";
     throw Error(msg.str());
   }

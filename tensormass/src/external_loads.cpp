@@ -16,7 +16,8 @@ Eigen::Matrix3d cross_matrix(const Vec3& a) {
 }
 }  // namespace
 
-ExternalLoads::ExternalLoads(const Mesh& mesh, VecX lumped_node_mass) : mesh_(&mesh), node_mass_(std::move(lumped_node_mass)) {
+ExternalLoads::ExternalLoads(const Mesh& mesh, VecX lumped_node_mass)
+    : mesh_(&mesh), node_mass_(std::move(lumped_node_mass)) {
   assert(node_mass_.size() == mesh.num_points());
 }
 
@@ -25,11 +26,13 @@ void ExternalLoads::add(NodalForce f) {
   nodal_.push_back(std::move(f));
 }
 void ExternalLoads::add(SurfacePressure p) {
-  if (p.faces.empty()) throw Error("pressure '" + p.name + "' selects no boundary faces (check its face selector)");
+  if (p.faces.empty())
+    throw Error("pressure '" + p.name + "' selects no boundary faces (check its face selector)");
   pressure_.push_back(std::move(p));
 }
 void ExternalLoads::add(SurfaceTraction t) {
-  if (t.faces.empty()) throw Error("traction '" + t.name + "' selects no boundary faces (check its face selector)");
+  if (t.faces.empty())
+    throw Error("traction '" + t.name + "' selects no boundary faces (check its face selector)");
   traction_.push_back(std::move(t));
 }
 void ExternalLoads::add(Gravity g) { gravity_.push_back(std::move(g)); }
@@ -77,7 +80,8 @@ void ExternalLoads::assemble(const VecX& u, double t, VecX& f) const {
   }
 }
 
-void ExternalLoads::add_load_stiffness(const VecX& u, double t, std::vector<Eigen::Triplet<double>>& triplets) const {
+void ExternalLoads::add_load_stiffness(const VecX& u, double t,
+                                       std::vector<Eigen::Triplet<double>>& triplets) const {
   for (const auto& p : pressure_) {
     if (!p.follower) continue;
     const double pt = p.pressure * p.function(t);
@@ -91,8 +95,7 @@ void ExternalLoads::add_load_stiffness(const VecX& u, double t, std::vector<Eige
         const Eigen::Matrix3d kb = (pt / 6.0) * cross_matrix(x[(b + 2) % 3] - x[(b + 1) % 3]);
         for (int a = 0; a < 3; ++a)
           for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c)
-              triplets.emplace_back(3 * tri[a] + r, 3 * tri[b] + c, kb(r, c));
+            for (int c = 0; c < 3; ++c) triplets.emplace_back(3 * tri[a] + r, 3 * tri[b] + c, kb(r, c));
       }
     }
   }

@@ -31,12 +31,13 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
       if (std::abs(dx) < 1e-16) break;
     }
     nodes[static_cast<std::size_t>(i)] = x;
-    weights[static_cast<std::size_t>(i)] = 2.0 / ((1.0 - x * x) * dp * dp);  // w_i = 2 / ((1 - x^2) P_n'(x)^2)
+    weights[static_cast<std::size_t>(i)] =
+        2.0 / ((1.0 - x * x) * dp * dp);  // w_i = 2 / ((1 - x^2) P_n'(x)^2)
   }
 }
 
-VecX convolve_rate(const std::function<void(double, VecX&)>& rate, Index width, double tau, double t0, double t,
-                   int panels, int points) {
+VecX convolve_rate(const std::function<void(double, VecX&)>& rate, Index width, double tau, double t0,
+                   double t, int panels, int points) {
   std::vector<double> xg, wg;
   gauss_legendre(points, xg, wg);
   VecX h = VecX::Zero(width), r(width);
@@ -57,8 +58,10 @@ StoredHistory::StoredHistory(Index width) : width_(width) {}
 
 void StoredHistory::add(double t, const VecX& x, const VecX& dxdt) {
   if (!t_.empty() && !(t > t_.back()))
-    throw Error("StoredHistory::add: time " + std::to_string(t) + " does not follow " + std::to_string(t_.back()));
-  if (x.size() != width_ || dxdt.size() != width_) throw Error("StoredHistory::add: sample width differs from " + std::to_string(width_));
+    throw Error("StoredHistory::add: time " + std::to_string(t) + " does not follow " +
+                std::to_string(t_.back()));
+  if (x.size() != width_ || dxdt.size() != width_)
+    throw Error("StoredHistory::add: sample width differs from " + std::to_string(width_));
   t_.push_back(t);
   x_.push_back(x);
   dx_.push_back(dxdt);
@@ -90,9 +93,11 @@ VecX StoredHistory::convolve(std::size_t k, double tau, int points) const {
     //   X_H'(s) = [dh00 x_i + dh01 x_{i+1}]/dt + dh10 X'_i + dh11 X'_{i+1}
     for (std::size_t q = 0; q < xg.size(); ++q) {
       const double s = 0.5 * (1.0 + xg[q]);
-      const double d00 = 6 * s * s - 6 * s, d10 = 3 * s * s - 4 * s + 1, d01 = -6 * s * s + 6 * s, d11 = 3 * s * s - 2 * s;
+      const double d00 = 6 * s * s - 6 * s, d10 = 3 * s * s - 4 * s + 1, d01 = -6 * s * s + 6 * s,
+                   d11 = 3 * s * s - 2 * s;
       const double weight = 0.5 * dt * wg[q] * std::exp(-(t - (t_[i] + s * dt)) / tau);
-      h += (weight * d00 / dt) * x_[i] + (weight * d01 / dt) * x_[i + 1] + (weight * d10) * dx_[i] + (weight * d11) * dx_[i + 1];
+      h += (weight * d00 / dt) * x_[i] + (weight * d01 / dt) * x_[i + 1] + (weight * d10) * dx_[i] +
+           (weight * d11) * dx_[i + 1];
     }
   }
   return h;

@@ -14,7 +14,9 @@ ImplicitScheme implicit_scheme_from_string(const std::string& name) {
   throw Error("unknown implicit scheme '" + name + "' (expected backward_euler or newmark)");
 }
 
-std::string to_string(ImplicitScheme s) { return s == ImplicitScheme::BackwardEuler ? "backward_euler" : "newmark"; }
+std::string to_string(ImplicitScheme s) {
+  return s == ImplicitScheme::BackwardEuler ? "backward_euler" : "newmark";
+}
 
 namespace {
 struct Coefficients {
@@ -28,13 +30,14 @@ Coefficients coefficients(ImplicitScheme s, double dt) {
     return {1.0 / (dt * dt), 1.0 / dt, 0.0, 1.0 / dt, 0.0, 0.0};
   }
   const double beta = 0.25, gamma = 0.5;
-  return {1.0 / (beta * dt * dt), 1.0 / (beta * dt), 1.0 / (2.0 * beta) - 1.0,
-          gamma / (beta * dt),   1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))};
+  return {1.0 / (beta * dt * dt), 1.0 / (beta * dt),  1.0 / (2.0 * beta) - 1.0,
+          gamma / (beta * dt),    1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))};
 }
 
 class StepResidual final : public NonlinearSystem {
  public:
-  StepResidual(const MechanicalSystem& s, double t1, const Coefficients& c, const VecX& un, const VecX& vn, const VecX& an)
+  StepResidual(const MechanicalSystem& s, double t1, const Coefficients& c, const VecX& un, const VecX& vn,
+               const VecX& an)
       : s_(s), t1_(t1), c_(c), un_(un), vn_(vn), an_(an) {
     VecX f, fi;
     s_.loads().assemble(un_, t1_, f);
@@ -74,7 +77,8 @@ class StepResidual final : public NonlinearSystem {
 };
 }  // namespace
 
-ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme, NewtonOptions options)
+ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme,
+                                   NewtonOptions options)
     : system_(system), scheme_(scheme), options_(options) {}
 
 void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
@@ -105,9 +109,9 @@ NewtonResult ImplicitDynamics::step(double t, double dt) {
   NewtonResult nr = newton_solve(res, system_.bc(), t + dt, u, options_, linear_);
   if (!nr.converged) {
     std::ostringstream msg;
-    msg << to_string(scheme_) << " step from t = " << t << " s with dt = " << dt << " s: Newton did not converge in "
-        << nr.iterations << " iterations (residual " << nr.residual_final << " from " << nr.residual_initial
-        << "); reduce solver.dt";
+    msg << to_string(scheme_) << " step from t = " << t << " s with dt = " << dt
+        << " s: Newton did not converge in " << nr.iterations << " iterations (residual " << nr.residual_final
+        << " from " << nr.residual_initial << "); reduce solver.dt";
     throw Error(msg.str());
   }
   system_.model().commit_step(u);

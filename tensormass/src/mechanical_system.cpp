@@ -8,9 +8,14 @@ namespace tmlab::tm {
 
 MechanicalSystem::MechanicalSystem(ElasticModel& model, VecX dof_mass, DirichletSet bc, ExternalLoads loads,
                                    RayleighDamping damping)
-    : model_(model), mass_(std::move(dof_mass)), bc_(std::move(bc)), loads_(std::move(loads)), damping_(damping) {
+    : model_(model),
+      mass_(std::move(dof_mass)),
+      bc_(std::move(bc)),
+      loads_(std::move(loads)),
+      damping_(damping) {
   if (mass_.size() != model_.num_dofs()) throw Error("mass vector size does not match the model's DOF count");
-  if (!(damping_.alpha >= 0.0) || !(damping_.beta >= 0.0) || !std::isfinite(damping_.alpha) || !std::isfinite(damping_.beta))
+  if (!(damping_.alpha >= 0.0) || !(damping_.beta >= 0.0) || !std::isfinite(damping_.alpha) ||
+      !std::isfinite(damping_.beta))
     throw Error("Rayleigh damping coefficients must be finite and >= 0");
 }
 

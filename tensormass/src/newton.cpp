@@ -26,17 +26,22 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
   if (symmetric) {
     if (reanalyse) ldlt_.analyzePattern(A_);
     ldlt_.factorize(A_);
-    if (ldlt_.info() != Eigen::Success) throw Error("sparse LDL^T factorisation failed (singular tangent: is the body constrained against rigid motion?)");
+    if (ldlt_.info() != Eigen::Success)
+      throw Error(
+          "sparse LDL^T factorisation failed (singular tangent: is the body constrained against rigid "
+          "motion?)");
     du = ldlt_.solve(b);
   } else {
     if (reanalyse) lu_.analyzePattern(A_);
     lu_.factorize(A_);
-    if (lu_.info() != Eigen::Success) throw Error("sparse LU factorisation failed (singular tangent: " + lu_.lastErrorMessage() + ")");
+    if (lu_.info() != Eigen::Success)
+      throw Error("sparse LU factorisation failed (singular tangent: " + lu_.lastErrorMessage() + ")");
     du = lu_.solve(b);
   }
   analysed_nnz_ = A_.nonZeros();
   analysed_symmetric_ = symmetric;
-  if (!du.allFinite()) throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
+  if (!du.allFinite())
+    throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
 }
 
 namespace {
@@ -61,7 +66,8 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
   SpMat J;
   system.residual(u, r);
   double rnorm = free_norm(r, bc);
-  if (!std::isfinite(rnorm)) throw Error("non-finite residual at the start of the Newton iteration (t = " + std::to_string(t) + ")");
+  if (!std::isfinite(rnorm))
+    throw Error("non-finite residual at the start of the Newton iteration (t = " + std::to_string(t) + ")");
   result.residual_initial = rnorm;
   result.history.push_back(rnorm);
   bool constraints_pending = du_c.lpNorm<Eigen::Infinity>() > 0.0;
@@ -94,8 +100,8 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
       const bool ok = std::isfinite(rt) && rt <= (1.0 - 1e-4 * alpha) * rref;
       if (ok || !options.line_search || backtracks >= options.max_backtracks || !std::isfinite(rref)) {
         if (!std::isfinite(rt))
-          throw Error("non-finite residual in Newton iteration " + std::to_string(k + 1) + " at t = " + std::to_string(t) +
-                      " (step too large or element inversion)");
+          throw Error("non-finite residual in Newton iteration " + std::to_string(k + 1) +
+                      " at t = " + std::to_string(t) + " (step too large or element inversion)");
         break;
       }
       alpha *= 0.5;
@@ -110,7 +116,8 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
     result.iterations = k + 1;
     result.history.push_back(rnorm);
   }
-  if (!result.converged && rnorm <= options.rtol * scale + options.atol && !constraints_pending) result.converged = true;
+  if (!result.converged && rnorm <= options.rtol * scale + options.atol && !constraints_pending)
+    result.converged = true;
   result.residual_final = rnorm;
   return result;
 }

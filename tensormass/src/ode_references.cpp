@@ -14,7 +14,9 @@ namespace tmlab::tm {
 namespace {
 
 /// 2 mu (E - tr(E)/3 I)
-Mat3 deviator_stress(double mu, const Mat3& E) { return 2.0 * mu * (E - (E.trace() / 3.0) * Mat3::Identity()); }
+Mat3 deviator_stress(double mu, const Mat3& E) {
+  return 2.0 * mu * (E - (E.trace() / 3.0) * Mat3::Identity());
+}
 
 }  // namespace
 
@@ -69,15 +71,18 @@ Eigen::Vector3d SlsOscillator::exact(double t) const {
 
 SlsCreep::SlsCreep(double stiffness, double alpha, double tau, double force_amplitude, double omega)
     : k_(stiffness), alpha_(alpha), tau_(tau), f0_(force_amplitude), omega_(omega) {
-  if (!(stiffness > 0) || !(alpha >= 0) || !(tau > 0)) throw Error("SlsCreep: need stiffness > 0, alpha >= 0, tau > 0");
+  if (!(stiffness > 0) || !(alpha >= 0) || !(tau > 0))
+    throw Error("SlsCreep: need stiffness > 0, alpha >= 0, tau > 0");
 }
 
 double SlsCreep::phi(double t) const { return f0_ / k_ * std::sin(omega_ * t); }
 
 double SlsCreep::exact_H(double t) const {
-  // H = phi0 omega / (1+alpha) [cos(w t)/tc + w sin(w t) - exp(-t/tc)/tc] / (1/tc^2 + w^2),  tc = tau (1+alpha)
+  // H = phi0 omega / (1+alpha) [cos(w t)/tc + w sin(w t) - exp(-t/tc)/tc] / (1/tc^2 + w^2),  tc = tau
+  // (1+alpha)
   const double tc = tau_ * (1.0 + alpha_), w = omega_, phi0 = f0_ / k_;
-  const double conv = (std::cos(w * t) / tc + w * std::sin(w * t) - std::exp(-t / tc) / tc) / (1.0 / (tc * tc) + w * w);
+  const double conv =
+      (std::cos(w * t) / tc + w * std::sin(w * t) - std::exp(-t / tc) / tc) / (1.0 / (tc * tc) + w * w);
   return phi0 * w / (1.0 + alpha_) * conv;
 }
 
@@ -115,12 +120,19 @@ std::vector<double> SlsCreep::recursion(ViscoelasticOptions::Integration scheme,
 TensorMassViscoelasticOde::TensorMassViscoelasticOde(const Mesh& mesh, const StVenantKirchhoff& long_term,
                                                      PronySeries prony, ViscoelasticOptions options,
                                                      const MechanicalSystem& system)
-    : tl_(mesh, long_term), tm_(mesh, long_term), mat_(long_term), prony_(std::move(prony)), options_(options),
+    : tl_(mesh, long_term),
+      tm_(mesh, long_term),
+      mat_(long_term),
+      prony_(std::move(prony)),
+      options_(options),
       system_(system) {
   if (!pk2() && deviatoric())
-    throw Error("TensorMassViscoelasticOde: deviatoric relaxation needs the pk2 history (a nodal force has no deviator)");
+    throw Error(
+        "TensorMassViscoelasticOde: deviatoric relaxation needs the pk2 history (a nodal force has no "
+        "deviator)");
   ndof_ = 3 * tl_.num_nodes();
-  if (system.num_dofs() != ndof_) throw Error("TensorMassViscoelasticOde: the mechanical system has a different DOF count");
+  if (system.num_dofs() != ndof_)
+    throw Error("TensorMassViscoelasticOde: the mechanical system has a different DOF count");
   ntets_ = tl_.num_tets();
   width_ = pk2() ? 6 : 12;
   nz_ = ntets_ * static_cast<Index>(prony_.size()) * width_;
@@ -147,11 +159,13 @@ void TensorMassViscoelasticOde::force(const VecX& u, const double* z, VecX& f) c
     const double* zt = z + static_cast<std::size_t>(t) * J * w;
     const Tet& tet = tl_.tets()[static_cast<std::size_t>(t)];
     if (pk2()) {
-      // S_tot = (1 + A) S_e - sum alpha_j z_j   (deviatoric: S_e + A S_dev - sum alpha_j z_j);  f_p = V F S_tot a_p
+      // S_tot = (1 + A) S_e - sum alpha_j z_j   (deviatoric: S_e + A S_dev - sum alpha_j z_j);  f_p = V F
+      // S_tot a_p
       const Mat3 F = tl_.deformation_gradient(t, u);
       const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
       const Mat3 Se = mat_.pk2_stress(E);
-      Mat3 S = deviatoric() ? Mat3(Se + alpha_sum_ * deviator_stress(mat_.mu, E)) : Mat3((1.0 + alpha_sum_) * Se);
+      Mat3 S =
+          deviatoric() ? Mat3(Se + alpha_sum_ * deviator_stress(mat_.mu, E)) : Mat3((1.0 + alpha_sum_) * Se);
       for (std::size_t j = 0; j < J; ++j) S -= prony_.alpha(j) * from_voigt(zt + j * w);
       const Mat34 fp = tl_.tet_force_from_stress(t, F, S);
       for (int p = 0; p < 4; ++p) f.segment<3>(3 * tet[p]) += fp.col(p);
@@ -177,8 +191,10 @@ void TensorMassViscoelasticOde::rhs(double t, const VecX& y, VecX& ydot) {
   system_.loads().assemble(u_, t, fext_);
   const VecX v = y.segment(ndof_, ndof_);
   const RayleighDamping& d = system_.damping();
-  if (d.alpha != 0.0 || d.beta != 0.0) system_.damping_force(v, cv_);
-  else cv_.setZero(ndof_);
+  if (d.alpha != 0.0 || d.beta != 0.0)
+    system_.damping_force(v, cv_);
+  else
+    cv_.setZero(ndof_);
   // u' = v,  v' = M^{-1} (f_ext - f_int - C v)
   ydot.head(ndof_) = v;
   ydot.segment(ndof_, ndof_) = (fext_ - f_ - cv_).cwiseQuotient(system_.mass());
@@ -203,29 +219,24 @@ void TensorMassViscoelasticOde::rhs(double t, const VecX& y, VecX& ydot) {
   }
 }
 
-void TensorMassViscoelasticOde::jacobian_times(double t, const VecX& y, const VecX& w_in, VecX& Jw) {
-  Jw.resize(size());
-  u_ = y.head(ndof_);
-  system_.bc().apply(t, u_);
-  du_ = w_in.head(ndof_);
-  system_.bc().zero_constrained(du_);  // the prescribed u does not depend on the state
-  const VecX dv = w_in.segment(ndof_, ndof_);
-  const double* z = y.data() + 2 * ndof_;
-  const double* dz = w_in.data() + 2 * ndof_;
+void TensorMassViscoelasticOde::linearise(const VecX& u, const double* z, const VecX& du, const double* dz,
+                                          VecX& df, VecX& dxv) const {
   const std::size_t J = prony_.size();
   const int w = width_;
-  f_.setZero(ndof_);  // df_int
+  df.setZero(ndof_);
+  dxv.resize(ntets_ * w);
   for (Index e = 0; e < ntets_; ++e) {
     const std::size_t base = static_cast<std::size_t>(e) * J * w;
     const Tet& tet = tl_.tets()[static_cast<std::size_t>(e)];
-    double dx[12];
+    double* dx = dxv.data() + e * w;
     if (pk2()) {
       // dF = sum_p du_p a_p^T, dE = sym(F^T dF), dS_e = C : dE,
-      // dS_tot = (1 + A) dS_e - sum alpha dz_j (dev: dS_e + A dS_dev - ...), df_p = V (dF S_tot + F dS_tot) a_p
+      // dS_tot = (1 + A) dS_e - sum alpha dz_j (dev: dS_e + A dS_dev - ...), df_p = V (dF S_tot + F dS_tot)
+      // a_p
       const TetRest& r = tl_.rest(e);
-      const Mat3 F = tl_.deformation_gradient(e, u_);
+      const Mat3 F = tl_.deformation_gradient(e, u);
       Mat3 dF = Mat3::Zero();
-      for (int p = 0; p < 4; ++p) dF += du_.segment<3>(3 * tet[p]) * r.grad[p].transpose();
+      for (int p = 0; p < 4; ++p) dF += du.segment<3>(3 * tet[p]) * r.grad[p].transpose();
       const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
       const Mat3 FtdF = F.transpose() * dF;
       const Mat3 dE = 0.5 * (FtdF + FtdF.transpose());
@@ -245,32 +256,49 @@ void TensorMassViscoelasticOde::jacobian_times(double t, const VecX& y, const Ve
         S -= prony_.alpha(j) * from_voigt(z + base + j * w);
         dS -= prony_.alpha(j) * from_voigt(dz + base + j * w);
       }
-      const Mat34 df = tl_.tet_force_from_stress(e, dF, S) + tl_.tet_force_from_stress(e, F, dS);
-      for (int p = 0; p < 4; ++p) f_.segment<3>(3 * tet[p]) += df.col(p);
+      const Mat34 dfe = tl_.tet_force_from_stress(e, dF, S) + tl_.tet_force_from_stress(e, F, dS);
+      for (int p = 0; p < 4; ++p) df.segment<3>(3 * tet[p]) += dfe.col(p);
     } else {
       // dX_e = K_e(u) du (12x12 tet stiffness), df = (1 + A) dX_e - sum alpha dz_j
-      const TensorMassStVK::Mat12 K = tm_.tet_stiffness(e, u_);
+      const TensorMassStVK::Mat12 K = tm_.tet_stiffness(e, u);
       Eigen::Matrix<double, 12, 1> dul;
-      for (int p = 0; p < 4; ++p) dul.segment<3>(3 * p) = du_.segment<3>(3 * tet[p]);
+      for (int p = 0; p < 4; ++p) dul.segment<3>(3 * p) = du.segment<3>(3 * tet[p]);
       const Eigen::Matrix<double, 12, 1> dfe = K * dul;
       for (int k = 0; k < 12; ++k) dx[k] = dfe[k];
       for (int p = 0; p < 4; ++p)
         for (int c = 0; c < 3; ++c) {
           double v = (1.0 + alpha_sum_) * dfe[3 * p + c];
           for (std::size_t j = 0; j < J; ++j) v -= prony_.alpha(j) * dz[base + j * w + 3 * p + c];
-          f_[3 * tet[p] + c] += v;
+          df[3 * tet[p] + c] += v;
         }
     }
-    // d z_j' = (dX_e - dz_j) / tau_j
+  }
+}
+
+void TensorMassViscoelasticOde::jacobian_times(double t, const VecX& y, const VecX& w_in, VecX& Jw) {
+  Jw.resize(size());
+  u_ = y.head(ndof_);
+  system_.bc().apply(t, u_);
+  du_ = w_in.head(ndof_);
+  system_.bc().zero_constrained(du_);  // the prescribed u does not depend on the state
+  const VecX dv = w_in.segment(ndof_, ndof_);
+  const double* dz = w_in.data() + 2 * ndof_;
+  VecX dx;
+  linearise(u_, y.data() + 2 * ndof_, du_, dz, f_, dx);  // f_ = df_int
+  // d z_j' = (dX_e - dz_j) / tau_j
+  const std::size_t J = prony_.size();
+  const int w = width_;
+  for (Index e = 0; e < ntets_; ++e)
     for (std::size_t j = 0; j < J; ++j)
       for (int k = 0; k < w; ++k) {
-        const std::size_t i = base + j * w + k;
-        Jw[static_cast<Index>(2 * ndof_ + static_cast<Index>(i))] = (dx[k] - dz[i]) / prony_.tau(j);
+        const Index i = static_cast<Index>((static_cast<std::size_t>(e) * J + j) * w) + k;
+        Jw[2 * ndof_ + i] = (dx[e * w + k] - dz[i]) / prony_.tau(j);
       }
-  }
   const RayleighDamping& d = system_.damping();
-  if (d.alpha != 0.0 || d.beta != 0.0) system_.damping_force(dv, cv_);
-  else cv_.setZero(ndof_);
+  if (d.alpha != 0.0 || d.beta != 0.0)
+    system_.damping_force(dv, cv_);
+  else
+    cv_.setZero(ndof_);
   Jw.head(ndof_) = dv;
   Jw.segment(ndof_, ndof_) = -(f_ + cv_).cwiseQuotient(system_.mass());
   for (Index k : system_.bc().dofs()) {
@@ -319,7 +347,8 @@ VecX TensorMassViscoelasticOde::initial_state(double t0, const VecX& u0, const V
   for (Index e = 0; e < ntets_; ++e) {
     tet_driver(e, u, x);
     for (std::size_t j = 0; j < J; ++j)
-      for (int k = 0; k < width_; ++k) y[2 * ndof_ + static_cast<Index>((static_cast<std::size_t>(e) * J + j) * width_ + k)] = x[k];
+      for (int k = 0; k < width_; ++k)
+        y[2 * ndof_ + static_cast<Index>((static_cast<std::size_t>(e) * J + j) * width_ + k)] = x[k];
   }
   return y;
 }
@@ -393,6 +422,30 @@ TensorMassQuasiStaticDae::TensorMassQuasiStaticDae(const Mesh& mesh, const StVen
                                                    PronySeries prony, ViscoelasticOptions options,
                                                    const MechanicalSystem& system)
     : ode_(mesh, long_term, std::move(prony), options, system), system_(system) {}
+
+void TensorMassQuasiStaticDae::jacobian_times(double /*t*/, const VecX& y, const VecX& /*yp*/, const VecX& v,
+                                              double cj, VecX& Jv) {
+  // rows: free u: d f_int = K_u du - sum alpha_j G dz_j (dead loads); constrained u: du_c;
+  //       z_j: cj dz_j - (D du - dz_j)/tau_j
+  const Index n = ode_.num_dofs();
+  Jv.resize(size());
+  u_ = y.head(n);
+  g_ = v.head(n);
+  VecX dx;
+  ode_.linearise(u_, y.data() + n, g_, v.data() + n, f_, dx);
+  Jv.head(n) = f_;
+  for (Index k : system_.bc().dofs()) Jv[k] = v[k];
+  const PronySeries& p = ode_.prony();
+  const std::size_t J = p.size();
+  const int w = ode_.width();
+  const Index T = dx.size() / w;
+  for (Index e = 0; e < T; ++e)
+    for (std::size_t j = 0; j < J; ++j)
+      for (int k = 0; k < w; ++k) {
+        const Index i = n + static_cast<Index>((static_cast<std::size_t>(e) * J + j) * w) + k;
+        Jv[i] = cj * v[i] - (dx[e * w + k] - v[i]) / p.tau(j);
+      }
+}
 
 void TensorMassQuasiStaticDae::residual(double t, const VecX& y, const VecX& yp, VecX& r) {
   const Index n = ode_.num_dofs();

@@ -72,10 +72,14 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
                                          ? nlohmann::json{{"sphere", {{"center", node}, {"radius", 1e-6}}}}
                                          : nlohmann::json{{"sphere", {{"center", node}, {"radius", radius}}}};
           // The force is switched on within the first step and then held (creep test).
-          run.case_doc["loads"] = nlohmann::json::array(
-              {{{"type", "nodal_force"}, {"name", "push"}, {"nodes", sel}, {"force", {0.0, 0.0, -F}},
-                {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", dt}}}}});
-          run.case_doc["solver"] = {{"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
+          run.case_doc["loads"] =
+              nlohmann::json::array({{{"type", "nodal_force"},
+                                      {"name", "push"},
+                                      {"nodes", sel},
+                                      {"force", {0.0, 0.0, -F}},
+                                      {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", dt}}}}});
+          run.case_doc["solver"] = {
+              {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
           run.case_doc["output"]["probes"] = nlohmann::json::array({{{"name", "node"}, {"point", node}}});
           run.x = "time";
           run.y = "probe_node_z";
@@ -87,7 +91,8 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     fig.xlabel = "time [s]";
     fig.ylabel = "indentation force [N]";
     const auto nodes = f.require<std::vector<std::vector<double>>>("nodes");
-    const double depth = f.positive("depth"), ramp = f.positive("ramp"), hold = f.positive("hold"), dt = f.positive("dt");
+    const double depth = f.positive("depth"), ramp = f.positive("ramp"), hold = f.positive("hold"),
+                 dt = f.positive("dt");
     f.finish();
     for (const auto& s : schemes)
       for (std::size_t k = 0; k < nodes.size(); ++k) {
@@ -97,11 +102,14 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
         run.id = s + "_node" + std::to_string(k + 1);
         run.label = s + ", node " + std::to_string(k + 1);
         run.case_doc = base_case(params, s, run.id);
-        run.case_doc["boundary"].push_back(
-            {{"name", "push"}, {"nodes", {{"sphere", {{"center", nodes[k]}, {"radius", 1e-6}}}}}, {"components", "z"},
-             {"value", {0.0, 0.0, -depth}}, {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", ramp}}}});
+        run.case_doc["boundary"].push_back({{"name", "push"},
+                                            {"nodes", {{"sphere", {{"center", nodes[k]}, {"radius", 1e-6}}}}},
+                                            {"components", "z"},
+                                            {"value", {0.0, 0.0, -depth}},
+                                            {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", ramp}}}});
         const double t_end = ramp + hold;
-        run.case_doc["solver"] = {{"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
+        run.case_doc["solver"] = {
+            {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
         run.x = "time";
         run.y = "reaction_push_z";
         run.y_sign = -1.0;
@@ -126,7 +134,9 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
         run.label = s + ", cycle " + num(P) + " s";
         run.case_doc = base_case(params, s, run.id);
         run.case_doc["boundary"].push_back(
-            {{"name", "push"}, {"nodes", {{"sphere", {{"center", node}, {"radius", 1e-6}}}}}, {"components", "z"},
+            {{"name", "push"},
+             {"nodes", {{"sphere", {{"center", node}, {"radius", 1e-6}}}}},
+             {"components", "z"},
              {"value", {0.0, 0.0, -depth}},
              {"function", {{"type", "table"}, {"points", {{0.0, 0.0}, {P / 2, 1.0}, {P, 0.0}}}}}});
         run.case_doc["solver"] = {{"type", "static"}, {"t_end", P}, {"steps", steps}};

@@ -16,8 +16,12 @@ using Key3 = std::array<Index, 3>;
 
 // Term slots, in entity-local vertex positions (vertices of the entity sorted by global index).
 // C term (a; b, d): (U_a . C)(U_b . U_d).  D term (a, b)(c, e): D (U_a . U_b)(U_c . U_e).
-struct CSlot { int a, b, d; };
-struct DSlot { int a, b, c, e; };
+struct CSlot {
+  int a, b, d;
+};
+struct DSlot {
+  int a, b, c, e;
+};
 
 constexpr CSlot kEdgeC[4] = {{0, 0, 1}, {1, 0, 0}, {0, 1, 1}, {1, 0, 1}};
 constexpr DSlot kEdgeD[4] = {{0, 0, 0, 1}, {0, 0, 1, 1}, {0, 1, 0, 1}, {0, 1, 1, 1}};
@@ -137,8 +141,7 @@ double evaluate(const std::vector<PicinbonoAbsoluteStVK::VertexTensors>& vertice
     w += dot3(U[0], BUq);
     if (f) {
       axpy3(1.0, BUq, g[0]);
-      for (int c = 0; c < 3; ++c)
-        g[1][c] += T.B[c] * U[0][0] + T.B[3 + c] * U[0][1] + T.B[6 + c] * U[0][2];
+      for (int c = 0; c < 3; ++c) g[1][c] += T.B[c] * U[0][0] + T.B[3 + c] * U[0][1] + T.B[6 + c] * U[0][2];
     }
     w += eval_c(kEdgeC, T.C, U, f ? g : nullptr) + eval_d(kEdgeD, T.D, U, f ? g : nullptr);
   }
@@ -240,8 +243,12 @@ PicinbonoAbsoluteStVK::PicinbonoAbsoluteStVK(const Mesh& mesh, const StVenantKir
                       0.5 * mu * (a[k] * a[j].transpose() + d[j][k] * Mat3::Identity()));
         if (j == k) {
           VertexTensors& VT = vertices_[static_cast<std::size_t>(tet[j])];
-          VT.B[0] += B(0, 0); VT.B[1] += B(0, 1); VT.B[2] += B(0, 2);
-          VT.B[3] += B(1, 1); VT.B[4] += B(1, 2); VT.B[5] += B(2, 2);
+          VT.B[0] += B(0, 0);
+          VT.B[1] += B(0, 1);
+          VT.B[2] += B(0, 2);
+          VT.B[3] += B(1, 1);
+          VT.B[4] += B(1, 2);
+          VT.B[5] += B(2, 2);
         } else {
           EdgeTensors& ET = edges_[ent[(1 << j) | (1 << k)]];
           if (tet[j] != ET.v[0]) B.transposeInPlace();  // U_q^T B U_p = U_p^T B^T U_q
@@ -282,17 +289,17 @@ PicinbonoAbsoluteStVK::PicinbonoAbsoluteStVK(const Mesh& mesh, const StVenantKir
               vertices_[static_cast<std::size_t>(tet[j])].D += D;
             } else if (nbits == 2) {
               EdgeTensors& ET = edges_[ent[mask]];
-              const DSlot s{position(ET.v, 2, tet[j]), position(ET.v, 2, tet[k]),
-                            position(ET.v, 2, tet[l]), position(ET.v, 2, tet[m])};
+              const DSlot s{position(ET.v, 2, tet[j]), position(ET.v, 2, tet[k]), position(ET.v, 2, tet[l]),
+                            position(ET.v, 2, tet[m])};
               ET.D[find_slot(kEdgeD, s)] += D;
             } else if (nbits == 3) {
               TriangleTensors& TR = triangles_[ent[mask]];
-              const DSlot s{position(TR.v, 3, tet[j]), position(TR.v, 3, tet[k]),
-                            position(TR.v, 3, tet[l]), position(TR.v, 3, tet[m])};
+              const DSlot s{position(TR.v, 3, tet[j]), position(TR.v, 3, tet[k]), position(TR.v, 3, tet[l]),
+                            position(TR.v, 3, tet[m])};
               TR.D[find_slot(kTriD, s)] += D;
             } else {
-              const DSlot s{position(TT.v, 4, tet[j]), position(TT.v, 4, tet[k]),
-                            position(TT.v, 4, tet[l]), position(TT.v, 4, tet[m])};
+              const DSlot s{position(TT.v, 4, tet[j]), position(TT.v, 4, tet[k]), position(TT.v, 4, tet[l]),
+                            position(TT.v, 4, tet[m])};
               TT.D[find_slot(kTetD, s)] += D;
             }
           }

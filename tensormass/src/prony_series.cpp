@@ -58,7 +58,8 @@ PronySeries PronySeries::from_instantaneous(const std::vector<double>& g, std::v
   return from_long_term(std::move(alpha), std::move(tau));
 }
 
-PronySeries PronySeries::from_json(const nlohmann::json& j, const std::string& where, const std::string& path) {
+PronySeries PronySeries::from_json(const nlohmann::json& j, const std::string& where,
+                                   const std::string& path) {
   ConfigReader r(j, where, path);
   const std::string convention = r.require<std::string>("convention");
   if (convention != "long_term" && convention != "instantaneous")

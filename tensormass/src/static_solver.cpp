@@ -77,8 +77,10 @@ StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
     if (depth >= max_cutbacks_) {
       std::ostringstream msg;
       msg << "static Newton did not converge at t = " << t_try << " after " << max_cutbacks_
-          << " cut-backs of the load increment (last residual " << nr.residual_final << " from " << nr.residual_initial
-          << "); the load may exceed what the model can carry (St Venant-Kirchhoff softens and inverts elements "
+          << " cut-backs of the load increment (last residual " << nr.residual_final << " from "
+          << nr.residual_initial
+          << "); the load may exceed what the model can carry (St Venant-Kirchhoff softens and inverts "
+             "elements "
              "under strong compression)";
       throw Error(msg.str());
     }

@@ -15,8 +15,7 @@ StVenantKirchhoff StVenantKirchhoff::from_young_poisson(double young, double poi
   }
   if (!(poisson > -1.0 && poisson < 0.5)) {
     std::ostringstream os;
-    os << "St Venant-Kirchhoff material: Poisson's ratio nu must satisfy -1 < nu < 0.5, got nu = "
-       << poisson;
+    os << "St Venant-Kirchhoff material: Poisson's ratio nu must satisfy -1 < nu < 0.5, got nu = " << poisson;
     throw Error(os.str());
   }
   StVenantKirchhoff m;

@@ -31,7 +31,8 @@ namespace {
 struct ContextHandle {
   SUNContext ctx = nullptr;
   ContextHandle() {
-    if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr) throw Error("SUNDIALS SUNContext_Create failed");
+    if (SUNContext_Create(nullptr, &ctx) != 0 || ctx == nullptr)
+      throw Error("SUNDIALS SUNContext_Create failed");
   }
   ~ContextHandle() {
     if (ctx) SUNContext_Free(&ctx);
@@ -67,7 +68,8 @@ void copy_out(N_Vector v, VecX& x) {
 
 using FlagNameFn = char* (*)(long int);
 
-/// Turns a negative SUNDIALS return flag into tmlab::Error("SUNDIALS <function> failed: <FLAG> (<value>): <msg>").
+/// Turns a negative SUNDIALS return flag into tmlab::Error("SUNDIALS <function> failed: <FLAG> (<value>):
+/// <msg>").
 void check(int flag, const char* function, FlagNameFn name_of, const std::string& last_message) {
   if (flag >= 0) return;
   std::ostringstream os;
@@ -105,7 +107,8 @@ struct CallbackState {
 void error_handler(int error_code, const char* module, const char* function, char* msg, void* data) {
   auto* st = static_cast<CallbackState*>(data);
   std::ostringstream os;
-  os << (module ? module : "") << "::" << (function ? function : "") << " [" << error_code << "] " << (msg ? msg : "");
+  os << (module ? module : "") << "::" << (function ? function : "") << " [" << error_code << "] "
+     << (msg ? msg : "");
   st->last_message = os.str();
 }
 
@@ -113,14 +116,28 @@ void error_handler(int error_code, const char* module, const char* function, cha
 
 std::string to_string(OdeMethod m) {
   switch (m) {
-    case OdeMethod::CvodeBdf: return "CVODE BDF";
-    case OdeMethod::ArkodeDirk: return "ARKStep DIRK";
-    case OdeMethod::ArkodeImex: return "ARKStep ImEx";
-    case OdeMethod::ArkodeMri: return "MRIStep";
+    case OdeMethod::CvodeBdf:
+      return "CVODE BDF";
+    case OdeMethod::ArkodeDirk:
+      return "ARKStep DIRK";
+    case OdeMethod::ArkodeImex:
+      return "ARKStep ImEx";
+    case OdeMethod::ArkodeMri:
+      return "MRIStep";
   }
   return "?";
 }
-std::string to_string(LinearSolverKind k) { return k == LinearSolverKind::Dense ? "dense" : "spgmr"; }
+std::string to_string(LinearSolverKind k) {
+  switch (k) {
+    case LinearSolverKind::Dense:
+      return "dense";
+    case LinearSolverKind::Spgmr:
+      return "spgmr";
+    case LinearSolverKind::SpgmrPreconditioned:
+      return "spgmr+prec";
+  }
+  return "?";
+}
 
 std::string sundials_version() {
   char buf[64] = {0};
@@ -150,9 +167,12 @@ struct OdeIntegrator::Impl {
 
   ~Impl() {
     if (mem) {
-      if (method == OdeMethod::CvodeBdf) CVodeFree(&mem);
-      else if (method == OdeMethod::ArkodeMri) MRIStepFree(&mem);
-      else ARKStepFree(&mem);
+      if (method == OdeMethod::CvodeBdf)
+        CVodeFree(&mem);
+      else if (method == OdeMethod::ArkodeMri)
+        MRIStepFree(&mem);
+      else
+        ARKStepFree(&mem);
     }
     if (stepper) MRIStepInnerStepper_Free(&stepper);
     if (inner) ARKStepFree(&inner);
@@ -230,7 +250,8 @@ struct OdeIntegrator::Impl {
     }
   }
   // J v (CVLsJacTimesVecFn / ARKLsJacTimesVecFn); J = df_I/dy for ImEx
-  static int jtimes_implicit(N_Vector v, N_Vector Jv, realtype t, N_Vector y, N_Vector /*fy*/, void* data, N_Vector /*tmp*/) {
+  static int jtimes_implicit(N_Vector v, N_Vector Jv, realtype t, N_Vector y, N_Vector /*fy*/, void* data,
+                             N_Vector /*tmp*/) {
     auto* self = static_cast<Impl*>(data);
     try {
       copy_out(y, self->ys);
@@ -243,8 +264,39 @@ struct OdeIntegrator::Impl {
       return -1;
     }
   }
+  // P ~ I - gamma J (CVLsPrecSetupFn / ARKLsPrecSetupFn share the signature)
+  static int psetup(realtype t, N_Vector y, N_Vector /*fy*/, booleantype jok, booleantype* jcur,
+                    realtype gamma, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      copy_out(y, self->ys);
+      bool updated = false;
+      const bool ok = self->system.preconditioner_setup(t, self->ys, gamma, jok != SUNFALSE, updated);
+      *jcur = updated ? SUNTRUE : SUNFALSE;
+      return ok ? 0 : 1;  // 1: recoverable (the integrator retries)
+    } catch (...) {
+      self->cb.pending = std::current_exception();
+      return -1;
+    }
+  }
+  // z = P^{-1} r (CVLsPrecSolveFn / ARKLsPrecSolveFn)
+  static int psolve(realtype t, N_Vector y, N_Vector /*fy*/, N_Vector r, N_Vector z, realtype gamma,
+                    realtype /*delta*/, int /*lr*/, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      copy_out(y, self->ys);
+      copy_out(r, self->vs);
+      const bool ok = self->system.preconditioner_solve(t, self->ys, self->vs, self->jv, gamma);
+      copy_in(self->jv, z);
+      return ok ? 0 : 1;
+    } catch (...) {
+      self->cb.pending = std::current_exception();
+      return -1;
+    }
+  }
   // J v (CVLsJacTimesVecFn / ARKLsJacTimesVecFn)
-  static int jtimes(N_Vector v, N_Vector Jv, realtype t, N_Vector y, N_Vector /*fy*/, void* data, N_Vector /*tmp*/) {
+  static int jtimes(N_Vector v, N_Vector Jv, realtype t, N_Vector y, N_Vector /*fy*/, void* data,
+                    N_Vector /*tmp*/) {
     auto* self = static_cast<Impl*>(data);
     try {
       copy_out(y, self->ys);
@@ -264,9 +316,12 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, OdeMethod method, const OdeOptio
     : impl_(std::make_unique<Impl>(system, method, options)) {
   Impl& I = *impl_;
   const Index n = system.size();
-  if (y0.size() != n) throw Error("OdeIntegrator: y0 has " + std::to_string(y0.size()) + " entries, the system " + std::to_string(n));
+  if (y0.size() != n)
+    throw Error("OdeIntegrator: y0 has " + std::to_string(y0.size()) + " entries, the system " +
+                std::to_string(n));
   if (options.atol_vector.size() != 0 && options.atol_vector.size() != n)
-    throw Error("OdeIntegrator: atol_vector has " + std::to_string(options.atol_vector.size()) + " entries, the system " + std::to_string(n));
+    throw Error("OdeIntegrator: atol_vector has " + std::to_string(options.atol_vector.size()) +
+                " entries, the system " + std::to_string(n));
   I.ys.resize(n);
   I.ydot.resize(n);
   I.vs.resize(n);
@@ -285,8 +340,10 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, OdeMethod method, const OdeOptio
     I.ck(ARKStepSetErrHandlerFn(I.inner, error_handler, &I.cb), "ARKStepSetErrHandlerFn");
     I.ck(ARKStepSetUserData(I.inner, &I), "ARKStepSetUserData");
     I.ck(ARKStepSetMaxNumSteps(I.inner, options.max_steps), "ARKStepSetMaxNumSteps");
-    if (options.fast_step > 0.0) I.ck(ARKStepSetFixedStep(I.inner, options.fast_step), "ARKStepSetFixedStep");
-    else I.ck(ARKStepSStolerances(I.inner, options.rtol, options.atol), "ARKStepSStolerances");
+    if (options.fast_step > 0.0)
+      I.ck(ARKStepSetFixedStep(I.inner, options.fast_step), "ARKStepSetFixedStep");
+    else
+      I.ck(ARKStepSStolerances(I.inner, options.rtol, options.atol), "ARKStepSStolerances");
     if (options.fast_step <= 0.0 && options.atol_vector.size() == n) {
       I.atol = new_vector(n, ctx, "atol");
       copy_in(options.atol_vector, I.atol.get());
@@ -309,7 +366,8 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, OdeMethod method, const OdeOptio
     I.ck(CVodeInit(I.mem, &Impl::rhs, t0, I.y.get()), "CVodeInit");
     I.ck(CVodeSetUserData(I.mem, &I), "CVodeSetUserData");
   } else if (method == OdeMethod::ArkodeImex) {
-    if (!system.has_split()) throw Error("OdeIntegrator: ARKStep ImEx needs a system with an explicit/implicit split");
+    if (!system.has_split())
+      throw Error("OdeIntegrator: ARKStep ImEx needs a system with an explicit/implicit split");
     I.mem = ARKStepCreate(&Impl::rhs_explicit, &Impl::rhs_implicit, t0, I.y.get(), ctx);  // y' = f_E + f_I
     check_ptr(I.mem, "ARKStepCreate");
     I.ck(ARKStepSetErrHandlerFn(I.mem, error_handler, &I.cb), "ARKStepSetErrHandlerFn");
@@ -325,10 +383,12 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, OdeMethod method, const OdeOptio
   if (options.atol_vector.size() == n) {
     I.atol = new_vector(n, ctx, "atol");
     copy_in(options.atol_vector, I.atol.get());
-    I.ck(cv ? CVodeSVtolerances(I.mem, options.rtol, I.atol.get()) : ARKStepSVtolerances(I.mem, options.rtol, I.atol.get()),
+    I.ck(cv ? CVodeSVtolerances(I.mem, options.rtol, I.atol.get())
+            : ARKStepSVtolerances(I.mem, options.rtol, I.atol.get()),
          cv ? "CVodeSVtolerances" : "ARKStepSVtolerances");
   } else {
-    I.ck(cv ? CVodeSStolerances(I.mem, options.rtol, options.atol) : ARKStepSStolerances(I.mem, options.rtol, options.atol),
+    I.ck(cv ? CVodeSStolerances(I.mem, options.rtol, options.atol)
+            : ARKStepSStolerances(I.mem, options.rtol, options.atol),
          cv ? "CVodeSStolerances" : "ARKStepSStolerances");
   }
   I.ck(cv ? CVodeSetMaxNumSteps(I.mem, options.max_steps) : ARKStepSetMaxNumSteps(I.mem, options.max_steps),
@@ -356,15 +416,31 @@ OdeIntegrator::OdeIntegrator(OdeSystem& system, OdeMethod method, const OdeOptio
     // small systems only, so the extra factorisations are cheap.
     if (!cv) I.ck(ARKStepSetLSetupFrequency(I.mem, 1), "ARKStepSetLSetupFrequency");
   } else {
-    I.LS.reset(SUNLinSol_SPGMR(I.y.get(), SUN_PREC_NONE, options.krylov_dim, ctx));
+    const bool prec = options.linear == LinearSolverKind::SpgmrPreconditioned;
+    if (prec && method == OdeMethod::ArkodeImex)
+      throw Error(
+          "OdeIntegrator: preconditioned SPGMR is available for CVODE BDF and ARKStep DIRK, not for ImEx "
+          "(its implicit part has its own, different Newton matrix)");
+    if (prec && !system.has_preconditioner())
+      throw Error(
+          "OdeIntegrator: preconditioned SPGMR needs a system with a preconditioner (has_preconditioner())");
+    I.LS.reset(SUNLinSol_SPGMR(I.y.get(), prec ? SUN_PREC_LEFT : SUN_PREC_NONE, options.krylov_dim, ctx));
     check_ptr(I.LS.get(), "SUNLinSol_SPGMR");
   }
-  I.ck(cv ? CVodeSetLinearSolver(I.mem, I.LS.get(), I.A.get()) : ARKStepSetLinearSolver(I.mem, I.LS.get(), I.A.get()),
+  I.ck(cv ? CVodeSetLinearSolver(I.mem, I.LS.get(), I.A.get())
+          : ARKStepSetLinearSolver(I.mem, I.LS.get(), I.A.get()),
        cv ? "CVodeSetLinearSolver" : "ARKStepSetLinearSolver");
-  if (options.linear == LinearSolverKind::Spgmr && system.has_jacobian_times()) {
-    if (cv) I.ck(CVodeSetJacTimes(I.mem, nullptr, &Impl::jtimes), "CVodeSetJacTimes");
-    else if (method == OdeMethod::ArkodeImex) I.ck(ARKStepSetJacTimes(I.mem, nullptr, &Impl::jtimes_implicit), "ARKStepSetJacTimes");
-    else I.ck(ARKStepSetJacTimes(I.mem, nullptr, &Impl::jtimes), "ARKStepSetJacTimes");
+  if (options.linear == LinearSolverKind::SpgmrPreconditioned)
+    I.ck(cv ? CVodeSetPreconditioner(I.mem, &Impl::psetup, &Impl::psolve)
+            : ARKStepSetPreconditioner(I.mem, &Impl::psetup, &Impl::psolve),
+         cv ? "CVodeSetPreconditioner" : "ARKStepSetPreconditioner");
+  if (options.linear != LinearSolverKind::Dense && system.has_jacobian_times()) {
+    if (cv)
+      I.ck(CVodeSetJacTimes(I.mem, nullptr, &Impl::jtimes), "CVodeSetJacTimes");
+    else if (method == OdeMethod::ArkodeImex)
+      I.ck(ARKStepSetJacTimes(I.mem, nullptr, &Impl::jtimes_implicit), "ARKStepSetJacTimes");
+    else
+      I.ck(ARKStepSetJacTimes(I.mem, nullptr, &Impl::jtimes), "ARKStepSetJacTimes");
   }
 }
 
@@ -375,9 +451,12 @@ OdeIntegrator& OdeIntegrator::operator=(OdeIntegrator&&) noexcept = default;
 void OdeIntegrator::advance(double t_out, VecX& y) {
   Impl& I = *impl_;
   realtype tret = I.t;
-  if (I.method == OdeMethod::CvodeBdf) I.ck(CVode(I.mem, t_out, I.y.get(), &tret, CV_NORMAL), "CVode");
-  else if (I.method == OdeMethod::ArkodeMri) I.ck(MRIStepEvolve(I.mem, t_out, I.y.get(), &tret, ARK_NORMAL), "MRIStepEvolve");
-  else I.ck(ARKStepEvolve(I.mem, t_out, I.y.get(), &tret, ARK_NORMAL), "ARKStepEvolve");
+  if (I.method == OdeMethod::CvodeBdf)
+    I.ck(CVode(I.mem, t_out, I.y.get(), &tret, CV_NORMAL), "CVode");
+  else if (I.method == OdeMethod::ArkodeMri)
+    I.ck(MRIStepEvolve(I.mem, t_out, I.y.get(), &tret, ARK_NORMAL), "MRIStepEvolve");
+  else
+    I.ck(ARKStepEvolve(I.mem, t_out, I.y.get(), &tret, ARK_NORMAL), "ARKStepEvolve");
   I.t = tret;
   y.resize(I.system.size());
   copy_out(I.y.get(), y);
@@ -403,6 +482,8 @@ IntegratorStats OdeIntegrator::stats() const {
     CVodeGetNumJacEvals(I.mem, &s.jacobian_evals);
     CVodeGetNumJtimesEvals(I.mem, &s.jtimes_evals);
     CVodeGetLastStep(I.mem, &s.last_step);
+    CVodeGetNumPrecEvals(I.mem, &s.preconditioner_setups);
+    CVodeGetNumPrecSolves(I.mem, &s.preconditioner_solves);
   } else if (I.method == OdeMethod::ArkodeMri) {
     long fsi = 0, ffi = 0;
     MRIStepGetNumSteps(I.mem, &s.steps);
@@ -420,6 +501,8 @@ IntegratorStats OdeIntegrator::stats() const {
     ARKStepGetNumJacEvals(I.mem, &s.jacobian_evals);
     ARKStepGetNumJtimesEvals(I.mem, &s.jtimes_evals);
     ARKStepGetLastStep(I.mem, &s.last_step);
+    ARKStepGetNumPrecEvals(I.mem, &s.preconditioner_setups);
+    ARKStepGetNumPrecSolves(I.mem, &s.preconditioner_solves);
   }
   return s;
 }
@@ -437,7 +520,7 @@ struct DaeIntegrator::Impl {
   double t = 0.0;
   bool ic_done = false;
   CallbackState cb;
-  VecX ys, yps, r;
+  VecX ys, yps, r, vs, out;
 
   Impl(DaeSystem& s, const DaeOptions& o) : system(s), options(o) {}
   ~Impl() {
@@ -461,16 +544,64 @@ struct DaeIntegrator::Impl {
       return -1;
     }
   }
+  // (dF/dy + cj dF/dy') v (IDALsJacTimesVecFn)
+  static int jtimes(realtype t, N_Vector y, N_Vector yp, N_Vector /*rr*/, N_Vector v, N_Vector Jv,
+                    realtype cj, void* data, N_Vector /*tmp1*/, N_Vector /*tmp2*/) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      copy_out(y, self->ys);
+      copy_out(yp, self->yps);
+      copy_out(v, self->vs);
+      self->system.jacobian_times(t, self->ys, self->yps, self->vs, cj, self->out);
+      copy_in(self->out, Jv);
+      return 0;
+    } catch (...) {
+      self->cb.pending = std::current_exception();
+      return -1;
+    }
+  }
+  // P ~ dF/dy + cj dF/dy' (IDALsPrecSetupFn)
+  static int psetup(realtype t, N_Vector y, N_Vector yp, N_Vector /*rr*/, realtype cj, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      copy_out(y, self->ys);
+      copy_out(yp, self->yps);
+      return self->system.preconditioner_setup(t, self->ys, self->yps, cj) ? 0 : 1;
+    } catch (...) {
+      self->cb.pending = std::current_exception();
+      return -1;
+    }
+  }
+  // z = P^{-1} r (IDALsPrecSolveFn)
+  static int psolve(realtype t, N_Vector y, N_Vector yp, N_Vector /*rr*/, N_Vector r, N_Vector z, realtype cj,
+                    realtype /*delta*/, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      copy_out(y, self->ys);
+      copy_out(yp, self->yps);
+      copy_out(r, self->vs);
+      const bool ok = self->system.preconditioner_solve(t, self->ys, self->yps, self->vs, self->out, cj);
+      copy_in(self->out, z);
+      return ok ? 0 : 1;
+    } catch (...) {
+      self->cb.pending = std::current_exception();
+      return -1;
+    }
+  }
 };
 
-DaeIntegrator::DaeIntegrator(DaeSystem& system, const DaeOptions& options, double t0, const VecX& y0, const VecX& yp0)
+DaeIntegrator::DaeIntegrator(DaeSystem& system, const DaeOptions& options, double t0, const VecX& y0,
+                             const VecX& yp0)
     : impl_(std::make_unique<Impl>(system, options)) {
   Impl& I = *impl_;
   const Index n = system.size();
-  if (y0.size() != n || yp0.size() != n) throw Error("DaeIntegrator: y0/yp0 size differs from the system size " + std::to_string(n));
+  if (y0.size() != n || yp0.size() != n)
+    throw Error("DaeIntegrator: y0/yp0 size differs from the system size " + std::to_string(n));
   I.ys.resize(n);
   I.yps.resize(n);
   I.r.resize(n);
+  I.vs.resize(n);
+  I.out.resize(n);
   I.t = t0;
   SUNContext ctx = I.ctx.ctx;
   I.y = new_vector(n, ctx, "y");
@@ -495,11 +626,23 @@ DaeIntegrator::DaeIntegrator(DaeSystem& system, const DaeOptions& options, doubl
   if (options.suppress_algebraic_error) I.ck(IDASetSuppressAlg(I.mem, SUNTRUE), "IDASetSuppressAlg");
   I.ck(IDASetMaxNumSteps(I.mem, options.max_steps), "IDASetMaxNumSteps");
   if (options.max_step > 0.0) I.ck(IDASetMaxStep(I.mem, options.max_step), "IDASetMaxStep");
-  I.A.reset(SUNDenseMatrix(static_cast<sunindextype>(n), static_cast<sunindextype>(n), ctx));
-  check_ptr(I.A.get(), "SUNDenseMatrix");
-  I.LS.reset(SUNLinSol_Dense(I.y.get(), I.A.get(), ctx));
-  check_ptr(I.LS.get(), "SUNLinSol_Dense");
-  I.ck(IDASetLinearSolver(I.mem, I.LS.get(), I.A.get()), "IDASetLinearSolver");
+  if (options.linear == LinearSolverKind::Dense) {
+    I.A.reset(SUNDenseMatrix(static_cast<sunindextype>(n), static_cast<sunindextype>(n), ctx));
+    check_ptr(I.A.get(), "SUNDenseMatrix");
+    I.LS.reset(SUNLinSol_Dense(I.y.get(), I.A.get(), ctx));
+    check_ptr(I.LS.get(), "SUNLinSol_Dense");
+    I.ck(IDASetLinearSolver(I.mem, I.LS.get(), I.A.get()), "IDASetLinearSolver");
+    return;
+  }
+  const bool prec = options.linear == LinearSolverKind::SpgmrPreconditioned;
+  if (prec && !system.has_preconditioner())
+    throw Error(
+        "DaeIntegrator: preconditioned SPGMR needs a system with a preconditioner (has_preconditioner())");
+  I.LS.reset(SUNLinSol_SPGMR(I.y.get(), prec ? SUN_PREC_LEFT : SUN_PREC_NONE, options.krylov_dim, ctx));
+  check_ptr(I.LS.get(), "SUNLinSol_SPGMR");
+  I.ck(IDASetLinearSolver(I.mem, I.LS.get(), nullptr), "IDASetLinearSolver");
+  if (system.has_jacobian_times()) I.ck(IDASetJacTimes(I.mem, nullptr, &Impl::jtimes), "IDASetJacTimes");
+  if (prec) I.ck(IDASetPreconditioner(I.mem, &Impl::psetup, &Impl::psolve), "IDASetPreconditioner");
 }
 
 DaeIntegrator::~DaeIntegrator() = default;
@@ -534,6 +677,9 @@ IntegratorStats DaeIntegrator::stats() const {
   IDAGetNumErrTestFails(I.mem, &s.error_test_failures);
   IDAGetNumJacEvals(I.mem, &s.jacobian_evals);
   IDAGetLastStep(I.mem, &s.last_step);
+  IDAGetNumJtimesEvals(I.mem, &s.jtimes_evals);
+  IDAGetNumPrecEvals(I.mem, &s.preconditioner_setups);
+  IDAGetNumPrecSolves(I.mem, &s.preconditioner_solves);
   return s;
 }
 

@@ -9,8 +9,7 @@
 
 namespace tmlab::tm {
 
-TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet>& tets)
-    : num_nodes_(num_nodes) {
+TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet>& tets) : num_nodes_(num_nodes) {
   const auto n = static_cast<std::size_t>(num_nodes);
   // Node graph: all (column node, row node) pairs of every tet, sorted and unique.
   std::vector<std::uint64_t> pairs;
@@ -73,9 +72,9 @@ bool TangentPattern::matches(const Eigen::SparseMatrix<double>& K) const {
 
 void TangentPattern::reset(Eigen::SparseMatrix<double>& K) const {
   std::vector<double> zeros(inner_.size(), 0.0);
-  const Eigen::Map<const Eigen::SparseMatrix<double>> view(
-      num_dofs(), num_dofs(), static_cast<Eigen::Index>(inner_.size()), outer_.data(),
-      inner_.data(), zeros.data());
+  const Eigen::Map<const Eigen::SparseMatrix<double>> view(num_dofs(), num_dofs(),
+                                                           static_cast<Eigen::Index>(inner_.size()),
+                                                           outer_.data(), inner_.data(), zeros.data());
   K = view;
   K.makeCompressed();
 }

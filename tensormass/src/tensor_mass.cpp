@@ -92,11 +92,11 @@ inline void gamma_apply(const double* e, const double* d, double* dG) {
 /// Relative-force kernel: returns the tet energy, writes g = dW_T/de (9).
 inline double tet_energy_force(const TensorMassTet& T, const double* e, double* g) {
   double G[6], h[6], DG[6], sigma[6], Be[9];
-  gram(e, G);                       // G_P = e_k . e_l
-  chat_apply(T.C, e, h);            // h = Chat e
-  sym_matvec<6>(T.D, G, DG);        // Dhat G
-  sym_matvec<9>(T.B, e, Be);        // B e
-  double w = 0.0;                   // W_T = e^T B e + h . G + G^T Dhat G   (errata eq. 2)
+  gram(e, G);                 // G_P = e_k . e_l
+  chat_apply(T.C, e, h);      // h = Chat e
+  sym_matvec<6>(T.D, G, DG);  // Dhat G
+  sym_matvec<9>(T.B, e, Be);  // B e
+  double w = 0.0;             // W_T = e^T B e + h . G + G^T Dhat G   (errata eq. 2)
   for (int i = 0; i < 9; ++i) w += e[i] * Be[i];
   for (int P = 0; P < 6; ++P) {
     w += (h[P] + DG[P]) * G[P];
@@ -129,8 +129,8 @@ inline void tet_hessian_apply(const TensorMassTet& T, const double* e, const dou
   sym_matvec<6>(T.D, G, DG);
   for (int P = 0; P < 6; ++P) sigma[P] = h[P] + 2.0 * DG[P];
   double dG[6], dh[6], DdG[6], dsigma[6];
-  gamma_apply(e, d, dG);            // dG = Gamma d
-  chat_apply(T.C, d, dh);           // dh = Chat d
+  gamma_apply(e, d, dG);   // dG = Gamma d
+  chat_apply(T.C, d, dh);  // dh = Chat d
   sym_matvec<6>(T.D, dG, DdG);
   for (int P = 0; P < 6; ++P) dsigma[P] = dh[P] + 2.0 * DdG[P];
   // dg = 2 B d + Chat^T dG + Gamma(e)^T dsigma + Gamma(d)^T sigma

@@ -6,15 +6,12 @@ namespace tmlab::tm {
 
 namespace {
 
-inline Vec3 node_vec(const VecX& x, Index node) {
-  return x.segment<3>(3 * static_cast<Eigen::Index>(node));
-}
+inline Vec3 node_vec(const VecX& x, Index node) { return x.segment<3>(3 * static_cast<Eigen::Index>(node)); }
 
 }  // namespace
 
 TotalLagrangianStVK::TotalLagrangianStVK(const Mesh& mesh, const StVenantKirchhoff& material)
-    : num_nodes_(mesh.num_points()), tets_(mesh.tets), rest_(compute_tet_rest(mesh)),
-      material_(material) {}
+    : num_nodes_(mesh.num_points()), tets_(mesh.tets), rest_(compute_tet_rest(mesh)), material_(material) {}
 
 Mat3 TotalLagrangianStVK::deformation_gradient(Index t, const VecX& u) const {
   assert(u.size() == num_dofs());
@@ -64,9 +61,8 @@ Mat12 TotalLagrangianStVK::tet_stiffness(Index t, const VecX& u) const {
       // K_pq = V [ (a_p . S a_q) I + lambda b_p b_q^T + mu b_q b_p^T + mu (a_p . a_q) F F^T ]
       const double geo = r.grad[p].dot(S * r.grad[q]);
       const double apaq = r.grad[p].dot(r.grad[q]);
-      K.block<3, 3>(3 * p, 3 * q) =
-          r.volume * (geo * Mat3::Identity() + lam * b[p] * b[q].transpose() +
-                      mu * b[q] * b[p].transpose() + mu * apaq * FFt);
+      K.block<3, 3>(3 * p, 3 * q) = r.volume * (geo * Mat3::Identity() + lam * b[p] * b[q].transpose() +
+                                                mu * b[q] * b[p].transpose() + mu * apaq * FFt);
     }
   }
   return K;

@@ -46,9 +46,12 @@ Opt::Relaxation Opt::parse_relaxation(const std::string& s) {
 std::string Opt::to_string(History h) { return h == History::Pk2 ? "pk2" : "nodal_force"; }
 std::string Opt::to_string(Integration i) {
   switch (i) {
-    case Integration::Midpoint: return "midpoint";
-    case Integration::ExactLinear: return "exact_linear";
-    case Integration::BackwardEuler: return "backward_euler";
+    case Integration::Midpoint:
+      return "midpoint";
+    case Integration::ExactLinear:
+      return "exact_linear";
+    case Integration::BackwardEuler:
+      return "backward_euler";
   }
   return "?";
 }
@@ -107,7 +110,8 @@ ViscoelasticStVK::ViscoelasticStVK(const Mesh& mesh, const StVenantKirchhoff& lo
       const double cut = 1e-10 * ev.cwiseAbs().maxCoeff();
       Mat12 P = Mat12::Zero();
       for (int k = 0; k < 12; ++k)
-        if (ev[k] > cut) P.noalias() += (1.0 / ev[k]) * es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose();
+        if (ev[k] > cut)
+          P.noalias() += (1.0 / ev[k]) * es.eigenvectors().col(k) * es.eigenvectors().col(k).transpose();
       Eigen::Map<Mat12> dst(&kpinv_[144 * t]);
       dst = P;
     }
@@ -204,7 +208,8 @@ void ViscoelasticStVK::update_trial() {
 }
 
 void ViscoelasticStVK::begin_step(double dt) {
-  if (!(dt >= 0.0) || !std::isfinite(dt)) throw Error("viscoelastic: step size dt = " + std::to_string(dt) + " must be >= 0");
+  if (!(dt >= 0.0) || !std::isfinite(dt))
+    throw Error("viscoelastic: step size dt = " + std::to_string(dt) + " must be >= 0");
   dt_ = dt;
   factors_.resize(prony_.size());
   gain_ = 0.0;
@@ -293,7 +298,8 @@ double ViscoelasticStVK::energy(const VecX& u) const {
     const double* X = &driver_[w * t];
     for (std::size_t j = 0; j < nj; ++j) {
       const double* hc = &hist_[(t * nj + j) * w];
-      for (std::size_t k = 0; k < w; ++k) h[j * w + k] = factors_[j].a * hc[k] + factors_[j].c * (x[k] - X[k]);
+      for (std::size_t k = 0; k < w; ++k)
+        h[j * w + k] = factors_[j].a * hc[k] + factors_[j].c * (x[k] - X[k]);
     }
     psi += branch_form(static_cast<Index>(t), h.data(), &rate);
   }
@@ -325,7 +331,8 @@ void ViscoelasticStVK::internal_force(const VecX& u, VecX& f) const {
     S.diagonal().array() += lam_eff * E.trace();
     S.noalias() += (2.0 * mu_eff) * E;
     const Mat3 VP = r.volume * ((Mat3::Identity() + H) * S);
-    for (int p = 0; p < 4; ++p) f.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VP * r.grad[p];
+    for (int p = 0; p < 4; ++p)
+      f.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VP * r.grad[p];
   }
 }
 
@@ -365,7 +372,8 @@ void ViscoelasticStVK::tangent_apply(const VecX& u, const VecX& v, VecX& Kv) con
     Mat3 dS = (2.0 * mu_eff) * dE;
     dS.diagonal().array() += lam_eff * dE.trace();
     const Mat3 VdP = r.volume * (dF * S + F * dS);
-    for (int p = 0; p < 4; ++p) Kv.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VdP * r.grad[p];
+    for (int p = 0; p < 4; ++p)
+      Kv.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VdP * r.grad[p];
   }
 }
 

@@ -38,7 +38,8 @@ class CaseRunnerTest : public ::testing::Test {
         {"name": "y0", "nodes": {"plane": {"axis": "y", "value": 0}}, "components": "y"},
         {"name": "z0", "nodes": {"plane": {"axis": "z", "value": 0}}, "components": "z"},
         {"name": "pull", "nodes": {"plane": {"axis": "x", "value": 0.01}}, "components": "x",
-         "value": [)" + std::to_string(d) + R"(, 0, 0], "function": {"type": "ramp", "t0": 0, "t1": 1}}
+         "value": [)" + std::to_string(d) +
+                                 R"(, 0, 0], "function": {"type": "ramp", "t0": 0, "t1": 1}}
       ],
       "solver": {"type": "static", "steps": 4},
       "output": {"probes": [{"name": "corner", "point": [0.01, 0.01, 0.01]}]}
@@ -70,8 +71,8 @@ TEST_F(CaseRunnerTest, UniaxialStretchReactionMatchesClosedForm) {
 
   // The result directory is complete: summary last, numbers, fields, manifest.
   const fs::path out = r.dir;
-  for (const char* f : {"summary.json", "manifest.json", "timeseries.h5", "displacement.h5", "fields.xdmf", "result.pvd",
-                        "mesh_report.json"})
+  for (const char* f : {"summary.json", "manifest.json", "timeseries.h5", "displacement.h5", "fields.xdmf",
+                        "result.pvd", "mesh_report.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
   EXPECT_FALSE(fs::exists(out / RunOutput::kStaging));
   H5File h5 = H5File::open_read((out / "timeseries.h5").string());
@@ -119,7 +120,8 @@ TEST_F(CaseRunnerTest, InvertedElementStopsTheRunWithoutSummary) {
     FAIL() << "expected an error";
   } catch (const Error& e) {
     const std::string m = e.what();
-    EXPECT_TRUE(m.find("inverted") != std::string::npos || m.find("did not converge") != std::string::npos) << m;
+    EXPECT_TRUE(m.find("inverted") != std::string::npos || m.find("did not converge") != std::string::npos)
+        << m;
   }
   EXPECT_FALSE(fs::exists(dir_ / "results" / "uniaxial" / "summary.json"));
   EXPECT_TRUE(fs::exists(dir_ / "results" / "uniaxial" / RunOutput::kFailed));
@@ -143,7 +145,8 @@ TEST_F(CaseRunnerTest, SelectorThatSelectsNothingIsNamed) {
     run(j);
     FAIL() << "expected an error";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("boundary[3] 'pull' selects no nodes"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("boundary[3] 'pull' selects no nodes"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -29,7 +29,8 @@ TEST(HereditaryIntegral, GaussLegendreIsExactToDegreeTwoNMinusOne) {
     gauss_legendre(n, x, w);
     for (int d = 0; d <= 2 * n - 1; ++d) {
       double q = 0.0;
-      for (int i = 0; i < n; ++i) q += w[static_cast<std::size_t>(i)] * std::pow(x[static_cast<std::size_t>(i)], d);
+      for (int i = 0; i < n; ++i)
+        q += w[static_cast<std::size_t>(i)] * std::pow(x[static_cast<std::size_t>(i)], d);
       const double exact = d % 2 == 0 ? 2.0 / (d + 1) : 0.0;
       EXPECT_NEAR(q, exact, 1e-14) << "n " << n << " degree " << d;
     }
@@ -45,7 +46,10 @@ double sine_history(double omega, double tau, double t) {
 
 TEST(HereditaryIntegral, ScalarConvolutionMatchesClosedFormAndHermiteHistoryIsFourthOrder) {
   const double omega = 2.0 * kPi * 0.7, tau = 0.3;
-  auto rate = [&](double s, VecX& r) { r.resize(1); r[0] = omega * std::cos(omega * s); };
+  auto rate = [&](double s, VecX& r) {
+    r.resize(1);
+    r[0] = omega * std::cos(omega * s);
+  };
   double e_analytic = 0.0;
   for (double t : {0.1, 0.9, 2.0}) {
     const double h = convolve_rate(rate, 1, tau, 0.0, t, 40)[0];
@@ -60,18 +64,21 @@ TEST(HereditaryIntegral, ScalarConvolutionMatchesClosedFormAndHermiteHistoryIsFo
     const int n = static_cast<int>(std::lround(2.0 / dt));
     for (int k = 0; k <= n; ++k) {
       const double t = k * dt;
-      hist.add(t, (VecX(1) << std::sin(omega * t)).finished(), (VecX(1) << omega * std::cos(omega * t)).finished());
+      hist.add(t, (VecX(1) << std::sin(omega * t)).finished(),
+               (VecX(1) << omega * std::cos(omega * t)).finished());
     }
     double e = 0.0;
-    for (std::size_t k = 1; k < hist.size(); ++k) e = std::max(e, std::abs(hist.convolve(k, tau)[0] - sine_history(omega, tau, hist.time(k))));
+    for (std::size_t k = 1; k < hist.size(); ++k)
+      e = std::max(e, std::abs(hist.convolve(k, tau)[0] - sine_history(omega, tau, hist.time(k))));
     errs.push_back(e);
   }
   const double order = std::log2(errs[2] / errs[3]);
-  std::printf("Hermite stored history: error dt=0.1 %.2e, 0.05 %.2e, 0.025 %.2e, 0.0125 %.2e; order %.2f\n", errs[0],
-              errs[1], errs[2], errs[3], order);
+  std::printf("Hermite stored history: error dt=0.1 %.2e, 0.05 %.2e, 0.025 %.2e, 0.0125 %.2e; order %.2f\n",
+              errs[0], errs[1], errs[2], errs[3], order);
   EXPECT_NEAR(order, 4.0, 0.3);
 
-  // A history starting with a jump X_e(0+) = 1, then constant: h = exp(-t/tau) (errata eq. 11's r(t) X_e(0+)).
+  // A history starting with a jump X_e(0+) = 1, then constant: h = exp(-t/tau) (errata eq. 11's r(t)
+  // X_e(0+)).
   StoredHistory jump(1);
   jump.add(0.0, VecX::Ones(1), VecX::Zero(1));
   jump.add(0.5, VecX::Ones(1), VecX::Zero(1));
@@ -112,11 +119,10 @@ struct Prescribed {
   double dg(double t) const { return 2 * kPi * freq * std::cos(2 * kPi * freq * t); }
 };
 
-
 /// dX_e/dt of every tet at time t for u = g(t) U (analytic): pk2 C : sym(F^T dF/dt) (or its
 /// deviator), dF/dt = g' grad U; nodal_force K_e(u) g' U.
-void driver_rate(const Prescribed& p, const Opt& opt, const TotalLagrangianStVK& tl, const TensorMassStVK& tm, double t,
-                 VecX& r) {
+void driver_rate(const Prescribed& p, const Opt& opt, const TotalLagrangianStVK& tl, const TensorMassStVK& tm,
+                 double t, VecX& r) {
   const Index T = tl.num_tets();
   const int w = opt.history == Opt::History::Pk2 ? 6 : 12;
   r.resize(T * w);
@@ -150,8 +156,8 @@ std::vector<Opt> variants() {
 std::string name(const Opt& o) { return Opt::to_string(o.history) + "/" + Opt::to_string(o.relaxation); }
 
 /// sum_j alpha_j h_j(t) of every tet by direct convolution of the analytic rate.
-VecX convolved_history(const Prescribed& p, const Opt& opt, const TotalLagrangianStVK& tl, const TensorMassStVK& tm,
-                       double t, int panels) {
+VecX convolved_history(const Prescribed& p, const Opt& opt, const TotalLagrangianStVK& tl,
+                       const TensorMassStVK& tm, double t, int panels) {
   const Index width = tl.num_tets() * (opt.history == Opt::History::Pk2 ? 6 : 12);
   auto rate = [&](double s, VecX& r) { driver_rate(p, opt, tl, tm, s, r); };
   VecX sum = VecX::Zero(width);
@@ -172,45 +178,50 @@ TEST(HereditaryIntegral, CvodeOdeFormAgreesWithDirectConvolutionOnTensorMass) {
     const VecX X_peak = ode.elastic_driver(p.U);  // X_e at g = 1
     const double scale = X_peak.cwiseAbs().maxCoeff();
     for (double rtol : {1e-10, 1e-11}) {
-    OdeOptions o;
-    o.rtol = rtol;
-    o.linear = LinearSolverKind::Spgmr;
-    o.atol_vector = ode.absolute_tolerances(1e-14, 1e-14, 1e-3 * rtol * scale);
-    OdeIntegrator cv(ode, OdeMethod::CvodeBdf, o, 0.0, ode.initial_state(0.0, VecX::Zero(ode.num_dofs()), VecX::Zero(ode.num_dofs())));
-    // The stored (Hermite) history of X_e, sampled every 1 ms.
-    const Index width = X_peak.size();
-    StoredHistory stored(width);
-    VecX r;
-    const double ds = 1e-3;
-    double err_ode = 0.0, err_stored = 0.0, hist_peak = 0.0;
-    VecX y;
-    int next_sample = 0;
-    for (int i = 1; i <= 8; ++i) {
-      const double t = 0.25 * i;
-      for (; next_sample * ds <= t + 1e-12; ++next_sample) {
-        const double s = next_sample * ds;
-        driver_rate(p, opt, tl, tm, s, r);
-        stored.add(s, ode.elastic_driver(p.g(s) * p.U), r);
+      OdeOptions o;
+      o.rtol = rtol;
+      o.linear = LinearSolverKind::Spgmr;
+      o.atol_vector = ode.absolute_tolerances(1e-14, 1e-14, 1e-3 * rtol * scale);
+      OdeIntegrator cv(ode, OdeMethod::CvodeBdf, o, 0.0,
+                       ode.initial_state(0.0, VecX::Zero(ode.num_dofs()), VecX::Zero(ode.num_dofs())));
+      // The stored (Hermite) history of X_e, sampled every 1 ms.
+      const Index width = X_peak.size();
+      StoredHistory stored(width);
+      VecX r;
+      const double ds = 1e-3;
+      double err_ode = 0.0, err_stored = 0.0, hist_peak = 0.0;
+      VecX y;
+      int next_sample = 0;
+      for (int i = 1; i <= 8; ++i) {
+        const double t = 0.25 * i;
+        for (; next_sample * ds <= t + 1e-12; ++next_sample) {
+          const double s = next_sample * ds;
+          driver_rate(p, opt, tl, tm, s, r);
+          stored.add(s, ode.elastic_driver(p.g(s) * p.U), r);
+        }
+        cv.advance(t, y);
+        const VecX conv = convolved_history(p, opt, tl, tm, t, 200);
+        const VecX via_ode = ode.history_sum(t, y);
+        VecX via_stored = VecX::Zero(width);
+        for (std::size_t j = 0; j < p.prony.size(); ++j)
+          via_stored += p.prony.alpha(j) * stored.convolve(stored.size() - 1, p.prony.tau(j));
+        err_ode = std::max(err_ode, (via_ode - conv).cwiseAbs().maxCoeff() / scale);
+        err_stored = std::max(err_stored, (via_stored - conv).cwiseAbs().maxCoeff() / scale);
+        hist_peak = std::max(hist_peak, conv.cwiseAbs().maxCoeff() / scale);
       }
-      cv.advance(t, y);
-      const VecX conv = convolved_history(p, opt, tl, tm, t, 200);
-      const VecX via_ode = ode.history_sum(t, y);
-      VecX via_stored = VecX::Zero(width);
-      for (std::size_t j = 0; j < p.prony.size(); ++j) via_stored += p.prony.alpha(j) * stored.convolve(stored.size() - 1, p.prony.tau(j));
-      err_ode = std::max(err_ode, (via_ode - conv).cwiseAbs().maxCoeff() / scale);
-      err_stored = std::max(err_stored, (via_stored - conv).cwiseAbs().maxCoeff() / scale);
-      hist_peak = std::max(hist_peak, conv.cwiseAbs().maxCoeff() / scale);
-    }
-    const IntegratorStats s = cv.stats();
-    std::printf("%-18s CVODE(rtol %.0e) vs convolution %.2e, Hermite(1 ms) vs analytic convolution %.2e (of max |X_e|; "
-                "history peak %.2f); CVODE steps %ld newton %ld linear %ld\n",
-                name(opt).c_str(), rtol, err_ode, err_stored, hist_peak, s.steps, s.nonlinear_iterations, s.linear_iterations);
-    // With atol = 1e-3 rtol max|X_e| on z (a looser atol, 1e-2 rtol, let the z components near
-    // their zero crossings drift: 9.6e-10 at rtol 1e-10 for nodal_force) CVODE agrees within 10 rtol:
-    // to 1e-9 at rtol 1e-10.
-    EXPECT_LT(err_ode, 10.0 * rtol) << name(opt);
-    EXPECT_LT(err_stored, 1e-9) << name(opt);
-    EXPECT_GT(hist_peak, 0.1);  // the history is not negligible
+      const IntegratorStats s = cv.stats();
+      std::printf(
+          "%-18s CVODE(rtol %.0e) vs convolution %.2e, Hermite(1 ms) vs analytic convolution %.2e (of max "
+          "|X_e|; "
+          "history peak %.2f); CVODE steps %ld newton %ld linear %ld\n",
+          name(opt).c_str(), rtol, err_ode, err_stored, hist_peak, s.steps, s.nonlinear_iterations,
+          s.linear_iterations);
+      // With atol = 1e-3 rtol max|X_e| on z (a looser atol, 1e-2 rtol, let the z components near
+      // their zero crossings drift: 9.6e-10 at rtol 1e-10 for nodal_force) CVODE agrees within 10 rtol:
+      // to 1e-9 at rtol 1e-10.
+      EXPECT_LT(err_ode, 10.0 * rtol) << name(opt);
+      EXPECT_LT(err_stored, 1e-9) << name(opt);
+      EXPECT_GT(hist_peak, 0.1);  // the history is not negligible
     }
   }
 }
@@ -233,7 +244,10 @@ TEST(HereditaryIntegral, RecursionsConvergeToDirectConvolutionAtTheirOrder) {
       ViscoelasticStVK m(p.mesh, p.mat, p.prony, opt);
       MechanicalSystem sys(m, lumped_dof_mass(p.node_mass), DirichletSet(p.mesh.num_points(), p.bc),
                            ExternalLoads(p.mesh, p.node_mass));
-      scale = TensorMassViscoelasticOde(p.mesh, p.mat, p.prony, opt, sys).elastic_driver(p.U).cwiseAbs().maxCoeff();
+      scale = TensorMassViscoelasticOde(p.mesh, p.mat, p.prony, opt, sys)
+                  .elastic_driver(p.U)
+                  .cwiseAbs()
+                  .maxCoeff();
     }
     for (const auto& sc : schemes) {
       opt.integration = sc.s;
@@ -256,15 +270,18 @@ TEST(HereditaryIntegral, RecursionsConvergeToDirectConvolutionAtTheirOrder) {
           for (Index t = 0; t < m.num_tets(); ++t)
             for (int c = 0; c < w; ++c) {
               double s = 0.0;
-              for (std::size_t j = 0; j < J; ++j) s += p.prony.alpha(j) * h[(static_cast<std::size_t>(t) * J + j) * w + c];
+              for (std::size_t j = 0; j < J; ++j)
+                s += p.prony.alpha(j) * h[(static_cast<std::size_t>(t) * J + j) * w + c];
               e = std::max(e, std::abs(s - r[t * w + c]));
             }
         }
         errs.push_back(e / scale);
       }
       const double order = std::log2(errs[2] / errs[3]);
-      std::printf("%-18s %-15s recursion vs convolution: dt=0.1 %.3e, 0.05 %.3e, 0.025 %.3e, 0.0125 %.3e; order %.3f\n",
-                  name(opt).c_str(), Opt::to_string(sc.s).c_str(), errs[0], errs[1], errs[2], errs[3], order);
+      std::printf(
+          "%-18s %-15s recursion vs convolution: dt=0.1 %.3e, 0.05 %.3e, 0.025 %.3e, 0.0125 %.3e; order "
+          "%.3f\n",
+          name(opt).c_str(), Opt::to_string(sc.s).c_str(), errs[0], errs[1], errs[2], errs[3], order);
       EXPECT_NEAR(order, sc.order, 0.15) << name(opt) << " " << Opt::to_string(sc.s);
     }
   }

@@ -105,7 +105,9 @@ inline Eigen::Matrix3d rotation(const Vec3& axis, double angle) {
 }
 
 /// ||a - b|| / ||b|| (vectors or sparse matrices, Frobenius).
-inline double rel_err(const Eigen::VectorXd& a, const Eigen::VectorXd& b) { return (a - b).norm() / b.norm(); }
+inline double rel_err(const Eigen::VectorXd& a, const Eigen::VectorXd& b) {
+  return (a - b).norm() / b.norm();
+}
 inline double rel_err(const Eigen::SparseMatrix<double>& a, const Eigen::SparseMatrix<double>& b) {
   return Eigen::SparseMatrix<double>(a - b).norm() / b.norm();
 }
@@ -119,7 +121,8 @@ inline double mean_edge(const Mesh& m) {
     for (int i = 0; i < 4; ++i)
       for (int j = i + 1; j < 4; ++j, ++n)
         s += (m.points[static_cast<std::size_t>(t[static_cast<std::size_t>(i)])] -
-              m.points[static_cast<std::size_t>(t[static_cast<std::size_t>(j)])]).norm();
+              m.points[static_cast<std::size_t>(t[static_cast<std::size_t>(j)])])
+                 .norm();
   return s / static_cast<double>(n);
 }
 

@@ -10,8 +10,8 @@
 #include "tmlab/tensormass/ode_references.hpp"
 #include "tmlab/tensormass/static_solver.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
 #include <cmath>
 #include <cstdio>
@@ -65,12 +65,10 @@ TEST(OdeReferences, CvodeAndArkodeMeetTheirTolerancesOnTheOscillator) {
     OdeMethod m;
     LinearSolverKind k;
   };
-  const Variant variants[] = {{OdeMethod::CvodeBdf, LinearSolverKind::Dense},
-                              {OdeMethod::CvodeBdf, LinearSolverKind::Spgmr},
-                              {OdeMethod::ArkodeDirk, LinearSolverKind::Dense},
-                              {OdeMethod::ArkodeDirk, LinearSolverKind::Spgmr},
-                              {OdeMethod::ArkodeImex, LinearSolverKind::Dense},
-                              {OdeMethod::ArkodeImex, LinearSolverKind::Spgmr}};
+  const Variant variants[] = {
+      {OdeMethod::CvodeBdf, LinearSolverKind::Dense},   {OdeMethod::CvodeBdf, LinearSolverKind::Spgmr},
+      {OdeMethod::ArkodeDirk, LinearSolverKind::Dense}, {OdeMethod::ArkodeDirk, LinearSolverKind::Spgmr},
+      {OdeMethod::ArkodeImex, LinearSolverKind::Dense}, {OdeMethod::ArkodeImex, LinearSolverKind::Spgmr}};
   for (const Variant& v : variants) {
     double previous = 1e300;
     for (double rtol : {1e-4, 1e-6, 1e-8, 1e-10}) {
@@ -98,7 +96,8 @@ TEST(OdeReferences, CreepClosedFormSatisfiesTheDae) {
   for (double t : {0.05, 0.4, 1.7}) {
     const double h = 1e-5;
     const double x = c.exact_x(t), z = x - c.exact_H(t);
-    const double zp = ((c.exact_x(t + h) - c.exact_H(t + h)) - (c.exact_x(t - h) - c.exact_H(t - h))) / (2 * h);
+    const double zp =
+        ((c.exact_x(t + h) - c.exact_H(t + h)) - (c.exact_x(t - h) - c.exact_H(t - h))) / (2 * h);
     VecX y(2), yp(2), r;
     y << x, z;
     yp << 0.0, zp;
@@ -117,7 +116,8 @@ TEST(OdeReferences, RecursionsShowTheirOrderAgainstTheCreepClosedForm) {
     Integ s;
     const char* name;
     double order;
-  } schemes[] = {{Integ::Midpoint, "midpoint", 2.0}, {Integ::ExactLinear, "exact_linear", 2.0},
+  } schemes[] = {{Integ::Midpoint, "midpoint", 2.0},
+                 {Integ::ExactLinear, "exact_linear", 2.0},
                  {Integ::BackwardEuler, "backward_euler", 1.0}};
   for (const auto& sc : schemes) {
     std::vector<double> errs;
@@ -126,7 +126,8 @@ TEST(OdeReferences, RecursionsShowTheirOrderAgainstTheCreepClosedForm) {
       const int n = static_cast<int>(std::lround(t_end / dt));
       const std::vector<double> x = c.recursion(sc.s, dt, n);
       double e = 0.0;
-      for (int k = 0; k < n; ++k) e = std::max(e, std::abs(x[static_cast<std::size_t>(k)] - c.exact_x((k + 1) * dt)));
+      for (int k = 0; k < n; ++k)
+        e = std::max(e, std::abs(x[static_cast<std::size_t>(k)] - c.exact_x((k + 1) * dt)));
       errs.push_back(e / scale);
     }
     const double order = std::log2(errs[3] / errs[4]);
@@ -189,7 +190,8 @@ struct Block {
 TEST(OdeReferences, TensorMassJacobianActionMatchesDifferenceQuotient) {
   for (auto h : {ViscoelasticOptions::History::Pk2, ViscoelasticOptions::History::NodalForce}) {
     for (auto r : {ViscoelasticOptions::Relaxation::Full, ViscoelasticOptions::Relaxation::Deviatoric}) {
-      if (h == ViscoelasticOptions::History::NodalForce && r == ViscoelasticOptions::Relaxation::Deviatoric) continue;
+      if (h == ViscoelasticOptions::History::NodalForce && r == ViscoelasticOptions::Relaxation::Deviatoric)
+        continue;
       const Block b;
       const ViscoelasticOptions opt{h, Integ::ExactLinear, r};
       ViscoelasticStVK model(b.mesh, b.mat, b.prony, opt);
@@ -216,8 +218,8 @@ TEST(OdeReferences, TensorMassJacobianActionMatchesDifferenceQuotient) {
 }
 
 /// u(t_end) by CVODE (or ARKStep) on the semi-discrete ODE, and the stats.
-VecX reference_solution(const Block& b, const ViscoelasticOptions& opt, OdeMethod m, double rtol, double t_end,
-                        IntegratorStats* stats) {
+VecX reference_solution(const Block& b, const ViscoelasticOptions& opt, OdeMethod m, double rtol,
+                        double t_end, IntegratorStats* stats) {
   ViscoelasticStVK model(b.mesh, b.mat, b.prony, opt);
   MechanicalSystem sys(model, lumped_dof_mass(b.node_mass), b.bc(), ExternalLoads(b.mesh, b.node_mass));
   TensorMassViscoelasticOde ode(b.mesh, b.mat, b.prony, opt, sys);
@@ -235,7 +237,8 @@ VecX reference_solution(const Block& b, const ViscoelasticOptions& opt, OdeMetho
 TEST(OdeReferences, FixedStepTensorMassConvergesToCvodeReference) {
   const Block b;
   const double t_end = 0.02;
-  const ViscoelasticOptions base{ViscoelasticOptions::History::Pk2, Integ::ExactLinear, ViscoelasticOptions::Relaxation::Full};
+  const ViscoelasticOptions base{ViscoelasticOptions::History::Pk2, Integ::ExactLinear,
+                                 ViscoelasticOptions::Relaxation::Full};
   IntegratorStats s10, s8, sa;
   const VecX ref = reference_solution(b, base, OdeMethod::CvodeBdf, 1e-10, t_end, &s10);
   const VecX ref8 = reference_solution(b, base, OdeMethod::CvodeBdf, 1e-8, t_end, &s8);
@@ -245,13 +248,16 @@ TEST(OdeReferences, FixedStepTensorMassConvergesToCvodeReference) {
   const double scale = ref.cwiseAbs().maxCoeff();
   std::printf("CVODE rtol 1e-10: steps %ld newton %ld linear %ld jtimes %ld; |u|max %.3e m\n", s10.steps,
               s10.nonlinear_iterations, s10.linear_iterations, s10.jtimes_evals, scale);
-  std::printf("CVODE rtol 1e-8:  steps %ld newton %ld linear %ld; |u(1e-8) - u(1e-10)|/|u| = %.2e\n", s8.steps,
-              s8.nonlinear_iterations, s8.linear_iterations, (ref8 - ref).cwiseAbs().maxCoeff() / scale);
+  std::printf("CVODE rtol 1e-8:  steps %ld newton %ld linear %ld; |u(1e-8) - u(1e-10)|/|u| = %.2e\n",
+              s8.steps, s8.nonlinear_iterations, s8.linear_iterations,
+              (ref8 - ref).cwiseAbs().maxCoeff() / scale);
   std::printf("ARKStep rtol 1e-10: steps %ld newton %ld linear %ld; |u_ark - u_cvode|/|u| = %.2e\n", sa.steps,
               sa.nonlinear_iterations, sa.linear_iterations, (ark - ref).cwiseAbs().maxCoeff() / scale);
-  std::printf("ARKStep ImEx rtol 1e-10: steps %ld f_E %ld f_I %ld newton %ld linear %ld; |u_imex - u_cvode|/|u| = %.2e\n",
-              si.steps, si.explicit_rhs_evals, si.rhs_evals, si.nonlinear_iterations, si.linear_iterations,
-              (imex - ref).cwiseAbs().maxCoeff() / scale);
+  std::printf(
+      "ARKStep ImEx rtol 1e-10: steps %ld f_E %ld f_I %ld newton %ld linear %ld; |u_imex - u_cvode|/|u| = "
+      "%.2e\n",
+      si.steps, si.explicit_rhs_evals, si.rhs_evals, si.nonlinear_iterations, si.linear_iterations,
+      (imex - ref).cwiseAbs().maxCoeff() / scale);
   EXPECT_LT((ark - ref).cwiseAbs().maxCoeff() / scale, 1e-7);
   EXPECT_LT((imex - ref).cwiseAbs().maxCoeff() / scale, 1e-7);
   EXPECT_LT((ref8 - ref).cwiseAbs().maxCoeff() / scale, 1e-5);
@@ -278,12 +284,11 @@ TEST(OdeReferences, FixedStepTensorMassConvergesToCvodeReference) {
       errs.push_back((im.displacement() - ref).cwiseAbs().maxCoeff() / scale);
     }
     const double order = std::log2(errs[2] / errs[3]);
-    std::printf("%-32s error vs CVODE dt=4e-4: %.3e, 2e-4: %.3e, 1e-4: %.3e, 5e-5: %.3e; order %.3f\n", c.name,
-                errs[0], errs[1], errs[2], errs[3], order);
+    std::printf("%-32s error vs CVODE dt=4e-4: %.3e, 2e-4: %.3e, 1e-4: %.3e, 5e-5: %.3e; order %.3f\n",
+                c.name, errs[0], errs[1], errs[2], errs[3], order);
     EXPECT_NEAR(order, c.order, 0.15) << c.name;
   }
 }
-
 
 // ------------------------------------------------------------------ tensor-mass quasi-static creep (IDA)
 
@@ -335,18 +340,21 @@ struct CreepCube {
 
 TEST(OdeReferences, StaticSolverConvergesToIdaQuasiStaticReference) {
   const CreepCube c;
-  const ViscoelasticOptions base{ViscoelasticOptions::History::Pk2, Integ::ExactLinear, ViscoelasticOptions::Relaxation::Full};
+  const ViscoelasticOptions base{ViscoelasticOptions::History::Pk2, Integ::ExactLinear,
+                                 ViscoelasticOptions::Relaxation::Full};
   // IDA reference at t = 0.1 k, k = 1..20
   std::vector<VecX> ref;
   IntegratorStats s;
   {
     ViscoelasticStVK model(c.mesh, c.mat, c.prony, base);
-    MechanicalSystem sys(model, lumped_dof_mass(c.node_mass), DirichletSet(c.mesh.num_points(), c.bc), c.loads);
+    MechanicalSystem sys(model, lumped_dof_mass(c.node_mass), DirichletSet(c.mesh.num_points(), c.bc),
+                         c.loads);
     TensorMassQuasiStaticDae dae(c.mesh, c.mat, c.prony, base, sys);
     DaeOptions o;
     o.rtol = 1e-10;
     o.atol_vector = dae.absolute_tolerances(1e-3 * o.rtol * 1e-4, 1e-3 * o.rtol * 200.0);
-    DaeIntegrator ida(dae, o, 0.0, dae.initial_state(0.0, VecX::Zero(dae.num_dofs())), VecX::Zero(dae.size()));
+    DaeIntegrator ida(dae, o, 0.0, dae.initial_state(0.0, VecX::Zero(dae.num_dofs())),
+                      VecX::Zero(dae.size()));
     VecX y, yp;
     for (int k = 1; k <= 20; ++k) {
       ida.advance(0.1 * k, y, yp);
@@ -356,8 +364,9 @@ TEST(OdeReferences, StaticSolverConvergesToIdaQuasiStaticReference) {
   }
   double scale = 0.0;
   for (const VecX& r : ref) scale = std::max(scale, r.cwiseAbs().maxCoeff());
-  std::printf("IDA quasi-static creep rtol 1e-10: steps %ld residuals %ld newton %ld jacobians %ld; max |u| %.3e m\n",
-              s.steps, s.rhs_evals, s.nonlinear_iterations, s.jacobian_evals, scale);
+  std::printf(
+      "IDA quasi-static creep rtol 1e-10: steps %ld residuals %ld newton %ld jacobians %ld; max |u| %.3e m\n",
+      s.steps, s.rhs_evals, s.nonlinear_iterations, s.jacobian_evals, scale);
   const struct {
     Integ integ;
     const char* name;
@@ -373,23 +382,24 @@ TEST(OdeReferences, StaticSolverConvergesToIdaQuasiStaticReference) {
       ViscoelasticOptions opt = base;
       opt.integration = cs.integ;
       ViscoelasticStVK model(c.mesh, c.mat, c.prony, opt);
-      MechanicalSystem sys(model, lumped_dof_mass(c.node_mass), DirichletSet(c.mesh.num_points(), c.bc), c.loads);
+      MechanicalSystem sys(model, lumped_dof_mass(c.node_mass), DirichletSet(c.mesh.num_points(), c.bc),
+                           c.loads);
       StaticSolver solver(sys, NewtonOptions{40, 1e-11, 1e-15, true, 12});
       VecX u = VecX::Zero(sys.num_dofs());
       double e = 0.0;
       for (int k = 1; k <= 20 * per; ++k) {
         solver.advance((k - 1) * dt, k * dt, u);
-        if (k % per == 0) e = std::max(e, (u - ref[static_cast<std::size_t>(k / per - 1)]).cwiseAbs().maxCoeff());
+        if (k % per == 0)
+          e = std::max(e, (u - ref[static_cast<std::size_t>(k / per - 1)]).cwiseAbs().maxCoeff());
       }
       errs.push_back(e / scale);
     }
     const double order = std::log2(errs[2] / errs[3]);
-    std::printf("%-24s error vs IDA dt=0.1: %.3e, 0.05: %.3e, 0.025: %.3e, 0.0125: %.3e; order %.3f\n", cs.name,
-                errs[0], errs[1], errs[2], errs[3], order);
+    std::printf("%-24s error vs IDA dt=0.1: %.3e, 0.05: %.3e, 0.025: %.3e, 0.0125: %.3e; order %.3f\n",
+                cs.name, errs[0], errs[1], errs[2], errs[3], order);
     EXPECT_NEAR(order, cs.order, 0.15) << cs.name;
   }
 }
-
 
 // ------------------------------------------------------------------ multirate (MRIStep)
 
@@ -413,8 +423,8 @@ TEST(OdeReferences, MriStepConvergesAtItsSlowOrder) {
         scale = std::max(scale, ex.cwiseAbs().maxCoeff());
       }
       const IntegratorStats st = mri.stats();
-      std::printf("oscillator MRIStep slow step %.3f: error %.3e, slow steps %ld, fast steps %ld\n", hs, e / scale,
-                  st.steps, st.fast_steps);
+      std::printf("oscillator MRIStep slow step %.3f: error %.3e, slow steps %ld, fast steps %ld\n", hs,
+                  e / scale, st.steps, st.fast_steps);
       errs.push_back(e / scale);
     }
     const double order = std::log2(errs[2] / errs[3]);
@@ -425,7 +435,8 @@ TEST(OdeReferences, MriStepConvergesAtItsSlowOrder) {
   // slow history update and a fast haptic-rate mechanics loop), against CVODE at rtol 1e-10.
   {
     const Block b;
-    const ViscoelasticOptions opt{ViscoelasticOptions::History::Pk2, Integ::ExactLinear, ViscoelasticOptions::Relaxation::Full};
+    const ViscoelasticOptions opt{ViscoelasticOptions::History::Pk2, Integ::ExactLinear,
+                                  ViscoelasticOptions::Relaxation::Full};
     const double t_end = 0.02;
     IntegratorStats sref;
     const VecX ref = reference_solution(b, opt, OdeMethod::CvodeBdf, 1e-10, t_end, &sref);
@@ -439,13 +450,16 @@ TEST(OdeReferences, MriStepConvergesAtItsSlowOrder) {
       o.rtol = 1e-10;
       o.atol_vector = ode.absolute_tolerances(1e-16, 1e-13, 1e-9);
       o.slow_step = hs;
-      OdeIntegrator mri(ode, OdeMethod::ArkodeMri, o, 0.0, ode.initial_state(0.0, VecX::Zero(ode.num_dofs()), b.v0));
+      OdeIntegrator mri(ode, OdeMethod::ArkodeMri, o, 0.0,
+                        ode.initial_state(0.0, VecX::Zero(ode.num_dofs()), b.v0));
       VecX y;
       mri.advance(t_end, y);
       const IntegratorStats st = mri.stats();
       errs.push_back((ode.displacement(t_end, y) - ref).cwiseAbs().maxCoeff() / scale);
-      std::printf("tensor-mass MRIStep slow step %.0e: error vs CVODE %.3e, slow steps %ld (f_S %ld), fast steps %ld (f_F %ld)\n",
-                  hs, errs.back(), st.steps, st.rhs_evals, st.fast_steps, st.fast_rhs_evals);
+      std::printf(
+          "tensor-mass MRIStep slow step %.0e: error vs CVODE %.3e, slow steps %ld (f_S %ld), fast steps %ld "
+          "(f_F %ld)\n",
+          hs, errs.back(), st.steps, st.rhs_evals, st.fast_steps, st.fast_rhs_evals);
     }
     const double order = std::log2(errs[1] / errs[2]);
     std::printf("tensor-mass MRIStep observed slow order %.3f\n", order);

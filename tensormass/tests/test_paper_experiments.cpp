@@ -34,7 +34,8 @@ TEST(PaperExperiments, EveryRunOfEveryFigureIsAValidCase) {
   EXPECT_EQ(paper_figure("fig6", params, kParams).runs.size(), 6u);
   EXPECT_EQ(paper_figure("fig7", params, kParams).runs.size(), 6u);
   // The seed runs use the paper's recursion, the objective ones the PK2 form.
-  const CaseConfig seed = parse_case(paper_figure("fig6", params, kParams).runs.front().case_doc, kParams, {kRoot});
+  const CaseConfig seed =
+      parse_case(paper_figure("fig6", params, kParams).runs.front().case_doc, kParams, {kRoot});
   EXPECT_EQ(seed.material.viscoelastic.history, "nodal_force");
   EXPECT_EQ(seed.material.viscoelastic.integration, "midpoint");
 }

@@ -25,7 +25,8 @@ TEST(PicinbonoStorage, EntityCountsOfAKuhnCube) {
                    static_cast<long>(pic.num_triangles()) - static_cast<long>(pic.num_tets());
   EXPECT_EQ(chi, 1);
   std::printf("%ld tets: storage %zu bytes (%.0f B/tet)\n", static_cast<long>(pic.num_tets()),
-              pic.storage_bytes(), static_cast<double>(pic.storage_bytes()) / static_cast<double>(pic.num_tets()));
+              pic.storage_bytes(),
+              static_cast<double>(pic.storage_bytes()) / static_cast<double>(pic.num_tets()));
 }
 
 TEST(PicinbonoStorage, EqualsRelativeFormAtRestScale) {

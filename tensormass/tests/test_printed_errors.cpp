@@ -46,8 +46,8 @@ enum class DForm { kCorrectProduct, kPrintedSum };
 
 /// Tensors from vectors g_j with overall factors (fB, fC, fD): with g = a and f = (V, V, V) these
 /// are the corrected tensors of errata eq. 3; with g = alpha (eq. 6) and f = (1, 1, 1) the printed.
-FullTensors make_tensors(const std::array<Vec3, 4>& g, double lam, double mu, double fB, double fC,
-                         double fD, DForm dform) {
+FullTensors make_tensors(const std::array<Vec3, 4>& g, double lam, double mu, double fB, double fC, double fD,
+                         DForm dform) {
   FullTensors T;
   double d[4][4];
   for (int j = 0; j < 4; ++j)
@@ -118,10 +118,11 @@ TEST(PrintedErrors, Eq5ShearModulus) {
   const double G = E / (2.0 * (1.0 + nu));
   const Mat3 Pc = stress(correct, uniaxial), Pp = stress(printed, uniaxial);
   const Mat3 Sc = stress(correct, shear), Sp = stress(printed, shear);
-  std::printf("uniaxial: sigma_xx/(E eps) corrected %.6f printed %.6f; sigma_yy/(E eps) corrected %.1e "
-              "printed %.3f\nshear: sigma_xy/(G gamma) corrected %.6f printed %.6f\n",
-              Pc(0, 0) / (E * eps), Pp(0, 0) / (E * eps), Pc(1, 1) / (E * eps), Pp(1, 1) / (E * eps),
-              Sc(0, 1) / (G * eps), Sp(0, 1) / (G * eps));
+  std::printf(
+      "uniaxial: sigma_xx/(E eps) corrected %.6f printed %.6f; sigma_yy/(E eps) corrected %.1e "
+      "printed %.3f\nshear: sigma_xy/(G gamma) corrected %.6f printed %.6f\n",
+      Pc(0, 0) / (E * eps), Pp(0, 0) / (E * eps), Pc(1, 1) / (E * eps), Pp(1, 1) / (E * eps),
+      Sc(0, 1) / (G * eps), Sp(0, 1) / (G * eps));
   EXPECT_NEAR(Pc(0, 0) / (E * eps), 1.0, 1e-5);
   EXPECT_NEAR(Pc(1, 1) / (E * eps), 0.0, 1e-5);
   EXPECT_NEAR(Sc(0, 1) / (G * eps), 1.0, 1e-5);
@@ -177,7 +178,8 @@ TEST(PrintedErrors, Eq6AlphaNormalisation) {
                      t.U)
             .total();
     EXPECT_LT(rel_err(w_scaled, oracle_at[i]), 1e-12);
-    printed_at[i] = energy_terms(make_tensors(alpha, mat.lambda, mat.mu, 1, 1, 1, DForm::kCorrectProduct), t.U);
+    printed_at[i] =
+        energy_terms(make_tensors(alpha, mat.lambda, mat.mu, 1, 1, 1, DForm::kCorrectProduct), t.U);
     std::printf("scale %.0f: oracle W = %.4e J, alpha with factors rel. err %.1e, printed W = %.4e\n",
                 scales[i], oracle_at[i], rel_err(w_scaled, oracle_at[i]), printed_at[i].total());
     EXPECT_GT(rel_err(printed_at[i].total(), oracle_at[i]), 0.5);

@@ -19,7 +19,8 @@ void expect_error(F f, std::initializer_list<const char*> fragments) {
     FAIL() << "expected tmlab::Error";
   } catch (const Error& e) {
     const std::string msg = e.what();
-    for (const char* frag : fragments) EXPECT_NE(msg.find(frag), std::string::npos) << "'" << frag << "' not in: " << msg;
+    for (const char* frag : fragments)
+      EXPECT_NE(msg.find(frag), std::string::npos) << "'" << frag << "' not in: " << msg;
   }
 }
 
@@ -60,7 +61,11 @@ TEST(PronySeries, ValidationNamesTheTermAndValue) {
   expect_error([] { PronySeries::from_long_term({1.0, 2.0}, {1.0}); }, {"2 weights", "1 relaxation"});
   expect_error([] { PronySeries::from_long_term({1.0, 2.0}, {1.0, -1.0}); }, {"term 1", "tau = -1", "> 0"});
   expect_error([] { PronySeries::from_long_term({1.0}, {0.0}); }, {"term 0", "tau = 0"});
-  expect_error([] { PronySeries::from_long_term({1.0, -0.5}, {1.0, 1.0}); }, {"term 1", "alpha = -0.5", ">= 0"});
+  expect_error(
+      [] {
+        PronySeries::from_long_term({1.0, -0.5}, {1.0, 1.0});
+      },
+      {"term 1", "alpha = -0.5", ">= 0"});
   expect_error([&] { PronySeries::from_long_term({nan}, {1.0}); }, {"term 0", "not finite"});
   expect_error([&] { PronySeries::from_long_term({1.0}, {inf}); }, {"term 0", "tau", "not finite"});
   expect_error([] { PronySeries::from_instantaneous({0.6, 0.4}, {1.0, 2.0}); }, {"sum to 1", "< 1"});
@@ -70,7 +75,8 @@ TEST(PronySeries, ValidationNamesTheTermAndValue) {
 
 TEST(PronySeries, JsonBothConventionsAndStrictKeys) {
   const auto lt = PronySeries::from_json(
-      nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1.5, "tau": 0.2}]})"), "p.json");
+      nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1.5, "tau": 0.2}]})"),
+      "p.json");
   EXPECT_DOUBLE_EQ(lt.alpha(0), 1.5);
   EXPECT_DOUBLE_EQ(lt.tau(0), 0.2);
   const auto in = PronySeries::from_json(
@@ -83,22 +89,61 @@ TEST(PronySeries, JsonBothConventionsAndStrictKeys) {
   EXPECT_EQ(rt.alpha(), in.alpha());
   EXPECT_EQ(rt.tau(), in.tau());
 
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1, "tau": 1}], "extra": 1})"), "p.json", "material.prony"); },
-               {"p.json", "material.prony.extra", "unknown"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1, "tau": 1, "taux": 2}]})"), "p.json"); },
-               {"terms[0].taux", "unknown"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "nava", "terms": [{"weight": 1, "tau": 1}]})"), "p.json"); },
-               {"'convention'", "long_term"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": []})"), "p.json"); },
-               {"'terms'", "non-empty"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1, "tau": -2}]})"), "p.json"); },
-               {"terms[0].tau", "> 0"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": -1, "tau": 2}]})"), "p.json"); },
-               {"terms[0].weight", ">= 0"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"convention": "instantaneous", "terms": [{"weight": 0.7, "tau": 1}, {"weight": 0.3, "tau": 2}]})"), "p.json"); },
-               {"p.json", "terms", "< 1"});
-  expect_error([] { PronySeries::from_json(nlohmann::json::parse(R"({"terms": [{"weight": 1, "tau": 1}]})"), "p.json"); },
-               {"'convention'", "required"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(
+                R"({"convention": "long_term", "terms": [{"weight": 1, "tau": 1}], "extra": 1})"),
+            "p.json", "material.prony");
+      },
+      {"p.json", "material.prony.extra", "unknown"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(
+                R"({"convention": "long_term", "terms": [{"weight": 1, "tau": 1, "taux": 2}]})"),
+            "p.json");
+      },
+      {"terms[0].taux", "unknown"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(R"({"convention": "nava", "terms": [{"weight": 1, "tau": 1}]})"), "p.json");
+      },
+      {"'convention'", "long_term"});
+  expect_error(
+      [] {
+        PronySeries::from_json(nlohmann::json::parse(R"({"convention": "long_term", "terms": []})"),
+                               "p.json");
+      },
+      {"'terms'", "non-empty"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": 1, "tau": -2}]})"),
+            "p.json");
+      },
+      {"terms[0].tau", "> 0"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(R"({"convention": "long_term", "terms": [{"weight": -1, "tau": 2}]})"),
+            "p.json");
+      },
+      {"terms[0].weight", ">= 0"});
+  expect_error(
+      [] {
+        PronySeries::from_json(
+            nlohmann::json::parse(
+                R"({"convention": "instantaneous", "terms": [{"weight": 0.7, "tau": 1}, {"weight": 0.3, "tau": 2}]})"),
+            "p.json");
+      },
+      {"p.json", "terms", "< 1"});
+  expect_error(
+      [] {
+        PronySeries::from_json(nlohmann::json::parse(R"({"terms": [{"weight": 1, "tau": 1}]})"), "p.json");
+      },
+      {"'convention'", "required"});
 }
 
 }  // namespace

@@ -45,7 +45,8 @@ struct Cantilever {
     grav.acceleration = g;
     grav.function = gravity_function;
     loads.add(grav);
-    return MechanicalSystem(*model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), {fixed}), loads, damping);
+    return MechanicalSystem(*model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), {fixed}),
+                            loads, damping);
   }
 };
 
@@ -202,8 +203,12 @@ TEST(Newton, PrescribedDisplacementIsReachedAndReactionBalancesLoad) {
   tip.value = 0.04;
   NodeSelector clamp = tip;
   clamp.value = 0.0;
-  DirichletCondition fixed{"clamp", select_nodes(c.mesh, clamp), {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
-  DirichletCondition pushed{"tip", select_nodes(c.mesh, tip), {false, false, true}, Vec3(0, 0, -0.005),
+  DirichletCondition fixed{
+      "clamp", select_nodes(c.mesh, clamp), {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
+  DirichletCondition pushed{"tip",
+                            select_nodes(c.mesh, tip),
+                            {false, false, true},
+                            Vec3(0, 0, -0.005),
                             TimeFunction::ramp(0.0, 1.0)};
   const VecX nm = lumped_node_mass(c.mesh, c.density);
   MechanicalSystem sys(*c.model, lumped_dof_mass(nm), DirichletSet(c.mesh.num_points(), {fixed, pushed}),
@@ -239,7 +244,8 @@ TEST(ExternalLoads, DeadPressureAndTractionResultantsAndFollowerStiffnessByFinit
 
   // A dead traction vector: its resultant is traction * reference area.
   ExternalLoads trac(mesh, VecX::Ones(mesh.num_points()));
-  trac.add(SurfaceTraction{"top", select_faces(mesh, top), Vec3(10.0, -20.0, 5.0), TimeFunction::ramp(0.0, 2.0)});
+  trac.add(
+      SurfaceTraction{"top", select_faces(mesh, top), Vec3(10.0, -20.0, 5.0), TimeFunction::ramp(0.0, 2.0)});
   trac.assemble(VecX::Zero(3 * mesh.num_points()), 1.0, f);
   Vec3 ttotal = Vec3::Zero();
   for (Index i = 0; i < mesh.num_points(); ++i) ttotal += f.segment<3>(3 * i);
@@ -276,13 +282,15 @@ TEST(StaticSolver, FollowerPressureConvergesAndDiffersFromDeadLoad) {
   bottom.axis = top.axis = 2;
   bottom.value = 0.0;
   top.value = 0.01;
-  DirichletCondition fixed{"bottom", select_nodes(mesh, bottom), {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
+  DirichletCondition fixed{
+      "bottom", select_nodes(mesh, bottom), {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
   const VecX nm = lumped_node_mass(mesh, 1000.0);
   auto solve = [&](double p, bool follower, int* iterations) {
     ExternalLoads loads(mesh, nm);
     // A tilted pressure patch: the top face pushed in, with a shear load that rotates it.
     loads.add(SurfacePressure{"top", select_faces(mesh, top), p, follower, TimeFunction::ramp(0.0, 1.0)});
-    loads.add(NodalForce{"shear", select_nodes(mesh, top), Vec3(p * 1e-5, 0, 0), TimeFunction::ramp(0.0, 1.0)});
+    loads.add(
+        NodalForce{"shear", select_nodes(mesh, top), Vec3(p * 1e-5, 0, 0), TimeFunction::ramp(0.0, 1.0)});
     MechanicalSystem sys(model, lumped_dof_mass(nm), DirichletSet(mesh.num_points(), {fixed}), loads);
     StaticSolver solver(sys, NewtonOptions{});
     VecX u = VecX::Zero(sys.num_dofs());
@@ -327,7 +335,8 @@ TEST(TimeFunction, ValuesAndErrors) {
   EXPECT_DOUBLE_EQ(TimeFunction::smooth_ramp(0, 1)(0.5), 0.5);
   EXPECT_DOUBLE_EQ(TimeFunction::table({{0, 0}, {1, 2}, {2, 0}})(1.5), 1.0);
   EXPECT_THROW(TimeFunction::ramp(1, 1), Error);
-  EXPECT_THROW(TimeFunction::from_json(nlohmann::json{{"type", "ramp"}, {"t1", 1.0}, {"bogus", 1}}, "f"), Error);
+  EXPECT_THROW(TimeFunction::from_json(nlohmann::json{{"type", "ramp"}, {"t1", 1.0}, {"bogus", 1}}, "f"),
+               Error);
   EXPECT_THROW(TimeFunction::from_json(nlohmann::json{{"type", "nope"}}, "f"), Error);
   const auto f = TimeFunction::from_json(nlohmann::json{{"type", "sine"}, {"frequency", 2.0}}, "f");
   EXPECT_NEAR(f(0.125), 1.0, 1e-15);

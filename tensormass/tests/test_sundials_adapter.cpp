@@ -174,7 +174,8 @@ TEST(SundialsAdapter, IdaSolvesSemiExplicitIndexOneDae) {
     err = std::max({err, std::abs(y[0] - std::sin(t)), std::abs(y[1] - (1.0 - std::cos(t)))});
   }
   const IntegratorStats s = ida.stats();
-  std::printf("IDA: steps %ld residuals %ld newton %ld: max error %.2e\n", s.steps, s.rhs_evals, s.nonlinear_iterations, err);
+  std::printf("IDA: steps %ld residuals %ld newton %ld: max error %.2e\n", s.steps, s.rhs_evals,
+              s.nonlinear_iterations, err);
   EXPECT_LT(err, 1e-7);
 }
 

@@ -97,8 +97,8 @@ TEST(TensorMass, RigidMotionsGiveZeroForce) {
   tm.internal_force(testing::random_displacement(m.num_points(), 0.5 * h, rng), fref);
   const VecX zero = VecX::Zero(tm.num_dofs());
   for (double angle : {0.0, 0.5, 1.5, 3.0}) {
-    const VecX u = testing::rigidly_moved(m, zero, testing::rotation(Vec3(-1, 2, 0.5), angle),
-                                          Vec3(0.1, 0.3, -0.2));
+    const VecX u =
+        testing::rigidly_moved(m, zero, testing::rotation(Vec3(-1, 2, 0.5), angle), Vec3(0.1, 0.3, -0.2));
     VecX f;
     tm.internal_force(u, f);
     std::printf("rigid motion, angle %.1f: |f|/|f_ref| = %.1e, W = %.1e\n", angle, f.norm() / fref.norm(),

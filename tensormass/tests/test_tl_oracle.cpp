@@ -76,8 +76,8 @@ TEST(TLOracle, TangentIsCentralDifferenceOfForceStepStudy) {
       }
       errs.push_back((fd - K).norm() / K.norm());
     }
-    std::printf("tangent FD rel. error, h = 1e-2..1e-5: %.2e %.2e %.2e %.2e\n", errs[0], errs[1],
-                errs[2], errs[3]);
+    std::printf("tangent FD rel. error, h = 1e-2..1e-5: %.2e %.2e %.2e %.2e\n", errs[0], errs[1], errs[2],
+                errs[3]);
     EXPECT_NEAR(errs[0] / errs[1], 100.0, 5.0);
     EXPECT_NEAR(errs[1] / errs[2], 100.0, 20.0);
     EXPECT_LT(*std::min_element(errs.begin(), errs.end()), 1e-8);
@@ -98,8 +98,8 @@ TEST(TLOracle, RigidMotionsGiveZeroForce) {
   model.internal_force(testing::random_displacement(m.num_points(), 0.5 * 0.01, rng), fref);
   const VecX zero = VecX::Zero(model.num_dofs());
   for (double angle : {0.0, 0.3, 2.0, 3.1}) {
-    const VecX u = testing::rigidly_moved(m, zero, testing::rotation(Vec3(1, 2, 3), angle),
-                                          Vec3(0.3, -0.2, 0.05));
+    const VecX u =
+        testing::rigidly_moved(m, zero, testing::rotation(Vec3(1, 2, 3), angle), Vec3(0.3, -0.2, 0.05));
     VecX f;
     model.internal_force(u, f);
     std::printf("rigid motion, angle %.1f: |f|/|f_ref| = %.2e, W = %.2e\n", angle, f.norm() / fref.norm(),

@@ -13,12 +13,12 @@
 #include "tmlab/tensormass/tensor_mass.hpp"
 #include "tmlab/tensormass/viscoelastic_model.hpp"
 
-#include <Eigen/Geometry>
 #include <gtest/gtest.h>
+#include <Eigen/Geometry>
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <chrono>
 #include <functional>
 #include <memory>
 #include <random>
@@ -50,21 +50,11 @@ std::vector<Opt> all_variants() {
 }
 
 std::vector<Index> plane_nodes(const Mesh& mesh, int axis, double value) {
-  NodeSelector s;
-  s.kind = NodeSelector::Kind::Plane;
-  s.axis = axis;
-  s.value = value;
-  s.tol = 1e-12;
-  return select_nodes(mesh, s);
+  return select_nodes(mesh, NodeSelector::plane(axis, value, 1e-12));
 }
 
 std::vector<Tri> plane_faces(const Mesh& mesh, int axis, double value) {
-  NodeSelector s;
-  s.kind = NodeSelector::Kind::Plane;
-  s.axis = axis;
-  s.value = value;
-  s.tol = 1e-12;
-  return select_faces(mesh, s);
+  return select_faces(mesh, NodeSelector::plane(axis, value, 1e-12));
 }
 
 /// Roller (symmetry) conditions on the planes x = 0, y = 0, z = 0.
@@ -191,7 +181,9 @@ struct Uniaxial {
     double y = Y(pk2, eps_max * ramp(t));
     for (std::size_t j = 0; j < p.size(); ++j) {
       const double tau = p.tau(j);
-      auto g = [&](double s) { return std::exp(-(t - s) / tau) * dY(pk2, eps_max * ramp(s)) * eps_max * ramp_rate(s); };
+      auto g = [&](double s) {
+        return std::exp(-(t - s) / tau) * dY(pk2, eps_max * ramp(s)) * eps_max * ramp_rate(s);
+      };
       y += p.alpha(j) * gauss(g, 0.0, std::min(t, t_r));
     }
     return L * L * E_inf * m(pk2, eps_max * ramp(t)) * y;
@@ -257,7 +249,8 @@ void report(const std::string& name, const OrderStudy& s) {
   std::printf("%-44s errors", name.c_str());
   for (double e : s.errors) std::printf(" %.3e", e);
   std::printf("  order %.3f\n", s.order);
-  ::testing::Test::RecordProperty(name, "finest " + std::to_string(s.errors.back()) + " order " + std::to_string(s.order));
+  ::testing::Test::RecordProperty(
+      name, "finest " + std::to_string(s.errors.back()) + " order " + std::to_string(s.order));
 }
 
 /// Issue test (1a): relaxation after a smooth stretch ramp, against the exact hereditary integral.
@@ -332,7 +325,8 @@ TEST(ViscoelasticStVK, CreepReferenceReducesToThreeParameterSolid) {
   cube.t_end = 3.0;
   cube.traction = 1e-7 * cube.E_inf;
   const double alpha = 1.0, tau = 0.5;
-  const std::vector<double> eps = cube.creep_strain(PronySeries::from_long_term({alpha}, {tau}), true, 0.1, 4000);
+  const std::vector<double> eps =
+      cube.creep_strain(PronySeries::from_long_term({alpha}, {tau}), true, 0.1, 4000);
   for (int k = 5; k <= 30; k += 5) {
     const double t = 0.1 * k;
     const double lin = 1e-7 * (1.0 - alpha / (1.0 + alpha) * std::exp(-t / (tau * (1.0 + alpha))));
@@ -392,7 +386,8 @@ TEST(ViscoelasticStVK, RigidRotationDuringRelaxation) {
         scale_el = std::max(scale_el, f_el.segment<3>(3 * i).norm());
       }
       const double rel = spurious / scale, rel_el = spurious / scale_el;
-      std::printf("rotation %-36s spurious/|f| = %.3e, spurious/|f_elastic| = %.3e\n", label(opt).c_str(), rel, rel_el);
+      std::printf("rotation %-36s spurious/|f| = %.3e, spurious/|f_elastic| = %.3e\n", label(opt).c_str(),
+                  rel, rel_el);
       RecordProperty("spurious " + label(opt), std::to_string(rel));
       if (h == Hist::Pk2) {
         EXPECT_LE(rel, 1e-10) << label(opt);
@@ -431,8 +426,8 @@ TEST(ViscoelasticStVK, VolumeCreepsWithFullRelaxationOnlyUnderPressure) {
       ExternalLoads loads(mesh, node_mass);
       for (int a = 0; a < 3; ++a)
         loads.add(SurfacePressure{"p", plane_faces(mesh, a, L), 200.0, false, TimeFunction::ramp(0.0, dt)});
-      MechanicalSystem sys(model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), symmetry_planes(mesh)),
-                           loads);
+      MechanicalSystem sys(model, lumped_dof_mass(node_mass),
+                           DirichletSet(mesh.num_points(), symmetry_planes(mesh)), loads);
       StaticSolver solver(sys, NewtonOptions{40, 1e-12, 1e-14, true, 12});
       VecX u = VecX::Zero(sys.num_dofs());
       const double V0 = L * L * L;
@@ -444,8 +439,8 @@ TEST(ViscoelasticStVK, VolumeCreepsWithFullRelaxationOnlyUnderPressure) {
         if (k == 1) dv_first = dv;
       }
       const double ratio = dv / dv_first;
-      std::printf("pressure %-36s dV(t_r)/V0 = %.6e  dV(t_end)/dV(t_r) = %.12f\n", label(opt).c_str(), dv_first / V0,
-                  ratio);
+      std::printf("pressure %-36s dV(t_r)/V0 = %.6e  dV(t_end)/dV(t_r) = %.12f\n", label(opt).c_str(),
+                  dv_first / V0, ratio);
       RecordProperty("volume ratio " + label(opt), std::to_string(ratio));
       EXPECT_LT(dv_first, 0.0);
       if (relax == Relax::Full) {
@@ -466,8 +461,8 @@ TEST(ViscoelasticStVK, DeviatoricRelaxationRelaxesUniaxialForce) {
   const std::size_t i_r = 19, i_end = full.force.size() - 1;  // t = 1 (end of ramp), t = 3
   EXPECT_LT(dev.force[i_end], 0.9 * dev.force[i_r]);
   EXPECT_LT(full.force[i_end], dev.force[i_end]);  // full relaxation relaxes more
-  std::printf("uniaxial relaxation f(3)/f(1): full %.4f deviatoric %.4f\n", full.force[i_end] / full.force[i_r],
-              dev.force[i_end] / dev.force[i_r]);
+  std::printf("uniaxial relaxation f(3)/f(1): full %.4f deviatoric %.4f\n",
+              full.force[i_end] / full.force[i_r], dev.force[i_end] / dev.force[i_r]);
 }
 
 // ------------------------------------------------------------------ trial / commit semantics
@@ -485,7 +480,8 @@ struct Block {
       for (int c = 0; c < 3; ++c) G(r, c) = amp * pseudo(r + 3 * c, k);
     for (Index i = 0; i < mesh.num_points(); ++i) {
       const Vec3& X = mesh.points[i];
-      u.segment<3>(3 * i) = G * X + 0.3 * amp * 0.01 * Vec3(pseudo(i, 3 * k), pseudo(i, 3 * k + 1), pseudo(i, 3 * k + 2));
+      u.segment<3>(3 * i) =
+          G * X + 0.3 * amp * 0.01 * Vec3(pseudo(i, 3 * k), pseudo(i, 3 * k + 1), pseudo(i, 3 * k + 2));
     }
     return u;
   }
@@ -498,7 +494,9 @@ struct Block {
   }
 };
 
-std::vector<double> values(const SpMat& K) { return std::vector<double>(K.valuePtr(), K.valuePtr() + K.nonZeros()); }
+std::vector<double> values(const SpMat& K) {
+  return std::vector<double>(K.valuePtr(), K.valuePtr() + K.nonZeros());
+}
 
 /// Issue test (4): evaluating a step many times leaves the committed state alone; a rejected step
 /// followed by a smaller one equals doing the smaller one directly (bit for bit).
@@ -509,7 +507,8 @@ TEST(ViscoelasticStVK, TrialEvaluationsDoNotTouchCommittedStateAndRejectedStepsL
     b.load_history(a);
     b.load_history(direct);
     const std::vector<double> hist = a.committed_history(), drv = a.committed_driver();
-    const double w_el = a.committed_elastic_energy(), w_br = a.committed_branch_energy(), d = a.total_dissipation();
+    const double w_el = a.committed_elastic_energy(), w_br = a.committed_branch_energy(),
+                 d = a.total_dissipation();
     // The rejected attempt: a large step, many Newton-like evaluations at different u.
     a.begin_step(0.8);
     VecX f, Kv;
@@ -567,7 +566,8 @@ TEST(ViscoelasticStVK, CommitResetsTrialToCommittedState) {
     m.commit_step(u);
     m.internal_force(u, f1);
     EXPECT_EQ(m.step_dissipation(), 0.0);
-    for (std::size_t k = 0; k < h.size(); ++k) EXPECT_NEAR(m.committed_history()[k], h[k], 1e-12 * (1 + std::abs(h[k])));
+    for (std::size_t k = 0; k < h.size(); ++k)
+      EXPECT_NEAR(m.committed_history()[k], h[k], 1e-12 * (1 + std::abs(h[k])));
     EXPECT_LT((f1 - f0).norm(), 1e-12 * f0.norm()) << label(opt);
   }
 }
@@ -576,7 +576,8 @@ TEST(ViscoelasticStVK, CommitResetsTrialToCommittedState) {
 TEST(ViscoelasticStVK, InstantaneousResponseUsesInstantaneousModulus) {
   const Block b;
   const double E_inf = b.mat.young(), nu = b.mat.poisson();
-  const TensorMassStVK inst(b.mesh, StVenantKirchhoff::from_young_poisson(b.prony.instantaneous_modulus(E_inf), nu));
+  const TensorMassStVK inst(b.mesh,
+                            StVenantKirchhoff::from_young_poisson(b.prony.instantaneous_modulus(E_inf), nu));
   const VecX u = b.field(0.1, 7);
   VecX fi, fv;
   inst.internal_force(u, fi);
@@ -705,7 +706,8 @@ TEST(ViscoelasticStVK, ForceAndTangentAreDerivativesOfTrialPotential) {
     m.tangent_apply(u, dir, Kd);
     const double err_K = (K * dir - dF).norm() / dF.norm();
     const double err_Kv = (Kd - dF).norm() / dF.norm();
-    std::printf("FD %-36s force %.2e tangent %.2e tangent_apply %.2e\n", label(opt).c_str(), err_f, err_K, err_Kv);
+    std::printf("FD %-36s force %.2e tangent %.2e tangent_apply %.2e\n", label(opt).c_str(), err_f, err_K,
+                err_Kv);
     EXPECT_LT(err_f, 1e-7) << label(opt);
     EXPECT_LT(err_K, 1e-7) << label(opt);
     EXPECT_LT(err_Kv, 1e-7) << label(opt);
@@ -730,7 +732,8 @@ TEST(ViscoelasticStVK, DynamicSolversDriveTheHistory) {
   clamp.name = "clamp";
   clamp.nodes = plane_nodes(b.mesh, 0, 0.0);
   VecX v0(3 * b.mesh.num_points());
-  for (Index i = 0; i < b.mesh.num_points(); ++i) v0.segment<3>(3 * i) = Vec3(0, 0, 0.05 * b.mesh.points[i].x() / 0.02);
+  for (Index i = 0; i < b.mesh.num_points(); ++i)
+    v0.segment<3>(3 * i) = Vec3(0, 0, 0.05 * b.mesh.points[i].x() / 0.02);
   for (Index n : clamp.nodes) v0.segment<3>(3 * n).setZero();
   const double ke0 = 0.5 * v0.dot(lumped_dof_mass(node_mass).cwiseProduct(v0));
   const double t_end = 0.1;
@@ -762,7 +765,8 @@ TEST(ViscoelasticStVK, DynamicSolversDriveTheHistory) {
       ImplicitDynamics im(sys, ImplicitScheme::Newmark, NewtonOptions{});
       im.initialize(0.0, VecX::Zero(v0.size()), v0);
       const double dt = 2e-4;
-      for (int k = 0; k < static_cast<int>(std::lround(t_end / dt)); ++k) EXPECT_TRUE(im.step(k * dt, dt).converged);
+      for (int k = 0; k < static_cast<int>(std::lround(t_end / dt)); ++k)
+        EXPECT_TRUE(im.step(k * dt, dt).converged);
       const double total = im.kinetic_energy() + m.committed_elastic_energy() + m.committed_branch_energy() +
                            m.total_dissipation();
       std::printf("newmark  %-32s dt %.2e: KE/KE0 %.3f, D/KE0 %.3f, balance %.2e\n", label(opt).c_str(), dt,
@@ -802,25 +806,33 @@ TEST(ViscoelasticStVK, ReportsEvaluationOverhead) {
   const double tk_el = best_of([&] { el.tangent(u, K); });
   std::printf("elastic tensor-mass: force %.3f ms, tangent %.3f ms (%d tets)\n", 1e3 * tf_el, 1e3 * tk_el,
               static_cast<int>(mesh.num_tets()));
-  for (const Opt& opt : {Opt{Hist::NodalForce, Integ::Midpoint, Relax::Full}, Opt{Hist::Pk2, Integ::Midpoint, Relax::Full},
-                         Opt{Hist::Pk2, Integ::Midpoint, Relax::Deviatoric}}) {
+  for (const Opt& opt :
+       {Opt{Hist::NodalForce, Integ::Midpoint, Relax::Full}, Opt{Hist::Pk2, Integ::Midpoint, Relax::Full},
+        Opt{Hist::Pk2, Integ::Midpoint, Relax::Deviatoric}}) {
     ViscoelasticStVK m(mesh, mat, prony, opt);
     m.begin_step(0.01);
     m.commit_step(u);
     m.begin_step(0.01);
     const double tf = best_of([&] { m.internal_force(u, f); });
     const double tk = best_of([&] { m.tangent(u, K); });
-    const double tc = best_of([&] { m.begin_step(0.01); m.commit_step(u); });
-    std::printf("%-26s force %.3f ms (x%.2f), tangent %.3f ms (x%.2f), begin+commit %.3f ms (%zu history doubles)\n",
-                label(opt).c_str(), 1e3 * tf, tf / tf_el, 1e3 * tk, tk / tk_el, 1e3 * tc,
-                m.committed_history().size() + m.committed_driver().size());
+    const double tc = best_of([&] {
+      m.begin_step(0.01);
+      m.commit_step(u);
+    });
+    std::printf(
+        "%-26s force %.3f ms (x%.2f), tangent %.3f ms (x%.2f), begin+commit %.3f ms (%zu history doubles)\n",
+        label(opt).c_str(), 1e3 * tf, tf / tf_el, 1e3 * tk, tk / tk_el, 1e3 * tc,
+        m.committed_history().size() + m.committed_driver().size());
     RecordProperty("force cost ratio " + label(opt), std::to_string(tf / tf_el));
     Opt lean = opt;
     lean.energy_bookkeeping = false;
     ViscoelasticStVK ml(mesh, mat, prony, lean);
-    const double tcl = best_of([&] { ml.begin_step(0.01); ml.commit_step(u); });
-    std::printf("%-26s begin+commit without energy bookkeeping %.3f ms (x%.2f of a force)\n", label(opt).c_str(),
-                1e3 * tcl, tcl / tf_el);
+    const double tcl = best_of([&] {
+      ml.begin_step(0.01);
+      ml.commit_step(u);
+    });
+    std::printf("%-26s begin+commit without energy bookkeeping %.3f ms (x%.2f of a force)\n",
+                label(opt).c_str(), 1e3 * tcl, tcl / tf_el);
   }
 }
 
@@ -897,8 +909,9 @@ TEST(ViscoelasticStVK, HysteresisLoopAreaEqualsDissipationPerCycle) {
       mismatch.push_back(std::abs(loop - diss) / diss);
     }
     const double p = std::log2(mismatch[1] / mismatch[2]);
-    std::printf("hysteresis %s: |loop - D|/D = %.3e %.3e %.3e (n = 40, 80, 160 steps per cycle), order %.2f\n",
-                Opt::to_string(scheme).c_str(), mismatch[0], mismatch[1], mismatch[2], p);
+    std::printf(
+        "hysteresis %s: |loop - D|/D = %.3e %.3e %.3e (n = 40, 80, 160 steps per cycle), order %.2f\n",
+        Opt::to_string(scheme).c_str(), mismatch[0], mismatch[1], mismatch[2], p);
     // The mismatch is time-discretisation error: the trapezoidal loop integral and the dissipation
     // quadrature are second order (measured 7.5e-3, 1.9e-3, 4.5e-4: order 2.06 for midpoint), even
     // for the first-order backward Euler history, whose loop and dissipation share its error.

@@ -5,12 +5,11 @@
 #include "tmlab/core/config_reader.hpp"
 #include "tmlab/core/mesh_generator.hpp"
 
+#include "cli_test_support.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <sys/wait.h>
-
-#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -19,36 +18,16 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status = -1;
-  std::string output;
-};
+using tmlab::cli_test::Result;
+using tmlab::cli_test::run;
 
-Result run(const std::string& args) {
-  const std::string cmd = std::string("TMLAB_ROOT='") + TMLAB_SOURCE_DIR + "' '" + TMLAB_CLI + "' " + args + " 2>&1";
-  Result r;
-  FILE* p = popen(cmd.c_str(), "r");
-  if (!p) return r;
-  std::array<char, 4096> buf{};
-  while (fgets(buf.data(), buf.size(), p)) r.output += buf.data();
-  const int st = pclose(p);
-  r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
-  return r;
-}
-
-class Cli : public ::testing::Test {
+class Cli : public tmlab::cli_test::TempDirTest {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tmlab_cli_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
+  Cli() : TempDirTest("tmlab_cli_") {}
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;
   }
-  fs::path dir_;
 };
 
 TEST_F(Cli, HelpAndUsageErrors) {
@@ -69,12 +48,14 @@ TEST_F(Cli, CasesListsTheShippedCases) {
 }
 
 TEST_F(Cli, EmbeddedDemoEqualsTheShippedCaseFile) {
-  const auto shipped = tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) + "/cases/liver-probe.json");
+  const auto shipped =
+      tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) + "/cases/liver-probe.json");
   EXPECT_EQ(nlohmann::json::parse(tmlab::cli::kDemoCase), shipped);
 }
 
 TEST_F(Cli, UnknownKeyInCaseFileIsNamed) {
-  tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 1, 1, 1), (dir_ / "m.msh").string());
+  tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 1, 1, 1),
+                      (dir_ / "m.msh").string());
   const fs::path c = write("c.json", R"({"name": "c", "mesh": {"file": "m.msh"},
     "material": {"E": 1000, "nu": 0.3, "density": 1000, "colour": "red"},
     "solver": {"type": "static"}})");
@@ -85,16 +66,18 @@ TEST_F(Cli, UnknownKeyInCaseFileIsNamed) {
 }
 
 TEST_F(Cli, MalformedMeshNamesFileAndLine) {
-  const fs::path m = write("bad.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 0 zero 0\n$EndNodes\n");
+  const fs::path m =
+      write("bad.msh", "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n2\n1 0 0 0\n2 0 zero 0\n$EndNodes\n");
   const Result r = run("mesh info '" + m.string() + "'");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("bad.msh:7"), std::string::npos) << r.output;
 }
 
 TEST_F(Cli, MeshCheckFailsOnInvertedTetAndRepairFixesIt) {
-  const fs::path m = write("inv.msh",
-                           "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
-                           "$Elements\n1\n1 4 2 0 1 1 3 2 4\n$EndElements\n");
+  const fs::path m =
+      write("inv.msh",
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
+            "$Elements\n1\n1 4 2 0 1 1 3 2 4\n$EndElements\n");
   const Result r = run("mesh check '" + m.string() + "'");
   EXPECT_EQ(r.status, 1);
   EXPECT_NE(r.output.find("first inverted: tet 0"), std::string::npos) << r.output;
@@ -129,7 +112,8 @@ TEST_F(Cli, CompareWritesTheDifferences) {
       continue;
     }
 #endif
-    const Result r = run("compare cube-uniaxial --against " + against + " --results '" + (dir_ / "res").string() + "'");
+    const Result r =
+        run("compare cube-uniaxial --against " + against + " --results '" + (dir_ / "res").string() + "'");
     ASSERT_EQ(r.status, 0) << r.output;
     std::ifstream in(dir_ / "res" / "cube-uniaxial" / "compare.json");
     const auto c = nlohmann::json::parse(in);
@@ -144,12 +128,14 @@ TEST_F(Cli, CompareWritesTheDifferences) {
 /// figure, its HDF5 curves and the energy table exist, and the objective scheme's energy balance
 /// (loop area = dissipated + stored) closes to the time-discretisation error.
 TEST_F(Cli, PaperFig7ProducesFigureAndClosesTheEnergyBalance) {
-  auto params = tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) + "/cases/paper/xu2011_liver.json");
+  auto params =
+      tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) + "/cases/paper/xu2011_liver.json");
   params["schemes"] = {"objective"};
   params["fig7"]["periods"] = {1.0};
   params["fig7"]["steps_per_cycle"] = 40;
   const fs::path pf = write("params.json", params.dump());
-  const Result r = run("paper fig7 --params '" + pf.string() + "' --results '" + (dir_ / "res").string() + "'");
+  const Result r =
+      run("paper fig7 --params '" + pf.string() + "' --results '" + (dir_ / "res").string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const fs::path d = dir_ / "res" / "paper" / "fig7";
   EXPECT_TRUE(fs::exists(d / "fig7.png"));
@@ -159,6 +145,64 @@ TEST_F(Cli, PaperFig7ProducesFigureAndClosesTheEnergyBalance) {
   ASSERT_EQ(e.size(), 1u);
   EXPECT_GT(e[0]["dissipation_J"].get<double>(), 0.0);
   EXPECT_LT(e[0]["relative_residual"].get<double>(), 5e-3) << e.dump();
+}
+
+}  // namespace
+
+namespace {
+
+// ------------------------------------------------------------------ tmlab verify
+
+TEST_F(Cli, VerifyListsSelectsAndRejectsUnknownCases) {
+  const Result list = run("verify --list");
+  EXPECT_EQ(list.status, 0) << list.output;
+  EXPECT_NE(list.output.find("kernel-patch-test"), std::string::npos) << list.output;
+  const Result unknown = run("verify --case no-such-case --results '" + dir_.string() + "'");
+  EXPECT_EQ(unknown.status, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("no-such-case"), std::string::npos) << unknown.output;
+  EXPECT_NE(unknown.output.find("kernel-patch-test"), std::string::npos)
+      << "lists the known cases: " << unknown.output;
+  EXPECT_EQ(run("verify --bogus").status, 2);
+}
+
+TEST_F(Cli, VerifyRunsACaseAndWritesACompleteReport) {
+  const Result r = run("verify --case kernel-patch-test --no-plots --results '" + dir_.string() + "'");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("[1/1] kernel-patch-test ... PASS"), std::string::npos) << r.output;
+  const fs::path out = dir_ / "verification";
+  for (const char* f : {"report.md", "report.html", "verification.json", "manifest.json", "summary.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  const auto j = nlohmann::json::parse(std::ifstream(out / "verification.json"));
+  ASSERT_EQ(j["cases"].size(), 1u);
+  EXPECT_EQ(j["cases"][0]["name"], "kernel-patch-test");
+  EXPECT_EQ(j["cases"][0]["status"], "pass");
+  EXPECT_TRUE(j["cases"][0]["error"].is_number());
+  EXPECT_TRUE(j["cases"][0]["tolerance"].is_number());
+}
+
+TEST_F(Cli, VerifyFailingCaseExitsNonZeroAndBadCaseFileIsNamed) {
+  // A copy of a real case with an impossible tolerance must fail (the harness can fail), and a case
+  // file with a misspelt key must be refused naming the file and key.
+  const fs::path cases = dir_ / "cases";
+  fs::create_directories(cases / "strict");
+  auto spec = tmlab::ConfigReader::parse_file(std::string(TMLAB_SOURCE_DIR) +
+                                              "/verification/cases/kernel-patch-test/verify.json");
+  spec["checks"][1]["max"] = -1.0;  // a relative residual can never be negative: this check must fail
+  std::ofstream(cases / "strict" / "verify.json") << spec.dump(1);
+  std::ofstream(cases / "strict" / "README.md") << "# strict\n";
+  const Result fail =
+      run("verify --cases-dir '" + cases.string() + "' --no-plots --results '" + dir_.string() + "'");
+  EXPECT_EQ(fail.status, 1) << fail.output;
+  EXPECT_NE(fail.output.find("FAIL"), std::string::npos) << fail.output;
+  const auto j = nlohmann::json::parse(std::ifstream(dir_ / "verification" / "verification.json"));
+  EXPECT_EQ(j["cases"][0]["status"], "fail");
+
+  spec["checks"][0]["tolerence"] = 1.0;
+  std::ofstream(cases / "strict" / "verify.json") << spec.dump(1);
+  const Result bad = run("verify --cases-dir '" + cases.string() + "' --results '" + dir_.string() + "'");
+  EXPECT_EQ(bad.status, 1) << bad.output;
+  EXPECT_NE(bad.output.find("verify.json"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("tolerence"), std::string::npos) << bad.output;
 }
 
 }  // namespace

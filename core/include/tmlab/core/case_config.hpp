@@ -16,8 +16,8 @@
 namespace tmlab {
 
 struct MeshSpec {
-  std::string file;               ///< resolved path
-  double scale = 1.0;             ///< multiply coordinates (e.g. 0.001 for a mesh in mm)
+  std::string file;    ///< resolved path
+  double scale = 1.0;  ///< multiply coordinates (e.g. 0.001 for a mesh in mm)
   bool repair_orientation = false;
 };
 
@@ -25,19 +25,19 @@ struct MeshSpec {
 /// tensor-mass model validates and converts it (tmlab::tm::PronySeries).
 struct ViscoelasticSpec {
   bool enabled = false;
-  std::string convention = "long_term";       ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
-  std::vector<double> weights, taus;          ///< one per Prony term
-  std::string history = "pk2";                ///< nodal_force (the seed's eq. 20) | pk2 (objective)
-  std::string integration = "exact_linear";   ///< midpoint | exact_linear | backward_euler
-  std::string relaxation = "full";            ///< full | deviatoric (pk2 only)
-  std::string scheme;                         ///< the shorthand given, if any (seed, objective, ...)
+  std::string convention = "long_term";      ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
+  std::vector<double> weights, taus;         ///< one per Prony term
+  std::string history = "pk2";               ///< nodal_force (the seed's eq. 20) | pk2 (objective)
+  std::string integration = "exact_linear";  ///< midpoint | exact_linear | backward_euler
+  std::string relaxation = "full";           ///< full | deviatoric (pk2 only)
+  std::string scheme;                        ///< the shorthand given, if any (seed, objective, ...)
 };
 
 struct MaterialSpec {
   std::string law = "stvk";  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
   double young = 0.0;        ///< Pa; the long-term modulus E_inf of a viscoelastic material
   double poisson = 0.0;
-  double density = 0.0;      ///< kg/m^3
+  double density = 0.0;  ///< kg/m^3
   ViscoelasticSpec viscoelastic;
 };
 
@@ -63,9 +63,9 @@ struct LoadSpec {
 struct SolverSpec {
   enum class Type { Static, Explicit, Implicit };
   Type type = Type::Static;
-  double t_end = 1.0;       ///< end time (pseudo-time for static)
-  int steps = 10;           ///< static: number of load steps; dynamics: derived from dt
-  double dt = 0.0;          ///< dynamics: time step
+  double t_end = 1.0;              ///< end time (pseudo-time for static)
+  int steps = 10;                  ///< static: number of load steps; dynamics: derived from dt
+  double dt = 0.0;                 ///< dynamics: time step
   std::string scheme = "newmark";  ///< implicit: newmark | backward_euler
   double damping_alpha = 0.0, damping_beta = 0.0;
   int max_iterations = 25;
@@ -82,7 +82,7 @@ struct ProbeSpec {
 };
 
 struct OutputSpec {
-  int every = 1;       ///< write fields every n-th step (the last step always)
+  int every = 1;  ///< write fields every n-th step (the last step always)
   bool vtu = true;
   bool xdmf = true;
   bool plots = true;
@@ -92,8 +92,8 @@ struct OutputSpec {
 struct CaseConfig {
   std::string name;
   std::string description;
-  std::string file;                  ///< where the case came from ("<embedded>" for the demo)
-  std::string model = "tensor_mass"; ///< tensor_mass | tl_oracle
+  std::string file;                   ///< where the case came from ("<embedded>" for the demo)
+  std::string model = "tensor_mass";  ///< tensor_mass | tl_oracle
   MeshSpec mesh;
   MaterialSpec material;
   std::vector<BoundarySpec> boundary;
@@ -105,7 +105,8 @@ struct CaseConfig {
 
 /// Parses a case document. `where` names it in messages; relative mesh paths are looked up in
 /// `search_dirs` in order (the case file's directory first, then the tmlab root).
-CaseConfig parse_case(const nlohmann::json& doc, const std::string& where, const std::vector<std::string>& search_dirs);
+CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
+                      const std::vector<std::string>& search_dirs);
 /// Reads the case's mesh, scales it, re-orients tets when asked, and refuses a mesh with inverted
 /// or degenerate tets (tmlab::Error naming the file and the first bad tet). Every model's runner
 /// starts here. `report` receives the mesh report, `repaired` the number of re-oriented tets.

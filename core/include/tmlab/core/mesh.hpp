@@ -24,16 +24,16 @@ struct PhysicalGroup {
 };
 
 struct Mesh {
-  std::vector<Vec3> points;              ///< rest positions, metres
-  std::vector<long> point_file_ids;      ///< node id in the source file (for error messages)
-  std::vector<Tet> tets;                 ///< linear tets, positively oriented after check/repair
-  std::vector<int> tet_physical;         ///< physical tag per tet (0 when none)
-  std::vector<Tri> triangles;            ///< surface triangles given in the file (not derived)
-  std::vector<int> triangle_physical;    ///< physical tag per triangle (0 when none)
-  std::vector<Index> vertices;           ///< 0-d point elements given in the file
-  std::vector<int> vertex_physical;      ///< physical tag per point element
-  std::vector<PhysicalGroup> groups;     ///< from $PhysicalNames, plus unnamed tags seen in elements
-  std::string source;                    ///< file the mesh was read from ("" when generated)
+  std::vector<Vec3> points;            ///< rest positions, metres
+  std::vector<long> point_file_ids;    ///< node id in the source file (for error messages)
+  std::vector<Tet> tets;               ///< linear tets, positively oriented after check/repair
+  std::vector<int> tet_physical;       ///< physical tag per tet (0 when none)
+  std::vector<Tri> triangles;          ///< surface triangles given in the file (not derived)
+  std::vector<int> triangle_physical;  ///< physical tag per triangle (0 when none)
+  std::vector<Index> vertices;         ///< 0-d point elements given in the file
+  std::vector<int> vertex_physical;    ///< physical tag per point element
+  std::vector<PhysicalGroup> groups;   ///< from $PhysicalNames, plus unnamed tags seen in elements
+  std::string source;                  ///< file the mesh was read from ("" when generated)
 
   Index num_points() const { return static_cast<Index>(points.size()); }
   Index num_tets() const { return static_cast<Index>(tets.size()); }

@@ -66,6 +66,16 @@ struct NodeSelector {
   /// throw tmlab::Error("<where>: reason"), naming the key.
   static NodeSelector from_json(const nlohmann::json& j, const std::string& where = "node selector");
 
+  /// The nodes (or boundary faces) on the plane x_axis = value, within tol.
+  static NodeSelector plane(int axis, double value, double tol = 1e-9) {
+    NodeSelector s;
+    s.kind = Kind::Plane;
+    s.axis = axis;
+    s.value = value;
+    s.tol = tol;
+    return s;
+  }
+
   /// The JSON form accepted by from_json().
   nlohmann::json to_json() const;
 };

@@ -123,23 +123,32 @@ struct Material {
 
   double energy(const SymTensor2& E) const {
     switch (kind) {
-      case Kind::StVK: return stvk.energy(E);
-      case Kind::NeoHookean: return neo.energy(E);
-      default: return yeoh.energy(E);
+      case Kind::StVK:
+        return stvk.energy(E);
+      case Kind::NeoHookean:
+        return neo.energy(E);
+      default:
+        return yeoh.energy(E);
     }
   }
   SymTensor2 stress(const SymTensor2& E) const {
     switch (kind) {
-      case Kind::StVK: return stvk.stress(E);
-      case Kind::NeoHookean: return neo.stress(E);
-      default: return yeoh.stress(E);
+      case Kind::StVK:
+        return stvk.stress(E);
+      case Kind::NeoHookean:
+        return neo.stress(E);
+      default:
+        return yeoh.stress(E);
     }
   }
   SymTensor4 tangent(const SymTensor2& E) const {
     switch (kind) {
-      case Kind::StVK: return stvk.tangent(E);
-      case Kind::NeoHookean: return neo.tangent(E);
-      default: return yeoh.tangent(E);
+      case Kind::StVK:
+        return stvk.tangent(E);
+      case Kind::NeoHookean:
+        return neo.tangent(E);
+      default:
+        return yeoh.tangent(E);
     }
   }
 };
@@ -168,9 +177,14 @@ struct PronySeries {
   void factors(std::size_t j, double dt, double& a, double& c) const {
     const double x = dt / tau[j];
     switch (integration) {
-      case Integration::Midpoint: a = std::exp(-x), c = std::exp(-0.5 * x); break;
-      case Integration::ExactLinear: a = std::exp(-x), c = x > 1e-12 ? (1.0 - std::exp(-x)) / x : 1.0 - 0.5 * x; break;
-      default: a = c = 1.0 / (1.0 + x);
+      case Integration::Midpoint:
+        a = std::exp(-x), c = std::exp(-0.5 * x);
+        break;
+      case Integration::ExactLinear:
+        a = std::exp(-x), c = x > 1e-12 ? (1.0 - std::exp(-x)) / x : 1.0 - 0.5 * x;
+        break;
+      default:
+        a = c = 1.0 / (1.0 + x);
     }
   }
   /// The relaxing stress S_r(E) and its tangent dS_r/dE.
@@ -200,8 +214,8 @@ struct PronyState {
 };
 
 /// Total stress of the trial state and its consistent tangent for step dt, updating state.h_trial.
-inline void prony_update(const Material& m, const PronySeries& p, const SymTensor2& E, double dt, PronyState& state,
-                         SymTensor2& S, SymTensor4* D) {
+inline void prony_update(const Material& m, const PronySeries& p, const SymTensor2& E, double dt,
+                         PronyState& state, SymTensor2& S, SymTensor4* D) {
   S = m.stress(E);
   if (D) *D = m.tangent(E);
   const SymTensor2 sr = p.relaxing_stress(m, E);

@@ -17,9 +17,9 @@ namespace tmlab::ref {
 
 /// What the reference adds to a case: discretisation, constitutive law and solver choices.
 struct ReferenceOptions {
-  int degree = 1;                     ///< polynomial degree: 1 or 2
-  std::string law = "stvk";           ///< stvk | neo_hookean | yeoh
-  double newton_rtol = 1e-10;         ///< |R_free| <= rtol * max(|R_0|, |f_ext|) + atol (atol from the case)
+  int degree = 1;              ///< polynomial degree: 1 or 2
+  std::string law = "stvk";    ///< stvk | neo_hookean | yeoh
+  double newton_rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|) + atol (atol from the case)
   std::string linear_solver = "direct";  ///< direct (MUMPS through Trilinos Amesos) | cg_amg (CG + ML AMG)
   /// Yeoh law W = C10 (I1b-3) + C20 (I1b-3)^2 + C30 (I1b-3)^3 + kappa/2 (ln J)^2 with C10 = mu/2 and
   /// kappa = lambda + 2 mu / 3 from the case's E, nu; C20 and C30 given as multiples of C10.
@@ -31,8 +31,17 @@ struct ReferenceOptions {
   /// group selectors are not available there.
   std::string cells = "tet";
   std::array<unsigned, 3> hex_subdivisions{4, 4, 4};
-  bool serial = false;                ///< run on MPI_COMM_SELF even when started under mpirun
-  std::string name_suffix;            ///< overrides "-reference" / "-reference-p2" when not empty
+  /// Time integration of viscoelastic runs: "fixed_step" (the Prony recursion of the case's
+  /// 'integration' on solver.steps increments) or "ida" (the quasi-static DAE, equilibrium algebraic
+  /// and internal variables differential, by SUNDIALS IDA through deal.II; error-controlled steps,
+  /// output at the same solver.steps times; one MPI rank; direct linear solvers only).
+  std::string time_integration = "fixed_step";
+  double ida_rtol = 1e-6;  ///< IDA relative tolerance
+  /// IDA absolute tolerance on the displacements (m); 0: 1e-3 ida_rtol times the bounding-box
+  /// diagonal L of the mesh. The internal variables (PK2 stresses) get ida_atol E / L (Pa).
+  double ida_atol = 0.0;
+  bool serial = false;      ///< run on MPI_COMM_SELF even when started under mpirun
+  std::string name_suffix;  ///< overrides "-reference" / "-reference-p2" when not empty
 };
 
 /// Runs the case with the deal.II reference and writes <results_root>/<case name>-reference (P1)

@@ -42,20 +42,20 @@ using dealii::types::global_dof_index;
 
 /// Discretisation: element family and degree.
 struct Discretisation {
-  bool simplex = true;   ///< FE_SimplexP + QGaussSimplex + MappingFE; false: FE_Q + QGauss + MappingQ1
-  unsigned degree = 1;   ///< 1 or 2
+  bool simplex = true;  ///< FE_SimplexP + QGaussSimplex + MappingFE; false: FE_Q + QGauss + MappingQ1
+  unsigned degree = 1;  ///< 1 or 2
 };
 
 /// Newton and linear-solver parameters (step-44 keeps these in parameter structs; so do we).
 struct NewtonParameters {
   int max_iterations = 25;
-  double rtol = 1e-10;       ///< |R_free| <= rtol * max(|R_0|, |f_ext|, |R after moving the constraints|) + atol
-  double atol = 1e-14;       ///< newtons
+  double rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|, |R after moving the constraints|) + atol
+  double atol = 1e-14;  ///< newtons
   bool line_search = true;
   int max_backtracks = 12;
-  int max_cutbacks = 8;      ///< halvings of a load increment whose Newton solve fails
+  int max_cutbacks = 8;                  ///< halvings of a load increment whose Newton solve fails
   std::string linear_solver = "direct";  ///< direct | cg_amg
-  double cg_rtol = 1e-8;     ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
+  double cg_rtol = 1e-8;                 ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
 };
 
 /// Per-step statistics, for the summary and docs/performance.md.
@@ -102,7 +102,8 @@ class Solid {
   /// Dead pressure p * f(t) on a face of a locally owned cell (positive into the body).
   void add_pressure(const dealii::CellId& cell, unsigned face, int load, double pressure);
   /// Dead traction vector t * f(t) (per unit reference area) on a face of a locally owned cell.
-  void add_traction(const dealii::CellId& cell, unsigned face, int load, const dealii::Tensor<1, 3>& traction);
+  void add_traction(const dealii::CellId& cell, unsigned face, int load,
+                    const dealii::Tensor<1, 3>& traction);
   /// Body force per unit reference volume b0(X) * f(t) (gravity: rho g).
   void add_body_force(std::function<dealii::Tensor<1, 3>(const dealii::Point<3>&)> b0, int load);
   /// Builds the constraints and the sparsity pattern; called by the first advance() if needed.
@@ -133,8 +134,20 @@ class Solid {
                             dealii::TrilinosWrappers::MPI::Vector& r,
                             dealii::TrilinosWrappers::SparseMatrix* K);
   const dealii::TrilinosWrappers::SparseMatrix& tangent_matrix() const { return K_; }
-  /// Overwrites the current state (tests).
+  /// Overwrites the current state (tests; the IDA driver's output).
   void set_solution(const dealii::TrilinosWrappers::MPI::Vector& u_owned);
+
+  // ---- Access for other time integrators (ida_dae.hpp): the same problem, integrated elsewhere. ----
+  const dealii::Quadrature<3>& quadrature() const { return qcell_; }
+  const std::optional<PronySeries>& prony() const { return prony_; }
+  /// f_ext(t): body forces, dead pressure and tractions, point forces (owned entries; compressed).
+  void external_force(double t, dealii::TrilinosWrappers::MPI::Vector& f);
+  /// The prescribed DoFs (one entry per DoF, the owning condition's value) and their values g(t).
+  std::vector<std::pair<global_dof_index, double>> prescribed_values(double t);
+  /// Overwrites the committed Prony history of every quadrature point of the owned cells with
+  /// f(cell, q, state) (reactions(), elastic_energy() and cell_fields() then use it).
+  void set_history(const std::function<void(const dealii::Triangulation<3>::active_cell_iterator&, unsigned,
+                                            PronyState&)>& f);
 
  private:
   struct Condition {
@@ -156,7 +169,7 @@ class Solid {
     dealii::CellId cell;
     unsigned face;
     int load;
-    double p;                        ///< pressure (along -N)
+    double p;                       ///< pressure (along -N)
     dealii::Tensor<1, 3> traction;  ///< plus a traction vector (zero for a pure pressure)
   };
   struct BodyForce {
@@ -171,11 +184,13 @@ class Solid {
   /// Assembles r = f_int(u) - f_ext(t) and, in ResidualAndTangent mode, the tangent into K_ with
   /// `constraints` applied (and their inhomogeneities into rhs_ = -r). Updates the trial history.
   void assemble(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t, double dt, Mode mode,
-                const dealii::AffineConstraints<double>* constraints, dealii::TrilinosWrappers::MPI::Vector& r,
-                dealii::TrilinosWrappers::SparseMatrix* K, dealii::TrilinosWrappers::MPI::Vector* rhs);
+                const dealii::AffineConstraints<double>* constraints,
+                dealii::TrilinosWrappers::MPI::Vector& r, dealii::TrilinosWrappers::SparseMatrix* K,
+                dealii::TrilinosWrappers::MPI::Vector* rhs);
   double free_norm(const dealii::TrilinosWrappers::MPI::Vector& r) const;
   bool newton(double t, double dt, dealii::TrilinosWrappers::MPI::Vector& u_owned, StepStats& stats);
-  int linear_solve(dealii::TrilinosWrappers::MPI::Vector& du, const dealii::TrilinosWrappers::MPI::Vector& rhs);
+  int linear_solve(dealii::TrilinosWrappers::MPI::Vector& du,
+                   const dealii::TrilinosWrappers::MPI::Vector& rhs);
   void commit(double dt);
   double load_factor(int load, double t) const { return load_functions_[load](t); }
 
@@ -195,7 +210,7 @@ class Solid {
   dealii::CellDataStorage<typename dealii::Triangulation<3>::cell_iterator, QPData> qp_data_;
 
   std::vector<Condition> conditions_;
-  std::vector<Prescribed> prescribed_;   ///< locally relevant constrained DoFs
+  std::vector<Prescribed> prescribed_;  ///< locally relevant constrained DoFs
   std::vector<TimeFunction> load_functions_;
   std::vector<PointForce> point_forces_;
   std::vector<Pressure> pressures_;
@@ -210,12 +225,14 @@ class Solid {
 
 /// Builds a serial coarse triangulation from linear tets (vertex i = point i, cell c = tet c,
 /// tets positively oriented as in tmlab::Mesh). Points used by no tet stay unused vertices.
-void build_tet_triangulation(const std::vector<dealii::Point<3>>& points, const std::vector<std::array<unsigned, 4>>& tets,
+void build_tet_triangulation(const std::vector<dealii::Point<3>>& points,
+                             const std::vector<std::array<unsigned, 4>>& tets,
                              dealii::Triangulation<3>& tria);
 
 /// For each locally owned or ghost cell of `solid`, the coarse-mesh vertex index of each of its
 /// vertices: the coarse (serial) triangulation's cell with the same coarse id, checked by coordinates.
 /// Returns a map keyed by active_cell_index() (size n_active_cells, empty rows for artificial cells).
-std::vector<std::vector<unsigned>> coarse_vertex_map(const Solid& solid, const dealii::Triangulation<3>& coarse);
+std::vector<std::vector<unsigned>> coarse_vertex_map(const Solid& solid,
+                                                     const dealii::Triangulation<3>& coarse);
 
 }  // namespace tmlab::ref

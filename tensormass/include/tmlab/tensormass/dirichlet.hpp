@@ -6,8 +6,8 @@
 #pragma once
 
 #include "tmlab/core/mesh.hpp"
-#include "tmlab/tensormass/elastic_model.hpp"
 #include "tmlab/core/time_function.hpp"
+#include "tmlab/tensormass/elastic_model.hpp"
 
 #include <array>
 #include <string>
@@ -16,10 +16,10 @@
 namespace tmlab::tm {
 
 struct DirichletCondition {
-  std::string name;                                 ///< for messages and output ("fixed", "probe", ...)
-  std::vector<Index> nodes;                         ///< 0-based node indices
-  std::array<bool, 3> components{true, true, true}; ///< which of x, y, z are prescribed
-  Vec3 value = Vec3::Zero();                        ///< displacement at f(t) = 1, metres
+  std::string name;                                  ///< for messages and output ("fixed", "probe", ...)
+  std::vector<Index> nodes;                          ///< 0-based node indices
+  std::array<bool, 3> components{true, true, true};  ///< which of x, y, z are prescribed
+  Vec3 value = Vec3::Zero();                         ///< displacement at f(t) = 1, metres
   TimeFunction function = TimeFunction::constant(1.0);
 };
 

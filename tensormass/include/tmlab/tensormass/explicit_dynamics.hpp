@@ -1,8 +1,9 @@
 // Explicit central-difference (leapfrog) dynamics with lumped mass and Rayleigh damping:
-//   v^{n+1/2} = [(1 - alpha dt/2) v^{n-1/2} + dt M^{-1}(f_ext(t_n) - f_int(u_n) - beta K_0 v^{n-1/2})] / (1 + alpha dt/2)
-//   u^{n+1}   = u^n + dt v^{n+1/2}
+//   v^{n+1/2} = [(1 - alpha dt/2) v^{n-1/2} + dt M^{-1}(f_ext(t_n) - f_int(u_n) - beta K_0 v^{n-1/2})] / (1 +
+//   alpha dt/2) u^{n+1}   = u^n + dt v^{n+1/2}
 // Mass damping is treated semi-implicitly (it never limits the step); stiffness damping explicitly.
-// Second order in dt; conditionally stable: dt <= (2/omega_max)(sqrt(1 + xi^2) - xi), xi = beta omega_max / 2.
+// Second order in dt; conditionally stable: dt <= (2/omega_max)(sqrt(1 + xi^2) - xi), xi = beta omega_max
+// / 2.
 #pragma once
 
 #include "tmlab/tensormass/mechanical_system.hpp"
@@ -12,10 +13,10 @@
 namespace tmlab::tm {
 
 struct StabilityEstimate {
-  double omega_max = 0.0;        ///< power-iteration estimate of the largest angular frequency at rest, rad/s
-  double omega_bound = 0.0;      ///< Gershgorin upper bound on it (row sums of M^{-1} |K_0|)
-  double dt_critical = 0.0;      ///< stability limit from omega_max (what dt is checked against)
-  double dt_guaranteed = 0.0;    ///< the limit from omega_bound: always stable at the reference state
+  double omega_max = 0.0;      ///< power-iteration estimate of the largest angular frequency at rest, rad/s
+  double omega_bound = 0.0;    ///< Gershgorin upper bound on it (row sums of M^{-1} |K_0|)
+  double dt_critical = 0.0;    ///< stability limit from omega_max (what dt is checked against)
+  double dt_guaranteed = 0.0;  ///< the limit from omega_bound: always stable at the reference state
   int iterations = 0;
 };
 

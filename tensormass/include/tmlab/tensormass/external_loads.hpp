@@ -4,8 +4,8 @@
 #pragma once
 
 #include "tmlab/core/mesh.hpp"
-#include "tmlab/tensormass/elastic_model.hpp"
 #include "tmlab/core/time_function.hpp"
+#include "tmlab/tensormass/elastic_model.hpp"
 
 #include <Eigen/SparseCore>
 
@@ -31,8 +31,8 @@ struct SurfacePressure {
 
 struct SurfaceTraction {
   std::string name;
-  std::vector<Tri> faces;       ///< boundary faces (reference configuration)
-  Vec3 traction = Vec3::Zero(); ///< Pa per unit reference area at f(t) = 1 (dead load)
+  std::vector<Tri> faces;        ///< boundary faces (reference configuration)
+  Vec3 traction = Vec3::Zero();  ///< Pa per unit reference area at f(t) = 1 (dead load)
   TimeFunction function = TimeFunction::constant(1.0);
 };
 

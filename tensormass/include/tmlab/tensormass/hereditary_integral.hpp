@@ -29,8 +29,8 @@ void gauss_legendre(int n, std::vector<double>& nodes, std::vector<double>& weig
 
 /// h(t) = int_{t0}^t exp(-(t-s)/tau) X_e'(s) ds for an analytic rate; rate(s, out) writes X_e'(s)
 /// (width values). Composite Gauss-Legendre with `panels` panels and `points` points per panel.
-VecX convolve_rate(const std::function<void(double, VecX&)>& rate, Index width, double tau, double t0, double t,
-                   int panels, int points = 5);
+VecX convolve_rate(const std::function<void(double, VecX&)>& rate, Index width, double tau, double t0,
+                   double t, int panels, int points = 5);
 
 class StoredHistory {
  public:

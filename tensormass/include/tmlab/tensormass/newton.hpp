@@ -32,8 +32,8 @@ class NonlinearSystem {
 
 struct NewtonOptions {
   int max_iterations = 25;
-  double rtol = 1e-10;       ///< |R_free| <= rtol * max(|R_0|, force scale)
-  double atol = 1e-14;       ///< absolute floor on |R_free|, newtons
+  double rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, force scale)
+  double atol = 1e-14;  ///< absolute floor on |R_free|, newtons
   bool line_search = true;
   int max_backtracks = 12;
 };
@@ -52,7 +52,8 @@ struct NewtonResult {
 class ConstrainedLinearSolver {
  public:
   /// Throws tmlab::Error when the factorisation fails (singular: e.g. an unconstrained body).
-  void solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c, bool symmetric, VecX& du);
+  void solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c, bool symmetric,
+             VecX& du);
 
  private:
   SpMat A_;

@@ -13,11 +13,11 @@ namespace tmlab::tm {
 
 /// One run of a figure: a case document and which of its series the figure draws.
 struct PaperRun {
-  std::string id;          ///< result sub-directory, e.g. "seed_node_0.1N"
-  std::string label;       ///< legend entry
-  std::string scheme;      ///< viscoelastic scheme shorthand (seed, objective)
-  nlohmann::json case_doc; ///< a complete case-file document
-  std::string x, y;        ///< series names in timeseries.h5
+  std::string id;                     ///< result sub-directory, e.g. "seed_node_0.1N"
+  std::string label;                  ///< legend entry
+  std::string scheme;                 ///< viscoelastic scheme shorthand (seed, objective)
+  nlohmann::json case_doc;            ///< a complete case-file document
+  std::string x, y;                   ///< series names in timeseries.h5
   double x_sign = 1.0, y_sign = 1.0;  ///< plotted as sign * series (indentation positive)
 };
 

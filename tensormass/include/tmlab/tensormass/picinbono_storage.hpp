@@ -30,19 +30,19 @@ class PicinbonoAbsoluteStVK {
     double D;     ///< D_pppp
   };
   struct EdgeTensors {
-    Index v[2];       ///< p < q
-    double B[9];      ///< row-major; energy term U_p^T B U_q
-    double C[4][3];   ///< (U_p.C0)(U_p.U_q) + (U_q.C1)(U_p.U_p) + (U_p.C2)(U_q.U_q) + (U_q.C3)(U_p.U_q)
-    double D[4];      ///< G_pp G_pq, G_pp G_qq, G_pq G_pq, G_pq G_qq   (G_ab = U_a . U_b)
+    Index v[2];      ///< p < q
+    double B[9];     ///< row-major; energy term U_p^T B U_q
+    double C[4][3];  ///< (U_p.C0)(U_p.U_q) + (U_q.C1)(U_p.U_p) + (U_p.C2)(U_q.U_q) + (U_q.C3)(U_p.U_q)
+    double D[4];     ///< G_pp G_pq, G_pp G_qq, G_pq G_pq, G_pq G_qq   (G_ab = U_a . U_b)
   };
   struct TriangleTensors {
-    Index v[3];       ///< p < q < r
-    double C[3][3];   ///< (U_p.C0) G_qr + (U_q.C1) G_pr + (U_r.C2) G_pq
-    double D[6];      ///< G_pp G_qr, G_qq G_pr, G_rr G_pq, G_pq G_pr, G_pq G_qr, G_pr G_qr
+    Index v[3];      ///< p < q < r
+    double C[3][3];  ///< (U_p.C0) G_qr + (U_q.C1) G_pr + (U_r.C2) G_pq
+    double D[6];     ///< G_pp G_qr, G_qq G_pr, G_rr G_pq, G_pq G_pr, G_pq G_qr, G_pr G_qr
   };
   struct TetTensors {
-    Index v[4];       ///< p < q < r < s
-    double D[3];      ///< G_pq G_rs, G_pr G_qs, G_ps G_qr
+    Index v[4];   ///< p < q < r < s
+    double D[3];  ///< G_pq G_rs, G_pr G_qs, G_ps G_qr
   };
 
   /// Throws tmlab::Error on bad tets (via the rest geometry).

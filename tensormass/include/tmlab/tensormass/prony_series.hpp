@@ -33,7 +33,8 @@ class PronySeries {
   static PronySeries from_instantaneous(const std::vector<double>& g, std::vector<double> tau);
   /// {"convention": "long_term" | "instantaneous", "terms": [{"weight": w, "tau": t}, ...]};
   /// unknown keys are rejected. `where` names the file, `path` the key path of `j` in it.
-  static PronySeries from_json(const nlohmann::json& j, const std::string& where, const std::string& path = "");
+  static PronySeries from_json(const nlohmann::json& j, const std::string& where,
+                               const std::string& path = "");
 
   std::size_t size() const { return alpha_.size(); }
   const std::vector<double>& alpha() const { return alpha_; }  ///< long-term normalised weights

@@ -9,7 +9,7 @@
 namespace tmlab::tm {
 
 struct StaticStepReport {
-  NewtonResult newton;    ///< of the last (successful) sub-increment
+  NewtonResult newton;        ///< of the last (successful) sub-increment
   int newton_iterations = 0;  ///< summed over sub-increments
   int cutbacks = 0;           ///< how many times the increment was halved
 };

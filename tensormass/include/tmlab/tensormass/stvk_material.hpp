@@ -26,9 +26,7 @@ struct StVenantKirchhoff {
     return 0.5 * lambda * tr * tr + mu * E.cwiseProduct(E).sum();
   }
   /// S = dW/dE = lambda tr(E) I + 2 mu E (second Piola-Kirchhoff stress).
-  Mat3 pk2_stress(const Mat3& E) const {
-    return lambda * E.trace() * Mat3::Identity() + 2.0 * mu * E;
-  }
+  Mat3 pk2_stress(const Mat3& E) const { return lambda * E.trace() * Mat3::Identity() + 2.0 * mu * E; }
   /// dS = (d^2 W / dE^2) : dE = lambda tr(dE) I + 2 mu dE (constant: St VK is linear in E).
   Mat3 tangent(const Mat3& dE) const { return pk2_stress(dE); }
 

@@ -10,8 +10,13 @@
 //   DaeIntegrator  IDA (variable-order BDF), consistent initial y' of the algebraic part by IDACalcIC
 //
 // Linear solvers inside the Newton iterations: dense (SUNDenseMatrix + SUNLinSol_Dense, difference-
-// quotient Jacobian, for small systems) or matrix-free GMRES (SUNLinSol_SPGMR, no preconditioner)
-// with the system's Jacobian action when it provides one, else SUNDIALS' difference quotient.
+// quotient Jacobian, for small systems), matrix-free GMRES (SUNLinSol_SPGMR) without preconditioner,
+// or GMRES left-preconditioned by the system's own approximate inverse of the Newton matrix
+// (I - gamma J for CVODE / ARKStep, dF/dy + c_j dF/dy' for IDA; OdeSystem / DaeSystem
+// preconditioner_setup / preconditioner_solve). GMRES uses the system's Jacobian action when it
+// provides one, else SUNDIALS' difference quotient. A preconditioner that solves the Newton system
+// exactly (a sparse direct factorisation, as the tensor-mass systems of ode_references.hpp do) makes
+// GMRES converge in one iteration: the "sparse direct" option.
 //
 // Every failing SUNDIALS call throws tmlab::Error naming the SUNDIALS function, its return flag
 // (name and value) and the last message SUNDIALS reported. An exception thrown by a user callback is
@@ -56,6 +61,26 @@ class OdeSystem {
   virtual void rhs_slow(double /*t*/, const VecX& /*y*/, VecX& /*ydot*/) {}
   /// f_F(t, y): the fast part, integrated by an inner explicit ARKStep (adaptive or fixed fast step).
   virtual void rhs_fast(double /*t*/, const VecX& /*y*/, VecX& /*ydot*/) {}
+
+  // ---- preconditioner of the Newton matrix I - gamma J (LinearSolverKind::SpgmrPreconditioned;
+  //      CVODE BDF and ARKStep DIRK) ----
+  /// True when preconditioner_setup / preconditioner_solve are implemented.
+  virtual bool has_preconditioner() const { return false; }
+  /// Prepares P ~ I - gamma (df/dy)(t, y). `jacobian_ok`: the integrator allows reusing the Jacobian
+  /// data of the previous setup (only gamma changed). Sets `jacobian_updated` to true when the
+  /// Jacobian data was recomputed. Returns false on a recoverable failure (e.g. a singular
+  /// factorisation: the integrator retries with a smaller step).
+  virtual bool preconditioner_setup(double /*t*/, const VecX& /*y*/, double /*gamma*/, bool /*jacobian_ok*/,
+                                    bool& jacobian_updated) {
+    jacobian_updated = false;
+    return true;
+  }
+  /// z = P^{-1} r, P ~ I - gamma J (the last setup). Returns false on a recoverable failure.
+  virtual bool preconditioner_solve(double /*t*/, const VecX& /*y*/, const VecX& r, VecX& z,
+                                    double /*gamma*/) {
+    z = r;
+    return true;
+  }
 };
 
 /// F(t, y, y') = 0; differential()[i] != 0 when y'_i appears (the others are algebraic).
@@ -66,6 +91,25 @@ class DaeSystem {
   virtual void residual(double t, const VecX& y, const VecX& yp, VecX& r) = 0;
   /// 1.0 for differential components, 0.0 for algebraic ones (IDASetId).
   virtual VecX differential() const = 0;
+
+  // ---- iterative linear solver (DaeOptions::linear = Spgmr / SpgmrPreconditioned) ----
+  /// True when jacobian_times is implemented (else SUNDIALS' difference quotient is used).
+  virtual bool has_jacobian_times() const { return false; }
+  /// Jv = (dF/dy + cj dF/dy')(t, y, yp) v.
+  virtual void jacobian_times(double /*t*/, const VecX& /*y*/, const VecX& /*yp*/, const VecX& /*v*/,
+                              double /*cj*/, VecX& /*Jv*/) {}
+  /// True when preconditioner_setup / preconditioner_solve are implemented.
+  virtual bool has_preconditioner() const { return false; }
+  /// Prepares P ~ dF/dy + cj dF/dy' at (t, y, yp). Returns false on a recoverable failure.
+  virtual bool preconditioner_setup(double /*t*/, const VecX& /*y*/, const VecX& /*yp*/, double /*cj*/) {
+    return true;
+  }
+  /// z = P^{-1} r (the last setup). Returns false on a recoverable failure.
+  virtual bool preconditioner_solve(double /*t*/, const VecX& /*y*/, const VecX& /*yp*/, const VecX& r,
+                                    VecX& z, double /*cj*/) {
+    z = r;
+    return true;
+  }
 };
 
 enum class OdeMethod {
@@ -78,37 +122,42 @@ enum class OdeMethod {
 enum class LinearSolverKind {
   Dense,  ///< dense LU with a difference-quotient Jacobian (small systems)
   Spgmr,  ///< matrix-free GMRES with the system's Jacobian action (or a difference quotient)
+  /// GMRES left-preconditioned by the system's preconditioner_setup/solve (needs has_preconditioner();
+  /// CVODE BDF, ARKStep DIRK, IDA; not ImEx or MRIStep)
+  SpgmrPreconditioned,
 };
 std::string to_string(OdeMethod m);
 std::string to_string(LinearSolverKind k);
 
 struct OdeOptions {
   double rtol = 1e-8;
-  double atol = 1e-12;          ///< scalar absolute tolerance, used when atol_vector is empty
-  VecX atol_vector;             ///< per-component absolute tolerances (size() of the system), optional
+  double atol = 1e-12;  ///< scalar absolute tolerance, used when atol_vector is empty
+  VecX atol_vector;     ///< per-component absolute tolerances (size() of the system), optional
   LinearSolverKind linear = LinearSolverKind::Dense;
-  long max_steps = 1000000;     ///< per advance() call
-  double max_step = 0.0;        ///< 0: no limit
-  double initial_step = 0.0;    ///< 0: the integrator's estimate
-  int order = 0;                ///< 0: default (CVODE: max order 5; ARKStep: order 4)
-  int krylov_dim = 0;           ///< SPGMR restart dimension, 0: SUNDIALS default (5)
-  double slow_step = 0.0;       ///< ArkodeMri: the fixed slow step (required > 0)
-  double fast_step = 0.0;       ///< ArkodeMri: fixed fast step; 0: adaptive inner steps with rtol/atol
+  long max_steps = 1000000;   ///< per advance() call
+  double max_step = 0.0;      ///< 0: no limit
+  double initial_step = 0.0;  ///< 0: the integrator's estimate
+  int order = 0;              ///< 0: default (CVODE: max order 5; ARKStep: order 4)
+  int krylov_dim = 0;         ///< SPGMR restart dimension, 0: SUNDIALS default (5)
+  double slow_step = 0.0;     ///< ArkodeMri: the fixed slow step (required > 0)
+  double fast_step = 0.0;     ///< ArkodeMri: fixed fast step; 0: adaptive inner steps with rtol/atol
 };
 
 /// Integrator counters since construction.
 struct IntegratorStats {
   long steps = 0;
-  long rhs_evals = 0;              ///< f (ODE; f_I for ImEx) or F (DAE) evaluations, excluding Jacobian DQ ones
-  long explicit_rhs_evals = 0;     ///< f_E evaluations (ImEx only)
-  long fast_steps = 0;             ///< inner (fast) steps (MRIStep only; steps counts the slow ones)
-  long fast_rhs_evals = 0;         ///< f_F evaluations (MRIStep only; rhs_evals counts f_S)
-  long nonlinear_iterations = 0;   ///< Newton iterations
-  long nonlinear_failures = 0;     ///< Newton convergence failures
-  long linear_iterations = 0;      ///< Krylov iterations (0 for dense)
+  long rhs_evals = 0;           ///< f (ODE; f_I for ImEx) or F (DAE) evaluations, excluding Jacobian DQ ones
+  long explicit_rhs_evals = 0;  ///< f_E evaluations (ImEx only)
+  long fast_steps = 0;          ///< inner (fast) steps (MRIStep only; steps counts the slow ones)
+  long fast_rhs_evals = 0;      ///< f_F evaluations (MRIStep only; rhs_evals counts f_S)
+  long nonlinear_iterations = 0;  ///< Newton iterations
+  long nonlinear_failures = 0;    ///< Newton convergence failures
+  long linear_iterations = 0;     ///< Krylov iterations (0 for dense)
   long error_test_failures = 0;
   long jacobian_evals = 0;         ///< dense Jacobian evaluations
   long jtimes_evals = 0;           ///< Jacobian-vector products (SPGMR)
+  long preconditioner_setups = 0;  ///< preconditioner_setup calls (SpgmrPreconditioned)
+  long preconditioner_solves = 0;  ///< preconditioner_solve calls (SpgmrPreconditioned)
   double last_step = 0.0;
 };
 
@@ -142,6 +191,10 @@ struct DaeOptions {
   VecX atol_vector;
   long max_steps = 1000000;
   double max_step = 0.0;
+  /// Dense (DQ Jacobian, small systems), Spgmr (matrix-free, the system's jacobian_times when it has
+  /// one) or SpgmrPreconditioned (the system's preconditioner).
+  LinearSolverKind linear = LinearSolverKind::Dense;
+  int krylov_dim = 0;  ///< SPGMR restart dimension, 0: SUNDIALS default (5)
   /// Compute consistent y' of the differential and y of the algebraic components from y0 (IDACalcIC,
   /// IDA_YA_YDP_INIT) before the first step.
   bool consistent_initial_conditions = true;
@@ -153,7 +206,7 @@ struct DaeOptions {
 
 class DaeIntegrator {
  public:
-  /// Dense linear solver with a difference-quotient Jacobian (small systems).
+  /// IDA with the linear solver of options.linear. The system must outlive the integrator.
   DaeIntegrator(DaeSystem& system, const DaeOptions& options, double t0, const VecX& y0, const VecX& yp0);
   ~DaeIntegrator();
   DaeIntegrator(DaeIntegrator&&) noexcept;

@@ -13,8 +13,8 @@
 namespace tmlab::tm {
 
 struct TetRest {
-  double volume = 0.0;           ///< V > 0, m^3
-  std::array<Vec3, 4> grad{};    ///< a_j = grad N_j, 1/m
+  double volume = 0.0;         ///< V > 0, m^3
+  std::array<Vec3, 4> grad{};  ///< a_j = grad N_j, 1/m
 };
 
 /// Rest volume and shape gradients of one tet from its four rest positions. Throws tmlab::Error

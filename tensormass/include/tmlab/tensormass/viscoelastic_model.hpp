@@ -119,9 +119,9 @@ class ViscoelasticStVK : public ElasticModel {
   // ---- committed state and energy bookkeeping (updated by commit_step) ----
   double committed_elastic_energy() const { return committed_elastic_; }  ///< W_e(u_c), long-term spring
   double committed_branch_energy() const { return committed_branch_; }    ///< sum of Psi_j at commit
-  double step_dissipation() const { return step_dissipation_; }          ///< of the last commit, >= 0
-  double total_dissipation() const { return total_dissipation_; }        ///< sum over commits
-  double committed_dissipation_rate() const { return committed_rate_; }  ///< D at the last commit, W
+  double step_dissipation() const { return step_dissipation_; }           ///< of the last commit, >= 0
+  double total_dissipation() const { return total_dissipation_; }         ///< sum over commits
+  double committed_dissipation_rate() const { return committed_rate_; }   ///< D at the last commit, W
   /// Raw committed history h_j^c, per tet [t][j][k] with k < 12 (nodal_force) or 6 (pk2, Voigt
   /// xx,yy,zz,xy,xz,yz), and the committed driver X_e^c per tet [t][k].
   const std::vector<double>& committed_history() const { return hist_; }
@@ -149,8 +149,8 @@ class ViscoelasticStVK : public ElasticModel {
   ViscoelasticOptions options_;
   bool elastic_only_ = false;  ///< all weights zero: forward every call to elastic_
   int width_ = 0;
-  std::vector<TetRest> rest_;       ///< pk2
-  std::vector<double> kpinv_;       ///< nodal_force: 144 per tet, pseudo-inverse of the rest stiffness
+  std::vector<TetRest> rest_;  ///< pk2
+  std::vector<double> kpinv_;  ///< nodal_force: 144 per tet, pseudo-inverse of the rest stiffness
 
   // committed
   std::vector<double> hist_;    ///< [t][j][k]
@@ -160,10 +160,10 @@ class ViscoelasticStVK : public ElasticModel {
 
   // trial
   double dt_ = 0.0;
-  double gain_ = 0.0;              ///< g = sum alpha_j c_j
+  double gain_ = 0.0;  ///< g = sum alpha_j c_j
   std::vector<RecursionFactors> factors_;
-  VecX f_hist_;                    ///< nodal_force: assembled constant force
-  std::vector<double> s_hist_;     ///< pk2: per tet 6 (Voigt)
+  VecX f_hist_;                 ///< nodal_force: assembled constant force
+  std::vector<double> s_hist_;  ///< pk2: per tet 6 (Voigt)
 };
 
 }  // namespace tmlab::tm

@@ -1,0 +1,75 @@
+#include "cli_args.hpp"
+
+#include "commands.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <stdexcept>
+
+namespace tmlab::cli {
+
+std::string Parsed::get(const std::string& key, const std::string& fallback) const {
+  for (const auto& o : options)
+    if (o.first == key) return o.second;
+  return fallback;
+}
+
+bool Parsed::has(const std::string& key) const {
+  return std::any_of(options.begin(), options.end(), [&](const auto& o) { return o.first == key; });
+}
+
+std::vector<std::string> Parsed::all(const std::string& key) const {
+  std::vector<std::string> out;
+  for (const auto& o : options)
+    if (o.first == key) out.push_back(o.second);
+  return out;
+}
+
+Parsed parse(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
+             const std::vector<std::string>& flags) {
+  Parsed p;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a.rfind("--", 0) == 0) {
+      if (std::find(with_value.begin(), with_value.end(), a) != with_value.end()) {
+        if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+        p.options.emplace_back(a, args[++i]);
+      } else if (std::find(flags.begin(), flags.end(), a) != flags.end()) {
+        p.options.emplace_back(a, "");
+      } else {
+        throw UsageError("unknown option " + a);
+      }
+    } else {
+      p.positional.push_back(a);
+    }
+  }
+  return p;
+}
+
+double parse_double(const std::string& key, const std::string& s) {
+  try {
+    std::size_t pos = 0;
+    const double v = std::stod(s, &pos);
+    if (pos != s.size()) throw std::invalid_argument(s);
+    return v;
+  } catch (const std::exception&) {
+    throw UsageError(key + " needs a number (got '" + s + "')");
+  }
+}
+
+std::vector<std::string> split_words(const std::string& s) {
+  std::istringstream in(s);
+  std::vector<std::string> w;
+  for (std::string x; in >> x;) w.push_back(x);
+  return w;
+}
+
+std::string plot_python() {
+  const char* env = std::getenv("TMLAB_PYTHON");
+  if (env && *env) return env;
+  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+}
+
+}  // namespace tmlab::cli

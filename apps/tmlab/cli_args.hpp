@@ -1,0 +1,34 @@
+// Argument parsing shared by the tmlab sub-commands (cli_args.cpp).
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace tmlab::cli {
+
+/// Splits "--key value" options (listed in `with_value`) and flags from positional arguments.
+struct Parsed {
+  std::vector<std::string> positional;
+  std::vector<std::pair<std::string, std::string>> options;
+  std::string get(const std::string& key, const std::string& fallback = "") const;
+  bool has(const std::string& key) const;
+  /// Every value given for a repeatable option, in order.
+  std::vector<std::string> all(const std::string& key) const;
+};
+
+/// Throws UsageError for an unknown option or an option missing its value.
+Parsed parse(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
+             const std::vector<std::string>& flags);
+
+/// A number for option `key`; UsageError naming the key otherwise.
+double parse_double(const std::string& key, const std::string& s);
+
+/// Whitespace-separated words (the command line as a list, for manifests).
+std::vector<std::string> split_words(const std::string& s);
+
+/// The python3 for plots: $TMLAB_PYTHON, else Debian's /usr/bin/python3 (which carries matplotlib
+/// and h5py; another python3 may come first on PATH), else python3.
+std::string plot_python();
+
+}  // namespace tmlab::cli

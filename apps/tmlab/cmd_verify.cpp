@@ -1,0 +1,93 @@
+// tmlab verify: runs the verification catalogue (verification/cases/) and writes the report
+// (results/verification/: report.md, report.html, verification.json, plots/, manifest.json).
+#include "cli_args.hpp"
+#include "commands.hpp"
+
+#include "tmlab/core/error.hpp"
+#include "tmlab/core/run_output.hpp"
+#include "tmlab/verification/report.hpp"
+#include "tmlab/verification/runner.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+void print_list(const std::vector<verify::VerificationCase>& cases) {
+  std::size_t w = 4;
+  for (const auto& c : cases) w = std::max(w, c.name.size());
+  for (const auto& c : cases) {
+    std::string labels;
+    for (const auto& l : c.labels) labels += (labels.empty() ? "" : ",") + l;
+    std::cout << std::left << std::setw(static_cast<int>(w) + 2) << c.name << std::setw(6) << c.suite
+              << std::setw(28) << labels << c.title << "\n";
+  }
+}
+
+}  // namespace
+
+int cmd_verify(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--case", "--label", "--results", "--cases-dir"},
+                         {"--full", "--list", "--no-plots", "--update-docs"});
+  if (!p.positional.empty()) throw UsageError("unexpected argument '" + p.positional.front() + "'");
+  const fs::path root = tmlab_root();
+  const fs::path cases_dir =
+      p.has("--cases-dir") ? fs::path(p.get("--cases-dir")) : root / "verification" / "cases";
+  const auto catalogue = verify::load_catalogue(cases_dir);
+
+  verify::Selection sel;
+  sel.full = p.has("--full");
+  sel.names = p.all("--case");
+  sel.labels = p.all("--label");
+  const auto cases = verify::select(catalogue, sel);
+  if (p.has("--list")) {
+    print_list(cases);
+    return 0;
+  }
+  if (cases.empty()) throw UsageError("no verification case selected");
+
+  verify::CheckRegistry registry;
+  verify::register_builtin_checks(registry);
+
+  const fs::path results_root = p.has("--results") ? fs::path(p.get("--results")) : root / "results";
+  RunOutput out(results_root / "verification");
+  try {
+    nlohmann::json config{{"cases_dir", fs::absolute(cases_dir).string()},
+                          {"full", sel.full},
+                          {"cases", nlohmann::json::array()}};
+    std::vector<fs::path> inputs;
+    for (const auto& c : cases) {
+      config["cases"].push_back(c.name);
+      inputs.push_back(c.spec_file());
+    }
+    out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
+    std::cerr << "tmlab verify: " << cases.size() << " case(s)" << (sel.full ? " (full suite)" : "") << "\n";
+
+    verify::RunSettings settings{root, out.staging_dir() / "work"};
+    const auto results = verify::run_cases(cases, registry, settings, std::cerr);
+    fs::remove_all(settings.work_root);
+
+    verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : plot_python(),
+                           root / "verification" / "python" / "plot_convergence.py"};
+    verify::write_report(in, out.staging_dir());
+    const nlohmann::json vj = verify::verification_json(in);
+    if (p.has("--update-docs"))
+      verify::update_doc_table(root / "docs" / "verification.md", verify::results_table(in));
+    const int passed = vj["passed"], failed = vj["failed"], errors = vj["errors"];
+    out.finalize({{"passed", passed}, {"failed", failed}, {"errors", errors}, {"cases", cases.size()}});
+    std::cout << "verification: " << passed << " passed, " << failed << " failed, " << errors << " errors of "
+              << cases.size() << "; report: " << (out.dir() / "report.md").string() << "\n";
+    return failed == 0 && errors == 0 ? 0 : 1;
+  } catch (const std::exception& e) {
+    out.fail(e.what());
+    throw;
+  }
+}
+
+}  // namespace tmlab::cli

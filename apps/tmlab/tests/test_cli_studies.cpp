@@ -1,0 +1,61 @@
+// Smoke tests of the study commands of the tmlab command line: `tmlab workprecision --quick` into a
+// temporary results directory (complete result protocol: summary.json, HDF5, table, manifest) and its
+// usage errors.
+#include "tmlab/core/hdf5_file.hpp"
+
+#include "cli_test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using tmlab::cli_test::Result;
+using tmlab::cli_test::run;
+
+TEST(CliStudies, WorkPrecisionQuickWritesACompleteResult) {
+  const fs::path dir = fs::temp_directory_path() / ("tmlab_cli_wp_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const Result r =
+      run("workprecision --problem incompressible --quick --no-plots --results '" + dir.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("[workprecision] incompressible: reference CVODE BDF + spgmr+prec"),
+            std::string::npos)
+      << r.output;  // progress on stderr
+  const fs::path out = dir / "workprecision";
+  ASSERT_TRUE(fs::exists(out / "summary.json"));
+  EXPECT_TRUE(fs::exists(out / "manifest.json"));
+  EXPECT_TRUE(fs::exists(out / "workprecision.md"));
+  EXPECT_FALSE(fs::exists(out / "FAILED"));
+  const nlohmann::json s = nlohmann::json::parse(std::ifstream(out / "summary.json"));
+  ASSERT_EQ(s.at("problems").size(), 1u);
+  EXPECT_EQ(s["problems"][0]["name"], "incompressible");
+  EXPECT_EQ(s["problems"][0]["failed_runs"], 0);
+  const tmlab::H5File f = tmlab::H5File::open_read((out / "workprecision.h5").string());
+  const std::vector<double> e = f.read_double("/incompressible/cvode_bdf_spgmr_prec/error");
+  ASSERT_FALSE(e.empty());
+  for (double x : e) EXPECT_TRUE(x > 0.0 && x < 1e-2) << x;  // quick CVODE runs at rtol 1e-4, 1e-6
+  fs::remove_all(dir);
+}
+
+TEST(CliStudies, WorkPrecisionUsageErrors) {
+  const Result bad = run("workprecision --problem kidney");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.output.find("--problem must be liver, incompressible or all"), std::string::npos)
+      << bad.output;
+  const Result tol = run("workprecision --reference-rtol 0.1");
+  EXPECT_EQ(tol.status, 2);
+  EXPECT_NE(tol.output.find("--reference-rtol"), std::string::npos) << tol.output;
+  const Result opt = run("workprecision --frobnicate");
+  EXPECT_EQ(opt.status, 2);
+}
+
+}  // namespace

@@ -1,0 +1,28 @@
+# ctest format_check: clang-format --dry-run -Werror on every tracked or untracked-but-not-ignored
+# C++ source of the tree. Fails listing the files that are not formatted.
+cmake_minimum_required(VERSION 3.20)
+execute_process(COMMAND ${GIT} ls-files --cached --others --exclude-standard -- "*.cpp" "*.hpp"
+                WORKING_DIRECTORY ${SOURCE_DIR} OUTPUT_VARIABLE _files RESULT_VARIABLE _rc)
+if(NOT _rc EQUAL 0)
+  message(STATUS "format_check: ${SOURCE_DIR} is not a git checkout; nothing checked")
+  return()
+endif()
+string(REPLACE "\n" ";" _files "${_files}")
+list(REMOVE_ITEM _files "")
+set(_bad "")
+foreach(_f IN LISTS _files)
+  if(_f STREQUAL "" OR NOT EXISTS ${SOURCE_DIR}/${_f})
+    continue()
+  endif()
+  execute_process(COMMAND ${CLANG_FORMAT} --dry-run -Werror ${_f} WORKING_DIRECTORY ${SOURCE_DIR}
+                  RESULT_VARIABLE _r OUTPUT_QUIET ERROR_QUIET)
+  if(NOT _r EQUAL 0)
+    list(APPEND _bad ${_f})
+  endif()
+endforeach()
+if(_bad)
+  string(REPLACE ";" "\n  " _list "${_bad}")
+  message(FATAL_ERROR "format_check: not clang-format clean (fix with clang-format -i):\n  ${_list}")
+endif()
+list(LENGTH _files _n)
+message(STATUS "format_check: ${_n} files clean")
