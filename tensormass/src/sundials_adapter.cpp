@@ -466,7 +466,11 @@ double OdeIntegrator::time() const { return impl_->t; }
 OdeMethod OdeIntegrator::method() const { return impl_->method; }
 std::string OdeIntegrator::describe() const {
   if (impl_->method == OdeMethod::ArkodeMri) return "MRIStep (explicit slow, explicit ARKStep fast)";
-  return to_string(impl_->method) + " + " + to_string(impl_->options.linear);
+  std::string d = to_string(impl_->method);
+  if (impl_->options.order > 0)
+    d += (impl_->method == OdeMethod::CvodeBdf ? " (max order " : " (order ") +
+         std::to_string(impl_->options.order) + ")";
+  return d + " + " + to_string(impl_->options.linear);
 }
 
 IntegratorStats OdeIntegrator::stats() const {
