@@ -43,6 +43,14 @@ std::string CheckOutcome::describe() const {
   return name;
 }
 
+const CheckOutcome* CaseResult::primary() const {
+  for (const CheckOutcome& o : outcomes)
+    if (!o.passed) return &o;
+  for (const CheckOutcome& o : outcomes)
+    if (o.kind == "finest") return &o;
+  return outcomes.empty() ? nullptr : &outcomes.front();
+}
+
 CaseResult evaluate(const VerificationCase& c, Measurements m) {
   CaseResult r;
   r.name = c.name;

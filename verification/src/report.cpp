@@ -165,7 +165,7 @@ nlohmann::json verification_json(const ReportInput& in) {
 
 std::string results_table(const ReportInput& in) {
   std::ostringstream md;
-  md << "| case | status | measured (primary check) | tolerance | observed / expected order | time |\n"
+  md << "| case | status | measured (headline check) | tolerance | observed / expected order | time |\n"
      << "|---|---|---|---|---|---|\n";
   for (std::size_t i = 0; i < in.results.size(); ++i) {
     const CaseResult& r = in.results[i];
@@ -273,7 +273,7 @@ std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
     << " build. Command: <code>" << xml_escape(in.command_line) << "</code></p>\n"
     << "<p><b>" << vj["passed"].get<int>() << " passed, " << vj["failed"].get<int>() << " failed, "
     << vj["errors"].get<int>() << " errors</b> of " << in.results.size() << " cases.</p>\n"
-    << "<table><tr><th>case</th><th>status</th><th>primary check</th><th>tolerance</th><th>order (obs / "
+    << "<table><tr><th>case</th><th>status</th><th>headline check</th><th>tolerance</th><th>order (obs / "
        "exp)</th>"
        "<th>time</th></tr>\n";
   for (const auto& r : in.results) {

@@ -128,10 +128,17 @@ Measurements power_measurements(double order, double constant) {
 TEST(Evaluate, PassesOnlyWhenEveryCheckHolds) {
   const auto c = power_case();
   EXPECT_EQ(evaluate(c, power_measurements(2.0, 1.0)).status, Status::Pass);
-  // right order, but converging to a wrong answer (finest error too large)
-  EXPECT_EQ(evaluate(c, power_measurements(2.0, 100.0)).status, Status::Fail);
+  EXPECT_EQ(evaluate(c, power_measurements(2.0, 1.0)).primary()->kind, "finest");
+  // right order, but converging to a wrong answer (finest error too large); the headline is the
+  // failed check
+  const auto wrong = evaluate(c, power_measurements(2.0, 100.0));
+  EXPECT_EQ(wrong.status, Status::Fail);
+  EXPECT_EQ(wrong.primary()->kind, "finest");
+  EXPECT_FALSE(wrong.primary()->passed);
   // small errors but the wrong order
-  EXPECT_EQ(evaluate(c, power_measurements(1.0, 0.01)).status, Status::Fail);
+  const auto order = evaluate(c, power_measurements(1.0, 0.01));
+  EXPECT_EQ(order.status, Status::Fail);
+  EXPECT_EQ(order.primary()->kind, "order");
   auto m = power_measurements(2.0, 1.0);
   m.metrics.erase("e");  // a missing metric never passes
   const auto r = evaluate(c, m);
@@ -180,7 +187,8 @@ TEST(Runner, SelectsBySuiteNameAndLabelAndRunsWithErrorsCaught) {
   EXPECT_EQ(j["cases"][0]["name"], "a-fast");
   EXPECT_NEAR(j["cases"][0]["observed_order"].get<double>(), 2.0, 1e-9);
   EXPECT_EQ(j["cases"][0]["expected_order"], 2.0);
-  EXPECT_EQ(j["cases"][0]["error"], 1e-4);
+  // The headline of a passing convergence case is its finest error (0.025^2) against finest_max.
+  EXPECT_NEAR(j["cases"][0]["error"].get<double>(), 6.25e-4, 1e-15);
   EXPECT_EQ(j["cases"][0]["tolerance"], 1e-3);
   write_report(in, tmp.path() / "out");
   for (const char* f : {"report.md", "report.html", "verification.json", "results-table.md"})

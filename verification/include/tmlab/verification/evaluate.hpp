@@ -30,8 +30,11 @@ struct CaseResult {
   Measurements measurements;
   std::string error_message;  ///< Status::Error: what went wrong
   double seconds = 0.0;
-  /// The first outcome (the case's primary check), used for the one-line summary; nullptr if none.
-  const CheckOutcome* primary() const { return outcomes.empty() ? nullptr : &outcomes.front(); }
+  /// The case's headline check, used for the one-line summary, the results table and the
+  /// `error` / `tolerance` of verification.json: the first failed check if any failed; otherwise
+  /// the finest-error check of the first convergence study if the case has one (the error the
+  /// study ends at); otherwise the first check. nullptr if there are no outcomes.
+  const CheckOutcome* primary() const;
 };
 
 /// Applies every check and convergence check of `c` to `m`. A metric or series that the check
