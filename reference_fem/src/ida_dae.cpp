@@ -9,6 +9,7 @@
 #include "tmlab/reference_fem/ida_dae.hpp"
 
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/stopwatch.hpp"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/dofs/dof_tools.h>
@@ -27,10 +28,6 @@ using namespace dealii;
 using Clock = std::chrono::steady_clock;
 
 namespace {
-
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
 
 // Voigt order of the internal variables: xx, yy, zz, xy, xz, yz.
 constexpr unsigned kVoigt[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};

@@ -4,6 +4,7 @@
 #include "tmlab/reference_fem/solid.hpp"
 
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/stopwatch.hpp"
 
 #include <deal.II/base/mpi.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -36,11 +37,7 @@ namespace tmlab::ref {
 using namespace dealii;
 using Clock = std::chrono::steady_clock;
 
-namespace {
-double seconds_since(Clock::time_point t0) {
-  return std::chrono::duration<double>(Clock::now() - t0).count();
-}
-}  // namespace
+namespace {}  // namespace
 
 // =====================================================================================================
 // Materials

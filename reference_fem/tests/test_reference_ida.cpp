@@ -18,6 +18,8 @@
 #include "tmlab/tensormass/lumped_mass.hpp"
 #include "tmlab/tensormass/ode_references.hpp"
 
+#include "../../tensormass/tests/ode_test_problems.hpp"
+
 #include <Eigen/Geometry>
 
 #include <gtest/gtest.h>
@@ -112,53 +114,24 @@ class ReferenceIdaTest : public ::testing::Test {
   fs::path dir_;
 };
 
-/// The tensor-mass side: the creep cube of test_ode_references.cpp, integrated by
+/// The tensor-mass side: the creep cube of tensormass/tests/ode_test_problems.hpp, integrated by
 /// TensorMassQuasiStaticDae + DaeIntegrator (IDA, dense DQ Jacobian) at rtol; u at t = 0.1 k.
 std::vector<std::vector<double>> tensormass_ida(double rtol, bool smooth, bool deviatoric,
                                                 tm::IntegratorStats& stats) {
   using namespace tmlab::tm;
-  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(kL), 2, 2, 2);
-  const StVenantKirchhoff mat = StVenantKirchhoff::from_young_poisson(kE, kNu);
-  const PronySeries prony = PronySeries::from_long_term({1.0}, {0.5});
-  const VecX node_mass = lumped_node_mass(mesh, 1000.0);
-  std::vector<DirichletCondition> bc;
-  for (int a = 0; a < 3; ++a) {
-    NodeSelector s;
-    s.kind = NodeSelector::Kind::Plane;
-    s.axis = a;
-    s.value = 0.0;
-    s.tol = 1e-12;
-    DirichletCondition c;
-    c.name = std::string("sym") + "xyz"[a];
-    c.nodes = select_nodes(mesh, s);
-    c.components = {a == 0, a == 1, a == 2};
-    bc.push_back(c);
-  }
-  ExternalLoads loads{mesh, node_mass};
-  NodeSelector right;
-  right.kind = NodeSelector::Kind::Plane;
-  right.axis = 0;
-  right.value = kL;
-  right.tol = 1e-12;
-  std::vector<double> share(static_cast<std::size_t>(mesh.num_points()), 0.0);
-  for (const Tri& f : select_faces(mesh, right)) {
-    const Vec3& a = mesh.points[f[0]];
-    const double area = 0.5 * (mesh.points[f[1]] - a).cross(mesh.points[f[2]] - a).norm();
-    for (Index n : f) share[static_cast<std::size_t>(n)] += area / 3.0;
-  }
-  for (Index n : select_nodes(mesh, right)) {
-    NodalForce nf;
-    nf.name = "traction";
-    nf.nodes = {n};
-    nf.force = Vec3(kTraction * share[static_cast<std::size_t>(n)], 0, 0);
-    nf.function = smooth ? TimeFunction::sine(1.0, 0.25) : TimeFunction::smooth_ramp(0.0, 1.0);
-    loads.add(nf);
-  }
+  static_assert(test::CreepCube::L == kL && test::CreepCube::E == kE && test::CreepCube::nu == kNu &&
+                test::CreepCube::traction == kTraction);
+  const test::CreepCube cube(PronySeries::from_long_term({1.0}, {0.5}),
+                             smooth ? TimeFunction::sine(1.0, 0.25) : TimeFunction::smooth_ramp(0.0, 1.0));
+  const Mesh& mesh = cube.mesh;
+  const StVenantKirchhoff& mat = cube.mat;
+  const PronySeries& prony = cube.prony;
   const ViscoelasticOptions vo{
       ViscoelasticOptions::History::Pk2, ViscoelasticOptions::Integration::ExactLinear,
       deviatoric ? ViscoelasticOptions::Relaxation::Deviatoric : ViscoelasticOptions::Relaxation::Full};
   ViscoelasticStVK model(mesh, mat, prony, vo);
-  MechanicalSystem sys(model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), bc), loads);
+  MechanicalSystem sys(model, lumped_dof_mass(cube.node_mass), DirichletSet(mesh.num_points(), cube.bc),
+                       cube.loads);
   TensorMassQuasiStaticDae dae(mesh, mat, prony, vo, sys);
   DaeOptions o;
   o.rtol = rtol;

@@ -7,6 +7,7 @@
 #include "tmlab/core/hdf5_file.hpp"
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/mesh_ops.hpp"
+#include "tmlab/core/stopwatch.hpp"
 #include "tmlab/tensormass/explicit_dynamics.hpp"
 #include "tmlab/tensormass/implicit_dynamics.hpp"
 #include "tmlab/tensormass/lumped_mass.hpp"
@@ -152,13 +153,6 @@ struct Instance {
   }
 };
 
-struct Timer {
-  std::clock_t c0 = std::clock();
-  std::chrono::steady_clock::time_point w0 = std::chrono::steady_clock::now();
-  double cpu() const { return static_cast<double>(std::clock() - c0) / CLOCKS_PER_SEC; }
-  double wall() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count(); }
-};
-
 int outputs(const Setup& s) { return static_cast<int>(std::lround(s.t_end / s.t_out)); }
 
 /// Runs the SUNDIALS integrator; fills `us` with u at the output times.
@@ -168,7 +162,7 @@ WorkPrecisionPoint run_sundials(const Setup& s, OdeMethod m, LinearSolverKind k,
   pt.family = "sundials";
   pt.parameter = "rtol";
   pt.value = rtol;
-  const Timer timer;
+  const Stopwatch timer;
   Instance in(s, Integ::ExactLinear);
   TensorMassViscoelasticOde ode(s.mesh, s.material, s.prony, Instance::options(Integ::ExactLinear),
                                 in.system);
@@ -206,7 +200,7 @@ WorkPrecisionPoint run_explicit(const Setup& s, Integ integ, double dt, std::vec
   pt.method = "explicit + " + ViscoelasticOptions::to_string(integ);
   pt.parameter = "dt";
   pt.value = dt;
-  const Timer timer;
+  const Stopwatch timer;
   Instance in(s, integ);
   CentralDifference cd(in.system, dt);
   cd.set_displacement_limit(1.0);  // 1 m: no stable run of these centimetre-scale problems gets near it
@@ -232,7 +226,7 @@ WorkPrecisionPoint run_implicit(const Setup& s, Integ integ, double dt, std::vec
   pt.method = "newmark + " + ViscoelasticOptions::to_string(integ);
   pt.parameter = "dt";
   pt.value = dt;
-  const Timer timer;
+  const Stopwatch timer;
   Instance in(s, integ);
   // Newton to 1e-10 of the force scale: far below every error measured here.
   ImplicitDynamics im(in.system, ImplicitScheme::Newmark, NewtonOptions{40, 1e-10, 1e-15, true, 12});

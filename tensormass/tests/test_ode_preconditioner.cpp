@@ -10,6 +10,8 @@
 #include "tmlab/tensormass/lumped_mass.hpp"
 #include "tmlab/tensormass/ode_references.hpp"
 
+#include "ode_test_problems.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -22,27 +24,9 @@ namespace {
 
 using Opt = ViscoelasticOptions;
 
-/// Block 2 x 1 x 1 cm (3x2x2 cells, 72 tets), rho = 1000, clamped at x = 0, two Prony terms,
-/// released with a transverse velocity growing linearly to 0.05 m/s at the tip.
-struct Block {
-  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3(0.02, 0.01, 0.01), 3, 2, 2);
-  StVenantKirchhoff mat;
-  PronySeries prony = PronySeries::from_long_term({1.0, 0.5}, {0.01, 0.1});
-  VecX node_mass = lumped_node_mass(mesh, 1000.0);
-  DirichletCondition clamp;
-  VecX v0;
-  explicit Block(double nu) : mat(StVenantKirchhoff::from_young_poisson(5e3, nu)) {
-    NodeSelector s;
-    s.kind = NodeSelector::Kind::Plane;
-    s.axis = 0;
-    s.value = 0.0;
-    s.tol = 1e-12;
-    clamp.name = "clamp";
-    clamp.nodes = select_nodes(mesh, s);
-    v0 = VecX::Zero(3 * mesh.num_points());
-    for (Index i = 0; i < mesh.num_points(); ++i) v0[3 * i + 2] = 0.05 * mesh.points[i].x() / 0.02;
-  }
-  DirichletSet bc() const { return DirichletSet(mesh.num_points(), {clamp}); }
+/// The released block (ode_test_problems.hpp) with two Prony terms.
+struct Block : test::ReleasedBlock {
+  explicit Block(double nu) : test::ReleasedBlock(nu, PronySeries::from_long_term({1.0, 0.5}, {0.01, 0.1})) {}
 };
 
 struct Variant {
@@ -103,40 +87,9 @@ TEST(OdePreconditioner, OdePreconditionerInvertsTheNewtonMatrixExactly) {
     }
 }
 
-/// Cube [0, 1 cm]^3 (2x2x2 cells), symmetry planes, a traction on x = L ramped over 1 s (quasi-static creep).
-struct CreepCube {
-  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(0.01), 2, 2, 2);
-  StVenantKirchhoff mat = StVenantKirchhoff::from_young_poisson(10e3, 0.3);
-  PronySeries prony = PronySeries::from_long_term({1.0, 0.5}, {0.5, 0.1});
-  VecX node_mass = lumped_node_mass(mesh, 1000.0);
-  std::vector<DirichletCondition> bc;
-  ExternalLoads loads{mesh, node_mass};
-  CreepCube() {
-    for (int a = 0; a < 3; ++a) {
-      NodeSelector s;
-      s.kind = NodeSelector::Kind::Plane;
-      s.axis = a;
-      s.value = 0.0;
-      s.tol = 1e-12;
-      DirichletCondition c;
-      c.name = std::string("sym") + "xyz"[a];
-      c.nodes = select_nodes(mesh, s);
-      c.components = {a == 0, a == 1, a == 2};
-      bc.push_back(c);
-    }
-    NodeSelector right;
-    right.kind = NodeSelector::Kind::Plane;
-    right.axis = 0;
-    right.value = 0.01;
-    right.tol = 1e-12;
-    const std::vector<Index> nodes = select_nodes(mesh, right);
-    NodalForce nf;
-    nf.name = "pull";
-    nf.nodes = nodes;
-    nf.force = Vec3(0.02 * 10e3 * 1e-4, 0, 0);  // 2 % of E_inf over the 1 cm^2 face
-    nf.function = TimeFunction::smooth_ramp(0.0, 1.0);
-    loads.add(nf);
-  }
+/// The creep cube (ode_test_problems.hpp) with two Prony terms, the traction ramped over 1 s.
+struct CreepCube : test::CreepCube {
+  CreepCube() : test::CreepCube(PronySeries::from_long_term({1.0, 0.5}, {0.5, 0.1})) {}
 };
 
 TEST(OdePreconditioner, DaePreconditionerInvertsTheNewtonMatrixExactly) {

@@ -10,6 +10,8 @@
 #include "tmlab/tensormass/ode_references.hpp"
 #include "tmlab/tensormass/static_solver.hpp"
 
+#include "ode_test_problems.hpp"
+
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
@@ -164,27 +166,9 @@ TEST(OdeReferences, IdaMeetsItsTolerancesOnTheCreepDae) {
 
 // ------------------------------------------------------------------ tensor-mass dynamics
 
-/// Block 2 x 1 x 1 cm (3x2x2 cells, 72 tets), E_inf = 5 kPa, nu = 0.35, rho = 1000, clamped at x = 0,
-/// released with a transverse velocity growing linearly to 0.05 m/s at the tip; one Prony term.
-struct Block {
-  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3(0.02, 0.01, 0.01), 3, 2, 2);
-  StVenantKirchhoff mat = StVenantKirchhoff::from_young_poisson(5e3, 0.35);
-  PronySeries prony = PronySeries::from_long_term({1.0}, {0.01});
-  VecX node_mass = lumped_node_mass(mesh, 1000.0);
-  DirichletCondition clamp;
-  VecX v0;
-  Block() {
-    NodeSelector s;
-    s.kind = NodeSelector::Kind::Plane;
-    s.axis = 0;
-    s.value = 0.0;
-    s.tol = 1e-12;
-    clamp.name = "clamp";
-    clamp.nodes = select_nodes(mesh, s);
-    v0 = VecX::Zero(3 * mesh.num_points());
-    for (Index i = 0; i < mesh.num_points(); ++i) v0[3 * i + 2] = 0.05 * mesh.points[i].x() / 0.02;
-  }
-  DirichletSet bc() const { return DirichletSet(mesh.num_points(), {clamp}); }
+/// The released block (ode_test_problems.hpp): nu = 0.35, one Prony term alpha = 1, tau = 10 ms.
+struct Block : test::ReleasedBlock {
+  Block() : test::ReleasedBlock(0.35, PronySeries::from_long_term({1.0}, {0.01})) {}
 };
 
 TEST(OdeReferences, TensorMassJacobianActionMatchesDifferenceQuotient) {
@@ -292,51 +276,9 @@ TEST(OdeReferences, FixedStepTensorMassConvergesToCvodeReference) {
 
 // ------------------------------------------------------------------ tensor-mass quasi-static creep (IDA)
 
-/// Cube [0, 1 cm]^3 (2x2x2 cells, 48 tets), E_inf = 10 kPa, nu = 0.3, symmetry planes at 0, nominal
-/// traction 0.02 E_inf on x = L (consistent nodal loads) on a C1 ramp over 1 s, held to 2 s; one
-/// Prony term alpha = 1, tau = 0.5 s.
-struct CreepCube {
-  double L = 0.01;
-  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(0.01), 2, 2, 2);
-  StVenantKirchhoff mat = StVenantKirchhoff::from_young_poisson(10e3, 0.3);
-  PronySeries prony = PronySeries::from_long_term({1.0}, {0.5});
-  VecX node_mass = lumped_node_mass(mesh, 1000.0);
-  std::vector<DirichletCondition> bc;
-  ExternalLoads loads{mesh, node_mass};
-  CreepCube() {
-    for (int a = 0; a < 3; ++a) {
-      NodeSelector s;
-      s.kind = NodeSelector::Kind::Plane;
-      s.axis = a;
-      s.value = 0.0;
-      s.tol = 1e-12;
-      DirichletCondition c;
-      c.name = std::string("sym") + "xyz"[a];
-      c.nodes = select_nodes(mesh, s);
-      c.components = {a == 0, a == 1, a == 2};
-      bc.push_back(c);
-    }
-    NodeSelector right;
-    right.kind = NodeSelector::Kind::Plane;
-    right.axis = 0;
-    right.value = L;
-    right.tol = 1e-12;
-    std::vector<double> share(static_cast<std::size_t>(mesh.num_points()), 0.0);
-    for (const Tri& f : select_faces(mesh, right)) {
-      const Vec3& a = mesh.points[f[0]];
-      const double area = 0.5 * (mesh.points[f[1]] - a).cross(mesh.points[f[2]] - a).norm();
-      for (Index n : f) share[static_cast<std::size_t>(n)] += area / 3.0;
-    }
-    for (Index n : select_nodes(mesh, right)) {
-      NodalForce nf;
-      nf.name = "traction";
-      nf.nodes = {n};
-      nf.force = Vec3(0.02 * 10e3 * share[static_cast<std::size_t>(n)], 0, 0);
-      nf.function = TimeFunction::smooth_ramp(0.0, 1.0);
-      loads.add(nf);
-    }
-  }
-};
+/// The creep cube (ode_test_problems.hpp): one Prony term alpha = 1, tau = 0.5 s, the traction on a C1 ramp
+/// over 1 s, held to 2 s.
+using test::CreepCube;
 
 TEST(OdeReferences, StaticSolverConvergesToIdaQuasiStaticReference) {
   const CreepCube c;

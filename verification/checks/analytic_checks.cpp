@@ -15,6 +15,7 @@
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/mesh_ops.hpp"
+#include "tmlab/core/stopwatch.hpp"
 #include "tmlab/tensormass/dirichlet.hpp"
 #include "tmlab/tensormass/external_loads.hpp"
 #include "tmlab/tensormass/lumped_mass.hpp"
@@ -60,10 +61,6 @@ std::string fmt(double v, int digits = 3) {
   std::ostringstream s;
   s << std::scientific << std::setprecision(digits) << v;
   return s.str();
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 /// Reads a list of numbers (non-empty, each finite and > 0 unless allow_nonpositive).
@@ -560,6 +557,27 @@ void add_time_series(Measurements& m, const std::string& scheme, const std::vect
           std::log(errors[errors.size() - 2] / errors.back()) / std::log(dts[dts.size() - 2] / dts.back()));
 }
 
+/// The time-step study of a Prony cube: every scheme at every dt, the error of a run the maximum of
+/// deviation(t, run) (= |model - exact| / peak) over the output times; logged per run ("of the peak
+/// <quantity>") and added to m by add_time_series.
+template <class Setup, class Deviation>
+void time_step_study(const PronyParams& P, const Mesh& mesh, const CheckContext& ctx,
+                     const std::string& quantity, Setup setup, Deviation deviation, Measurements& m) {
+  for (const auto& scheme : P.schemes) {
+    std::vector<double> errors;
+    for (double dt : P.dts) {
+      const auto t0 = std::chrono::steady_clock::now();
+      double err = 0.0;
+      run_prony_cube(P, mesh, scheme, dt, setup,
+                     [&](double t, const StaticRun& run) { err = std::max(err, deviation(t, run)); });
+      errors.push_back(err);
+      ctx.log << "  " << scheme << " dt = " << dt << ": max error " << fmt(err) << " of the peak " << quantity
+              << " (" << fmt(seconds_since(t0), 2) << " s)\n";
+    }
+    add_time_series(m, scheme, P.dts, errors);
+  }
+}
+
 // Relaxation: u_x = eps0 L f(t) on X = L, f the C1 cubic ramp over [0, t1], held to t_end. The
 // state is homogeneous with S22 = S33 = 0 for all t (lateral E22 = -nu E11, so the lateral long-term
 // stress and its history vanish), and the model's time-continuous limit is, exactly (finite strain):
@@ -605,27 +623,14 @@ Measurements prony_relaxation(const CheckContext& ctx) {
     nonlinear = std::max(nonlinear, std::abs(exact(t) - exact_small(t)) / peak);
 
   Measurements m;
-  for (const auto& scheme : P.schemes) {
-    std::vector<double> errors;
-    for (double dt : P.dts) {
-      const auto t0 = std::chrono::steady_clock::now();
-      double err = 0.0;
-      run_prony_cube(
-          P, mesh, scheme, dt,
-          [&](std::vector<tm::DirichletCondition>& bcs, std::vector<tm::SurfaceTraction>&) {
-            bcs = symmetry_planes(mesh);
-            bcs.push_back(condition("pull", group_nodes(mesh, "xmax"), {true, false, false},
-                                    Vec3(eps0 * L, 0, 0), TimeFunction::smooth_ramp(0.0, P.ramp_time)));
-          },
-          [&](double t, const StaticRun& run) {
-            err = std::max(err, std::abs(run.reaction(3, t).x() - exact(t)) / peak);
-          });
-      errors.push_back(err);
-      ctx.log << "  " << scheme << " dt = " << dt << ": max error " << fmt(err) << " of the peak force ("
-              << fmt(seconds_since(t0), 2) << " s)\n";
-    }
-    add_time_series(m, scheme, P.dts, errors);
-  }
+  time_step_study(
+      P, mesh, ctx, "force",
+      [&](std::vector<tm::DirichletCondition>& bcs, std::vector<tm::SurfaceTraction>&) {
+        bcs = symmetry_planes(mesh);
+        bcs.push_back(condition("pull", group_nodes(mesh, "xmax"), {true, false, false}, Vec3(eps0 * L, 0, 0),
+                                TimeFunction::smooth_ramp(0.0, P.ramp_time)));
+      },
+      [&](double t, const StaticRun& run) { return std::abs(run.reaction(3, t).x() - exact(t)) / peak; }, m);
   m.set("peak_force_N", peak);
   m.set("finite_strain_effect", nonlinear);
   m.notes.push_back(
@@ -667,34 +672,24 @@ Measurements prony_creep(const CheckContext& ctx) {
     peak = std::max(peak, std::abs(exact(t)));
 
   Measurements m;
-  for (const auto& scheme : P.schemes) {
-    std::vector<double> errors;
-    for (double dt : P.dts) {
-      const auto t0 = std::chrono::steady_clock::now();
-      double err = 0.0;
-      run_prony_cube(
-          P, mesh, scheme, dt,
-          [&](std::vector<tm::DirichletCondition>& bcs, std::vector<tm::SurfaceTraction>& tr) {
-            bcs = symmetry_planes(mesh);
-            tm::SurfaceTraction t;
-            t.name = "creep";
-            t.faces = select_faces(mesh, NodeSelector::from_json({{"group", "xmax"}}));
-            t.traction = Vec3(sigma0, 0, 0);
-            t.function = TimeFunction::smooth_ramp(0.0, P.ramp_time);
-            tr.push_back(t);
-          },
-          [&](double t, const StaticRun& run) {
-            double ux = 0.0;
-            for (Index i : pulled) ux += run.u[3 * i];
-            const double eps_h = ux / double(pulled.size()) / L;
-            err = std::max(err, std::abs(eps_h - exact(t)) / peak);
-          });
-      errors.push_back(err);
-      ctx.log << "  " << scheme << " dt = " << dt << ": max error " << fmt(err) << " of the peak strain ("
-              << fmt(seconds_since(t0), 2) << " s)\n";
-    }
-    add_time_series(m, scheme, P.dts, errors);
-  }
+  time_step_study(
+      P, mesh, ctx, "strain",
+      [&](std::vector<tm::DirichletCondition>& bcs, std::vector<tm::SurfaceTraction>& tr) {
+        bcs = symmetry_planes(mesh);
+        tm::SurfaceTraction t;
+        t.name = "creep";
+        t.faces = select_faces(mesh, NodeSelector::from_json({{"group", "xmax"}}));
+        t.traction = Vec3(sigma0, 0, 0);
+        t.function = TimeFunction::smooth_ramp(0.0, P.ramp_time);
+        tr.push_back(t);
+      },
+      [&](double t, const StaticRun& run) {
+        double ux = 0.0;
+        for (Index i : pulled) ux += run.u[3 * i];
+        const double eps_h = ux / double(pulled.size()) / L;
+        return std::abs(eps_h - exact(t)) / peak;
+      },
+      m);
   m.set("peak_strain", peak);
   m.set("geometric_nonlinearity_bound", 1.5 * peak);
   return m;

@@ -25,6 +25,7 @@
 #include "tmlab/core/hdf5_file.hpp"
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/result_compare.hpp"
+#include "tmlab/core/stopwatch.hpp"
 #include "tmlab/reference_fem/reference_runner.hpp"
 #include "tmlab/tensormass/case_runner.hpp"
 
@@ -59,10 +60,6 @@ std::string short_number(double v) {
   std::ostringstream s;
   s << std::setprecision(6) << v;
   return s.str();
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 /// "12.3 s".
