@@ -66,10 +66,4 @@ std::vector<std::string> split_words(const std::string& s) {
   return w;
 }
 
-std::string plot_python() {
-  const char* env = std::getenv("TMLAB_PYTHON");
-  if (env && *env) return env;
-  return std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-}
-
 }  // namespace tmlab::cli

@@ -27,8 +27,4 @@ double parse_double(const std::string& key, const std::string& s);
 /// Whitespace-separated words (the command line as a list, for manifests).
 std::vector<std::string> split_words(const std::string& s);
 
-/// The python3 for plots: $TMLAB_PYTHON, else Debian's /usr/bin/python3 (which carries matplotlib
-/// and h5py; another python3 may come first on PATH), else python3.
-std::string plot_python();
-
 }  // namespace tmlab::cli

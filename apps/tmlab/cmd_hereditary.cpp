@@ -9,6 +9,7 @@
 #include "tmlab/core/config_reader.hpp"
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/hdf5_file.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/tensormass/hereditary_study.hpp"
 
@@ -359,13 +360,12 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
 
     if (!p.has("--no-plots")) {
       const fs::path script = fs::path(tmlab_root()) / "core" / "python" / "tmlab_hereditary_plot.py";
-      const std::string cmd =
-          plot_python() + " '" + script.string() + "' '" + out.staging_dir().string() + "'";
-      if (std::system(cmd.c_str()) != 0) throw Error("drawing the hereditary plots failed (" + cmd + ")");
+      const ProcessStatus ps = run_python(script, {out.staging_dir().string()});
+      if (!ps.ok()) throw Error("drawing the hereditary plots failed (" + ps.describe() + ")");
     }
     out.finalize(summary);
   } catch (const std::exception& e) {
-    out.fail(e.what());
+    out.abandon(e);
     throw;
   }
   std::cout << "results " << dir.string() << "/ (hereditary.h5, hereditary.md, summary.json, *.png)\n";

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/verification/report.hpp"
 #include "tmlab/verification/runner.hpp"
@@ -73,7 +74,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     const auto results = verify::run_cases(cases, registry, settings, std::cerr);
     fs::remove_all(settings.work_root);
 
-    verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : plot_python(),
+    verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : python_interpreter(),
                            root / "verification" / "python" / "plot_convergence.py"};
     verify::write_report(in, out.staging_dir());
     const nlohmann::json vj = verify::verification_json(in);
@@ -85,7 +86,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
               << cases.size() << "; report: " << (out.dir() / "report.md").string() << "\n";
     return failed == 0 && errors == 0 ? 0 : 1;
   } catch (const std::exception& e) {
-    out.fail(e.what());
+    out.abandon(e);
     throw;
   }
 }

@@ -7,6 +7,7 @@
 #include "cli_args.hpp"
 
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/tensormass/work_precision.hpp"
 
@@ -67,9 +68,9 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
     if (!p.has("--no-plots")) {
       const fs::path script =
           fs::path(opt.tmlab_root) / "tensormass" / "python" / "tmlab_workprecision_plot.py";
-      const std::string cmd = plot_python() + " '" + script.string() + "' '" + out.staging_dir().string() +
-                              "' > '" + out.file("plots.log").string() + "' 2>&1";
-      const int rc = std::system(cmd.c_str());
+      const ProcessStatus ps =
+          run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
+      const int rc = ps.ok() ? 0 : 1;
       plot_status = rc == 0 ? "ok" : "failed (see plots.log)";
       if (rc != 0)
         std::cerr << "tmlab workprecision: warning: plotting failed (see plots.log); the numbers are in "
@@ -96,7 +97,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
     out.finalize(summary);
     std::cout << table << "results     " << dir.string() << "/ (workprecision.h5, workprecision.md, *.png)\n";
   } catch (const std::exception& e) {
-    out.fail(e.what());
+    out.abandon(e);
     throw;
   }
   return 0;

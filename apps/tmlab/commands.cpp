@@ -13,6 +13,7 @@
 #include "tmlab/core/mesh_generator.hpp"
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/result_compare.hpp"
 #include "tmlab/tensormass/case_runner.hpp"
 #include "tmlab/tensormass/paper_experiments.hpp"
@@ -232,11 +233,9 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
           {"ylabel", "relative difference"},
           {"logy", true}}});
     std::ofstream(pdir / "plots.json") << plots.dump(2) << "\n";
-    const std::string python = plot_python();
-    const std::string cmd = python + " '" +
-                            (fs::path(tmlab_root()) / "core" / "python" / "tmlab_plot.py").string() + "' '" +
-                            pdir.string() + "' > /dev/null";
-    plot_note = std::system(cmd.c_str()) == 0 ? ", compare/*.png" : " (plotting failed)";
+    const ProcessStatus ps = run_python(fs::path(tmlab_root()) / "core" / "python" / "tmlab_plot.py",
+                                        {pdir.string()}, ProcessOutput::discard());
+    plot_note = ps.ok() ? ", compare/*.png" : " (plotting failed: " + ps.describe() + ")";
   }
   std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
             << "  quantity                          max over steps\n"
@@ -344,9 +343,8 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
   std::ofstream(dir / "figure.json") << spec.dump(2) << "\n";
   if (p.has("--no-plots")) return 0;
   const fs::path script = fs::path(tmlab_root()) / "core" / "python" / "tmlab_paper_figure.py";
-  const std::string python = plot_python();
-  const std::string cmd = python + " '" + script.string() + "' '" + dir.string() + "'";
-  if (std::system(cmd.c_str()) != 0) throw Error("drawing " + fig.name + " failed (" + cmd + ")");
+  const ProcessStatus ps = run_python(script, {dir.string()});
+  if (!ps.ok()) throw Error("drawing " + fig.name + " failed (" + ps.describe() + ")");
   if (fig.name == "fig7") {
     std::ifstream in(dir / "fig7_energy.json");
     const auto e = nlohmann::json::parse(in);

@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/interrupt.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
 #include "tmlab/reference_fem/reference_runner.hpp"
@@ -82,6 +83,9 @@ int main(int argc, char** argv) {
     if (cmd == "run" || cmd == "compare" || cmd == "verify")
       mpi = std::make_unique<tmlab::ref::MpiSession>(argc, argv);
 #endif
+    // SIGINT / SIGTERM: long commands stop at their next safe point and leave INTERRUPTED.
+    // Installed after MPI_Init, which sets handlers of its own.
+    const tmlab::InterruptHandler interrupts;
     if (cmd == "demo") return tmlab::cli::cmd_demo(args, command_line);
     if (cmd == "run") return tmlab::cli::cmd_run(args, command_line);
     if (cmd == "cases") return tmlab::cli::cmd_cases(args);
@@ -98,6 +102,9 @@ int main(int argc, char** argv) {
   } catch (const tmlab::cli::UsageError& e) {
     std::cerr << "tmlab " << cmd << ": " << e.what() << "\n(see 'tmlab help')\n";
     return 2;
+  } catch (const tmlab::Interrupted& e) {
+    std::cerr << "tmlab: interrupted: " << e.what() << "\n";
+    return 128 + e.signal();
   } catch (const tmlab::Error& e) {
     std::cerr << "tmlab: error: " << e.what() << "\n";
     return 1;

@@ -3,6 +3,7 @@
 #include "tmlab/core/config_reader.hpp"
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/gmsh_reader.hpp"
+#include "tmlab/core/run_output.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -61,9 +62,8 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
   c.file = where;
   ConfigReader root(doc, where);
   c.name = root.require<std::string>("name");
-  if (c.name.empty() || c.name.find_first_of("/\\ ") != std::string::npos)
-    throw root.error("name",
-                     "must be a non-empty name without spaces or slashes (it names the result directory)");
+  if (const std::string problem = result_name_problem(c.name); !problem.empty())
+    throw root.error("name", "'" + c.name + "' " + problem + ": it names the result directory");
   c.description = root.get<std::string>("description", "");
   c.model = root.get<std::string>("model", "tensor_mass");
   if (c.model != "tensor_mass" && c.model != "tl_oracle")

@@ -4,6 +4,7 @@
 #include "tmlab/build_info.hpp"
 #include "tmlab/core/atomic_file.hpp"
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/interrupt.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,6 +13,13 @@
 #include <exception>
 #include <fstream>
 
+#include <cerrno>
+#include <cstring>
+#include <iterator>
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #ifndef TMLAB_VERSION_STRING
@@ -95,29 +103,133 @@ nlohmann::json make_manifest(const ManifestInput& input) {
 
 // --- RunOutput -----------------------------------------------------------------------------------
 
+std::string result_name_problem(const std::string& name) {
+  if (name.empty()) return "is empty";
+  if (name.size() > 100) return "is longer than 100 characters";
+  if (name[0] == '.' || name[0] == '-') return "starts with '" + std::string(1, name[0]) + "'";
+  for (const char ch : name) {
+    const bool ok = (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') ||
+                    ch == '.' || ch == '_' || ch == '-' || ch == '+';
+    if (!ok) {
+      const auto code = static_cast<unsigned>(static_cast<unsigned char>(ch));
+      std::string shown =
+          (code >= 0x20 && code < 0x7f) ? "'" + std::string(1, ch) + "'" : "byte " + std::to_string(code);
+      return "contains " + shown + " (allowed: letters, digits, '.', '_', '-', '+')";
+    }
+  }
+  return {};
+}
+
 namespace {
 
 bool looks_like_result_dir(const fs::path& dir) {
-  for (const char* marker :
-       {RunOutput::kStaging, RunOutput::kRunning, RunOutput::kFailed, RunOutput::kSummary, "manifest.json"}) {
+  for (const char* marker : {RunOutput::kStaging, RunOutput::kRunning, RunOutput::kFailed,
+                             RunOutput::kInterrupted, RunOutput::kSummary, "manifest.json"}) {
     if (fs::exists(dir / marker)) return true;
   }
   return false;
 }
 
+std::string read_small_file(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return text.substr(0, 4096);
+}
+
+/// "pid 123 on host, started 2026-..." from a RUNNING marker or lock file ("" when unreadable).
+std::string describe_writer(const fs::path& marker) {
+  try {
+    const auto j = nlohmann::json::parse(read_small_file(marker));
+    std::string s = "pid " + std::to_string(j.value("pid", -1L)) + " on " + j.value("hostname", "?");
+    if (j.contains("started_utc")) s += ", started " + j.value("started_utc", "");
+    if (j.contains("command_line")) s += ": " + j.value("command_line", "");
+    return s;
+  } catch (const std::exception&) {
+    return "";
+  }
+}
+
+/// fsync a directory so the renames inside it are on disk (best effort: some file systems refuse).
+void sync_directory(const fs::path& dir) {
+  const int fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+/// fsync every regular file and directory of a tree (the staged result before it is swapped in).
+void sync_tree(const fs::path& root) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec)) {
+    if (it->is_directory(ec)) {
+      sync_directory(it->path());
+    } else if (it->is_regular_file(ec)) {
+      const int fd = ::open(it->path().c_str(), O_RDONLY | O_CLOEXEC);
+      if (fd >= 0) {
+        ::fsync(fd);
+        ::close(fd);
+      }
+    }
+  }
+  sync_directory(root);
+}
+
 }  // namespace
 
-RunOutput::RunOutput(fs::path dir)
+RunOutput::RunOutput(fs::path dir, std::ostream* log)
     : dir_(std::move(dir)),
       started_(std::chrono::system_clock::now()),
       started_steady_(std::chrono::steady_clock::now()),
       uncaught_at_start_(std::uncaught_exceptions()) {
   std::error_code ec;
+  if (dir_.filename().empty()) dir_ = dir_.parent_path();  // "results/x/" -> "results/x"
   if (fs::exists(dir_, ec)) {
     if (!fs::is_directory(dir_)) throw Error(dir_.string() + ": result path exists and is not a directory");
     if (!fs::is_empty(dir_) && !looks_like_result_dir(dir_)) {
       throw Error(dir_.string() + ": refusing to reuse a non-empty directory that is not a tmlab result " +
                   "directory (no summary.json, manifest.json, RUNNING, FAILED or .incomplete)");
+    }
+  }
+  // ---- One writer per directory: an exclusive, non-blocking flock on <parent>/.<name>.lock. ----
+  const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
+  fs::create_directories(parent, ec);
+  if (ec) throw Error(parent.string() + ": cannot create result directory: " + ec.message());
+  const fs::path lock_path = parent / ("." + dir_.filename().string() + ".lock");
+  lock_fd_ = ::open(lock_path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0)
+    throw Error(lock_path.string() + ": cannot open the result directory's lock (" + std::strerror(errno) +
+                ")");
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    const int err = errno;
+    ::close(lock_fd_);
+    lock_fd_ = -1;
+    if (err != EWOULDBLOCK)
+      throw Error(lock_path.string() + ": cannot lock the result directory (" + std::strerror(err) + ")");
+    std::string who = describe_writer(lock_path);
+    throw Error(dir_.string() + ": another tmlab run is writing this result directory" +
+                (who.empty() ? std::string() : " (" + who + ")") +
+                "; wait for it to finish, or write elsewhere with --results DIR");
+  }
+  const nlohmann::json me = {{"pid", static_cast<long>(::getpid())},
+                             {"hostname", host_name()},
+                             {"started_utc", utc_iso8601(started_)}};
+  {
+    const std::string text = me.dump() + "\n";
+    if (::ftruncate(lock_fd_, 0) != 0 || ::pwrite(lock_fd_, text.data(), text.size(), 0) < 0) {
+      // The lock holds regardless; only the description for a refused second writer is lost.
+    }
+  }
+
+  // ---- Clear the previous result (we hold the lock: any RUNNING marker is stale). ----
+  if (fs::exists(dir_, ec)) {
+    if (fs::exists(dir_ / kRunning)) {
+      if (log) {
+        const std::string who = describe_writer(dir_ / kRunning);
+        *log << "tmlab: " << dir_.string() << ": a stale RUNNING marker"
+             << (who.empty() ? std::string() : " (" + who + ")")
+             << " was left by a run whose process is gone; its partial output is discarded\n";
+      }
     }
     // The previous run no longer describes this directory: drop its completeness mark first.
     fs::remove(dir_ / kSummary, ec);
@@ -127,18 +239,18 @@ RunOutput::RunOutput(fs::path dir)
       if (ec) throw Error(entry.path().string() + ": cannot remove previous result: " + ec.message());
     }
   }
+  fs::remove_all(parent / ("." + dir_.filename().string() + ".final"), ec);  // a crash mid-finalize
   fs::create_directories(staging_dir(), ec);
   if (ec) throw Error(dir_.string() + ": cannot create result directory: " + ec.message());
-  const nlohmann::json running = {{"pid", static_cast<long>(::getpid())},
-                                  {"hostname", host_name()},
-                                  {"started_utc", utc_iso8601(started_)}};
-  write_file_atomically(dir_ / kRunning, running.dump(2) + "\n");
+  write_file_atomically(dir_ / kRunning, me.dump(2) + "\n");
 }
 
 RunOutput::~RunOutput() {
-  if (state_ != State::Running) return;
-  const bool unwinding = std::uncaught_exceptions() > uncaught_at_start_;
-  fail(unwinding ? "run aborted by an exception before finalize()" : "run ended without finalize()");
+  if (state_ == State::Running) {
+    const bool unwinding = std::uncaught_exceptions() > uncaught_at_start_;
+    fail(unwinding ? "run aborted by an exception before finalize()" : "run ended without finalize()");
+  }
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock; the lock file itself stays
 }
 
 fs::path RunOutput::file(const std::string& name) const {
@@ -165,19 +277,18 @@ void RunOutput::finalize(const nlohmann::json& summary) {
   }
   if (!summary.is_object()) throw Error(dir_.string() + ": the run summary must be a JSON object");
   try {
-    std::vector<std::string> files;
+    // 1. The complete tree is built beside the directory: <parent>/.<name>.final = staged files +
+    //    summary.json (written last, with the file list), then synced.
+    const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
+    const fs::path final_tree = parent / ("." + dir_.filename().string() + ".final");
     std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(staging_dir())) {
-      const fs::path target = dir_ / entry.path().filename();
-      fs::remove_all(target, ec);  // a stale entry of the same name (never expected after the ctor)
-      fs::rename(entry.path(), target, ec);
-      if (ec) throw Error(target.string() + ": cannot move result into place: " + ec.message());
+    fs::remove_all(final_tree, ec);
+    fs::rename(staging_dir(), final_tree, ec);
+    if (ec) throw Error(final_tree.string() + ": cannot stage the finished result: " + ec.message());
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(final_tree))
       files.push_back(entry.path().filename().string());
-    }
     std::sort(files.begin(), files.end());
-    fs::remove_all(staging_dir(), ec);
-    if (ec) throw Error(staging_dir().string() + ": cannot remove staging directory: " + ec.message());
-    fs::remove(dir_ / kRunning, ec);
 
     nlohmann::json s = summary;
     const auto now = std::chrono::system_clock::now();
@@ -187,7 +298,24 @@ void RunOutput::finalize(const nlohmann::json& summary) {
     s["wall_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started_steady_).count();
     s["files"] = files;
-    write_file_atomically(dir_ / kSummary, s.dump(2) + "\n");  // last: marks the run complete
+    write_file_atomically(final_tree / kSummary, s.dump(2) + "\n");
+    sync_tree(final_tree);
+
+    // 2. One rename makes it the result: exchange it with <dir> (which holds only RUNNING now),
+    //    then remove what was swapped out.
+    if (::renameat2(AT_FDCWD, final_tree.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
+      // A file system without RENAME_EXCHANGE: move the old directory aside, then rename.
+      const fs::path aside = parent / ("." + dir_.filename().string() + ".old");
+      fs::remove_all(aside, ec);
+      fs::rename(dir_, aside, ec);
+      if (ec) throw Error(dir_.string() + ": cannot move the old directory aside: " + ec.message());
+      fs::rename(final_tree, dir_, ec);
+      if (ec) throw Error(dir_.string() + ": cannot move the result into place: " + ec.message());
+      fs::remove_all(aside, ec);
+    } else {
+      fs::remove_all(final_tree, ec);
+    }
+    sync_directory(parent);
   } catch (const std::exception& e) {
     fail(std::string("finalize() failed: ") + e.what());
     throw;
@@ -195,19 +323,39 @@ void RunOutput::finalize(const nlohmann::json& summary) {
   state_ = State::Finalized;
 }
 
-void RunOutput::fail(const std::string& message) noexcept {
+void RunOutput::mark_stopped(State state, const char* marker, const std::string& message) noexcept {
   if (state_ != State::Running) return;
-  state_ = State::Failed;
+  state_ = state;
   try {
     std::error_code ec;
     fs::remove(dir_ / kSummary, ec);
-    const std::string text =
-        "failed_utc: " + utc_iso8601(std::chrono::system_clock::now()) + "\n" + "error: " + message + "\n";
-    write_file_atomically(dir_ / kFailed, text);
+    fs::create_directories(dir_, ec);
+    // A crash between the two renames of finalize() could leave the staged tree beside the
+    // directory; bring it back where the user looks for it.
+    const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
+    const fs::path final_tree = parent / ("." + dir_.filename().string() + ".final");
+    if (!fs::exists(staging_dir()) && fs::exists(final_tree)) fs::rename(final_tree, staging_dir(), ec);
+    const std::string stamp = state == State::Interrupted ? "interrupted_utc: " : "failed_utc: ";
+    const std::string text = stamp + utc_iso8601(std::chrono::system_clock::now()) + "\n" +
+                             (state == State::Interrupted ? "reason: " : "error: ") + message + "\n";
+    write_file_atomically(dir_ / marker, text);
     fs::remove(dir_ / kRunning, ec);
   } catch (...) {
     // Nothing more can be done: the missing summary.json still marks the run incomplete.
   }
+}
+
+void RunOutput::fail(const std::string& message) noexcept { mark_stopped(State::Failed, kFailed, message); }
+
+void RunOutput::interrupt(const std::string& message) noexcept {
+  mark_stopped(State::Interrupted, kInterrupted, message);
+}
+
+void RunOutput::abandon(const std::exception& e) noexcept {
+  if (dynamic_cast<const Interrupted*>(&e) != nullptr)
+    interrupt(e.what());
+  else
+    fail(e.what());
 }
 
 }  // namespace tmlab

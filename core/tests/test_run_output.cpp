@@ -1,13 +1,16 @@
 // RunOutput protocol (staging, summary.json last, FAILED on unwinding) and make_manifest.
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/interrupt.hpp"
 #include "tmlab/core/run_output.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 namespace fs = std::filesystem;
@@ -130,6 +133,133 @@ TEST_F(RunOutputTest, RefusesForeignDirectoryAndBadNames) {
   EXPECT_THROW(out.file("/abs.txt"), tmlab::Error);
   EXPECT_THROW(out.file(""), tmlab::Error);
   out.finalize();
+}
+
+TEST_F(RunOutputTest, SecondWriterIsRefusedAndNamesTheFirst) {
+  const fs::path dir = root_ / "busy";
+  {
+    tmlab::RunOutput first(dir);
+    spit(first.file("a.txt"), "first");
+    try {
+      tmlab::RunOutput second(dir);
+      FAIL() << "a second writer was accepted";
+    } catch (const tmlab::Error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("another tmlab run is writing"), std::string::npos) << m;
+      EXPECT_NE(m.find("pid " + std::to_string(::getpid())), std::string::npos) << m;
+    }
+    // The refused writer touched nothing: the first run goes on and completes.
+    EXPECT_TRUE(fs::exists(dir / "RUNNING"));
+    EXPECT_FALSE(fs::exists(dir / "FAILED"));
+    first.finalize();
+  }
+  EXPECT_EQ(slurp(dir / "a.txt"), "first");
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  // Released with the first: a new run may start.
+  tmlab::RunOutput again(dir);
+  again.finalize();
+}
+
+TEST_F(RunOutputTest, LockHoldsAcrossProcesses) {
+  const fs::path dir = root_ / "shared";
+  int ready[2], done[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  ASSERT_EQ(::pipe(done), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    {
+      tmlab::RunOutput out(dir);
+      char c = 'r';
+      (void)!::write(ready[1], &c, 1);
+      (void)!::read(done[0], &c, 1);  // hold the directory until the parent has tried
+      out.finalize();
+    }
+    std::_Exit(0);
+  }
+  char c = 0;
+  ASSERT_EQ(::read(ready[0], &c, 1), 1);
+  try {
+    tmlab::RunOutput second(dir);
+    ADD_FAILURE() << "the directory held by pid " << child << " was taken";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pid " + std::to_string(child)), std::string::npos) << e.what();
+  }
+  c = 'd';
+  ASSERT_EQ(::write(done[1], &c, 1), 1);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+}
+
+TEST_F(RunOutputTest, StaleRunningMarkerIsReportedAndCleared) {
+  // A process killed with SIGKILL leaves RUNNING and .incomplete/ but no lock.
+  const fs::path dir = root_ / "stale";
+  fs::create_directories(dir / ".incomplete");
+  spit(dir / "RUNNING", R"({"pid": 999999, "hostname": "gone", "started_utc": "2026-01-01T00:00:00Z"})");
+  spit(dir / ".incomplete" / "half.h5", "half");
+  std::ostringstream log;
+  tmlab::RunOutput out(dir, &log);
+  EXPECT_NE(log.str().find("stale RUNNING marker (pid 999999 on gone"), std::string::npos) << log.str();
+  EXPECT_FALSE(fs::exists(dir / ".incomplete" / "half.h5"));
+  out.finalize();
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+}
+
+TEST_F(RunOutputTest, InterruptLeavesInterruptedNotFailed) {
+  const fs::path dir = root_ / "stopped";
+  try {
+    tmlab::RunOutput out(dir);
+    spit(out.file("timeseries.h5"), "partial");
+    try {
+      throw tmlab::Interrupted(2, "SIGINT received at t = 0.5 s (step 5 of 10)");
+    } catch (const std::exception& e) {
+      out.abandon(e);
+      EXPECT_TRUE(out.interrupted());
+      throw;
+    }
+  } catch (const tmlab::Interrupted&) {
+  }
+  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED"));
+  EXPECT_NE(slurp(dir / "INTERRUPTED").find("step 5 of 10"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  EXPECT_TRUE(fs::exists(dir / ".incomplete" / "timeseries.h5"));
+  // An interrupted directory is a result directory: the next run may reuse it.
+  tmlab::RunOutput next(dir);
+  EXPECT_FALSE(fs::exists(dir / "INTERRUPTED"));
+  next.finalize();
+}
+
+TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
+  const fs::path dir = root_ / "swap";
+  {
+    tmlab::RunOutput out(dir);
+    spit(out.file("x.txt"), "x");
+    out.finalize();
+  }
+  // Only the result and its (hidden, persistent) lock file are left in the parent.
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(root_)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{".swap.lock", "swap"}));
+  EXPECT_EQ(slurp(dir / "x.txt"), "x");
+}
+
+TEST(ResultNames, SafeCharactersOnly) {
+  EXPECT_EQ(tmlab::result_name_problem("liver-probe_2.p2+ida"), "");
+  EXPECT_NE(tmlab::result_name_problem(""), "");
+  EXPECT_NE(tmlab::result_name_problem("a';touch${IFS}X;'"), "");
+  EXPECT_NE(tmlab::result_name_problem("a b"), "");
+  EXPECT_NE(tmlab::result_name_problem("a/b"), "");
+  EXPECT_NE(tmlab::result_name_problem(".hidden"), "");
+  EXPECT_NE(tmlab::result_name_problem("-rf"), "");
+  EXPECT_NE(tmlab::result_name_problem("$(x)"), "");
+  EXPECT_NE(tmlab::result_name_problem(std::string(101, 'a')), "");
+  EXPECT_NE(tmlab::result_name_problem("caf\xc3\xa9"), "");
 }
 
 TEST_F(RunOutputTest, ManifestRecordsBuildInputsAndTimes) {

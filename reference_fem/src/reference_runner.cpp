@@ -15,6 +15,7 @@
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/gmsh_reader.hpp"
 #include "tmlab/core/hdf5_file.hpp"
+#include "tmlab/core/interrupt.hpp"
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
 #include "tmlab/core/run_output.hpp"
@@ -360,7 +361,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   const std::string result_name = reference_result_name(cfg, ro);
   if (root) {
     try {
-      out = std::make_unique<RunOutput>(fs::path(opt.results_root) / result_name);
+      out = std::make_unique<RunOutput>(fs::path(opt.results_root) / result_name, opt.log);
       staging = out->staging_dir().string();
       out->file("vtu/.keep");  // creates vtu/
     } catch (const std::exception& e) {
@@ -497,6 +498,11 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
                             {"newton_seconds", st.newton_seconds},
                             {"residuals", st.residuals}});
         record(k, t1, st.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
+        // A safe point for SIGINT/SIGTERM; every rank agrees, so all stop at the same step.
+        const int sig = Utilities::MPI::max(pending_interrupt(), comm);
+        if (sig != 0)
+          throw Interrupted(sig, signal_name(sig) + " received at t = " + std::to_string(t1) + " (step " +
+                                     std::to_string(k) + " of " + std::to_string(n_steps) + ")");
       }
     } else {
       // The same problem as a DAE integrated by IDA (ida_dae.hpp), output at the fixed-step times.
@@ -655,7 +661,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
     const std::string dir = (fs::path(opt.results_root) / result_name).string();
     return {dir, nlohmann::json::parse(text)};
   } catch (const std::exception& e) {
-    if (out) out->fail(e.what());
+    if (out) out->abandon(e);
     throw;
   }
 }

@@ -3,8 +3,10 @@
 #include "tmlab/core/error.hpp"
 #include "tmlab/core/gmsh_reader.hpp"
 #include "tmlab/core/hdf5_file.hpp"
+#include "tmlab/core/interrupt.hpp"
 #include "tmlab/core/mesh_ops.hpp"
 #include "tmlab/core/mesh_quality.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/progress.hpp"
 #include "tmlab/core/run_output.hpp"
 #include "tmlab/core/series_table.hpp"
@@ -144,7 +146,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   for (const auto& p : cfg.output.probes) probe_nodes.push_back(nearest_node(mesh, p.point));
 
   // ---- Result directory (staged; summary.json only when everything succeeded). ----
-  RunOutput out(fs::path(opt.results_root) / cfg.name);
+  RunOutput out(fs::path(opt.results_root) / cfg.name, log);
   try {
     ManifestInput mi;
     mi.command_line = opt.command_line;
@@ -286,8 +288,11 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       po.label = cfg.name;
       reporter = std::make_unique<ProgressReporter>(n_steps, po);
     }
+    // After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
     auto progress = [&](int step, double t) {
       if (reporter) reporter->update(step, t);
+      check_interrupt("at t = " + std::to_string(t) + " s (step " + std::to_string(step) + " of " +
+                      std::to_string(n_steps) + ")");
     };
 
     nlohmann::json solver_info;
@@ -421,13 +426,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     std::string plot_status = "skipped";
     if (opt.plots && cfg.output.plots) {
       const fs::path script = fs::path(opt.tmlab_root) / "core" / "python" / "tmlab_plot.py";
-      // Debian's interpreter carries python3-matplotlib/h5py; another python3 may come first on PATH.
-      const char* env_py = std::getenv("TMLAB_PYTHON");
-      const std::string python =
-          env_py && *env_py ? env_py : (fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3");
-      const std::string cmd = python + " '" + script.string() + "' '" + out.staging_dir().string() + "' > '" +
-                              out.file("plots.log").string() + "' 2>&1";
-      const int rc = std::system(cmd.c_str());
+      const ProcessStatus ps =
+          run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
+      const int rc = ps.ok() ? 0 : 1;
       plot_status = rc == 0 ? "ok" : "failed (see plots.log)";
       if (rc != 0 && log)
         *log << "  warning: plotting failed (see plots.log); the numbers are in timeseries.h5\n";
@@ -491,7 +492,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     out.finalize(summary);
     return {out.dir().string(), summary};
   } catch (const std::exception& e) {
-    out.fail(e.what());
+    out.abandon(e);
     throw;
   }
 }

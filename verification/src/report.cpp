@@ -4,6 +4,7 @@
 
 #include "tmlab/core/atomic_file.hpp"
 #include "tmlab/core/error.hpp"
+#include "tmlab/core/process.hpp"
 #include "tmlab/core/xml_text.hpp"
 
 #include <tmlab/build_info.hpp>
@@ -202,9 +203,9 @@ std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
     const fs::path png = dir / "plots" / (r.name + ".png");
     write_file_atomically(spec, plot_spec(in.cases[i], r).dump(1));
     const fs::path log = dir / "plots" / (r.name + ".log");
-    const std::string cmd = "'" + in.python + "' '" + in.plot_script.string() + "' '" + spec.string() +
-                            "' '" + png.string() + "' > '" + log.string() + "' 2>&1";
-    if (std::system(cmd.c_str()) == 0 && fs::exists(png)) {
+    const ProcessStatus ps = run_process({in.python, in.plot_script.string(), spec.string(), png.string()},
+                                         ProcessOutput::to_file(log));
+    if (ps.ok() && fs::exists(png)) {
       plots.push_back(png);
       plot_of[i] = "plots/" + r.name + ".png";
       fs::remove(log);

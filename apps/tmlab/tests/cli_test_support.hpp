@@ -1,6 +1,9 @@
-// Shared by the command-line tests: run the built `tmlab` driver in a shell and capture its exit
-// status and combined output, and a fixture that gives each test its own temporary directory.
+// Shared by the command-line tests: run the built `tmlab` driver (through a shell for readable
+// tests, or with an argument vector when the arguments themselves are hostile) and capture its
+// exit status and combined output, and a fixture that gives each test its own temporary directory.
 #pragma once
+
+#include "tmlab/core/process.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +14,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace tmlab::cli_test {
 
@@ -30,6 +34,24 @@ inline Result run(const std::string& args) {
   while (fgets(buf.data(), buf.size(), p)) r.output += buf.data();
   const int st = pclose(p);
   r.status = WIFEXITED(st) ? WEXITSTATUS(st) : -1;
+  return r;
+}
+
+/// Runs `tmlab argv...` with an argument vector (no shell): every argument arrives verbatim.
+/// `log` receives stdout and stderr.
+inline Result run_argv(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  ::setenv("TMLAB_ROOT", TMLAB_SOURCE_DIR, 1);
+  std::vector<std::string> argv{TMLAB_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  const tmlab::ProcessStatus st = tmlab::run_process(argv, tmlab::ProcessOutput::to_file(log));
+  Result r;
+  r.status = st.started && st.signal == 0 ? st.exit_code : -1;
+  FILE* f = std::fopen(log.c_str(), "r");
+  if (f) {
+    std::array<char, 4096> buf{};
+    while (std::fgets(buf.data(), buf.size(), f)) r.output += buf.data();
+    std::fclose(f);
+  }
   return r;
 }
 

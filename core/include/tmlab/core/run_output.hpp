@@ -1,11 +1,18 @@
 // The result-directory protocol for results/<case>/, and the run manifest.
 //
+// One writer: a RunOutput holds an exclusive lock (flock on the hidden sibling file
+// <parent>/.<case>.lock) for its whole life; a second RunOutput on the same directory, in this or
+// any other process, is refused with a message naming the process that holds it. A RUNNING marker
+// left by a process that is gone (its lock died with it) is reported as stale and cleared.
+//
 // A run writes every result file into the staging directory <dir>/.incomplete/ while a RUNNING
-// marker sits in <dir>. Only finalize() moves the staged files into <dir> and then writes
-// summary.json, last: a directory holding summary.json is a complete run, and nothing else is.
+// marker sits in <dir>. finalize() writes summary.json into the staged tree, syncs it, and swaps
+// the staged tree into place with one rename (renameat2 RENAME_EXCHANGE), so the complete result
+// appears at once: a directory holding summary.json is a complete run, and nothing else is.
 // A run that ends any other way (an exception unwinding past the RunOutput, or an explicit fail())
 // leaves a FAILED marker with the reason, keeps .incomplete/ for inspection, and has no
-// summary.json. Typical use:
+// summary.json; a run stopped by SIGINT/SIGTERM (interrupt()) leaves INTERRUPTED instead.
+// Typical use:
 //
 //   tmlab::RunOutput out("results/" + case_name);
 //   try {
@@ -24,6 +31,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -53,19 +61,27 @@ struct ManifestInput {
 /// absolute path, size and FNV-1a-64 hash (16 hex digits). Throws tmlab::Error for a missing input.
 nlohmann::json make_manifest(const ManifestInput& input);
 
+/// Empty when `name` may name a result directory, else why not. Names are 1 to 100 characters
+/// from A-Z a-z 0-9 and . _ - +, and do not start with '.' or '-': they become directory names
+/// and appear in plots and command lines, so nothing else is allowed.
+std::string result_name_problem(const std::string& name);
+
 /// One run's result directory; see the file comment for the protocol.
 class RunOutput {
  public:
   static constexpr const char* kStaging = ".incomplete";
   static constexpr const char* kRunning = "RUNNING";
   static constexpr const char* kFailed = "FAILED";
+  static constexpr const char* kInterrupted = "INTERRUPTED";
   static constexpr const char* kSummary = "summary.json";
 
-  /// Creates `dir` (and parents) and the staging area, and writes RUNNING. A previous run's
-  /// contents are removed first, summary.json before anything else; a non-empty directory that
-  /// shows no sign of being a result directory is refused (tmlab::Error) rather than emptied.
-  explicit RunOutput(std::filesystem::path dir);
-  /// When neither finalize() nor fail() ran: writes FAILED (never throws).
+  /// Takes the directory's lock, creates `dir` (and parents) and the staging area, and writes
+  /// RUNNING. A previous run's contents are removed first, summary.json before anything else; a
+  /// non-empty directory that shows no sign of being a result directory is refused (tmlab::Error)
+  /// rather than emptied, and so is a directory another live RunOutput holds (the message names
+  /// its process). A stale RUNNING marker (its process is gone) is reported on `log` when given.
+  explicit RunOutput(std::filesystem::path dir, std::ostream* log = nullptr);
+  /// When neither finalize() nor fail() ran: writes FAILED (never throws). Releases the lock.
   ~RunOutput();
   RunOutput(const RunOutput&) = delete;
   RunOutput& operator=(const RunOutput&) = delete;
@@ -87,13 +103,21 @@ class RunOutput {
   /// Records that the run failed: writes FAILED with `message` and removes RUNNING; staged files
   /// stay in staging_dir(). The first reason recorded wins. Never throws.
   void fail(const std::string& message) noexcept;
+  /// Records that the run was stopped by a signal: writes INTERRUPTED with `message` (what was
+  /// done, where a checkpoint is) and removes RUNNING; staged files stay. Never throws.
+  void interrupt(const std::string& message) noexcept;
+  /// fail() or interrupt(), chosen by the exception's type (tmlab::Interrupted -> interrupt()).
+  void abandon(const std::exception& e) noexcept;
 
   bool finalized() const { return state_ == State::Finalized; }
   bool failed() const { return state_ == State::Failed; }
+  bool interrupted() const { return state_ == State::Interrupted; }
 
  private:
-  enum class State { Running, Finalized, Failed };
+  enum class State { Running, Finalized, Failed, Interrupted };
+  void mark_stopped(State state, const char* marker, const std::string& message) noexcept;
   std::filesystem::path dir_;
+  int lock_fd_ = -1;
   State state_ = State::Running;
   std::chrono::system_clock::time_point started_;
   std::chrono::steady_clock::time_point started_steady_;

@@ -1,0 +1,170 @@
+// The command line under hostile input and concurrent use (issue 12): no case name or path ever
+// reaches a shell, one writer per result directory, SIGINT/SIGTERM leave INTERRUPTED (not RUNNING),
+// and a run killed outright leaves a RUNNING marker that the next run reports as stale.
+#include "tmlab/core/mesh_generator.hpp"
+
+#include "cli_test_support.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <csignal>
+#include <fstream>
+#include <thread>
+
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using tmlab::cli_test::Result;
+using tmlab::cli_test::run_argv;
+
+class CliRobustness : public tmlab::cli_test::TempDirTest {
+ protected:
+  CliRobustness() : TempDirTest("tmlab_cli_rob_") {}
+
+  /// A 2 x 2 x 2 box clamped at z = 0 and pulled at z = 1: a valid case in dir_.
+  fs::path write_case(const std::string& name, const std::string& solver, bool plots = false) const {
+    tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 2, 2, 2),
+                        (dir_ / "box.msh").string());
+    nlohmann::json c = {
+        {"name", name},
+        {"mesh", {{"file", (dir_ / "box.msh").string()}}},
+        {"material", {{"E", 1000.0}, {"nu", 0.3}, {"density", 1000.0}}},
+        {"boundary", {{{"name", "clamp"}, {"nodes", {{"plane", {{"axis", "z"}, {"value", 0.0}}}}}}}},
+        {"loads",
+         {{{"type", "nodal_force"},
+           {"name", "pull"},
+           {"nodes", {{"plane", {{"axis", "z"}, {"value", 1.0}}}}},
+           {"force", {0.0, 0.0, 1.0}}}}},
+        {"solver", nlohmann::json::parse(solver)},
+        {"output", {{"vtu", false}, {"xdmf", false}, {"plots", plots}}}};
+    const fs::path p = dir_ / "case.json";
+    std::ofstream(p) << c.dump(2);
+    return p;
+  }
+
+  /// A run long enough to be caught while it runs (millions of explicit steps on 48 tets).
+  fs::path write_long_case() const {
+    return write_case("long", R"({"type": "explicit", "dt": 1e-6, "t_end": 100.0})");
+  }
+
+  /// Starts `tmlab args...` in the background; output to `log`.
+  pid_t spawn(const std::vector<std::string>& args, const fs::path& log) const {
+    ::setenv("TMLAB_ROOT", TMLAB_SOURCE_DIR, 1);
+    std::vector<std::string> argv{TMLAB_CLI};
+    argv.insert(argv.end(), args.begin(), args.end());
+    std::vector<char*> c;
+    for (auto& a : argv) c.push_back(a.data());
+    c.push_back(nullptr);
+    posix_spawn_file_actions_t fa;
+    posix_spawn_file_actions_init(&fa);
+    posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&fa, 1, 2);
+    pid_t pid = -1;
+    EXPECT_EQ(::posix_spawn(&pid, c[0], &fa, nullptr, c.data(), environ), 0);
+    posix_spawn_file_actions_destroy(&fa);
+    return pid;
+  }
+
+  /// Waits (up to 5 minutes: the machine may be busy) until `p` exists.
+  static bool wait_for(const fs::path& p) {
+    for (int i = 0; i < 3000; ++i) {
+      if (fs::exists(p)) return true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    return false;
+  }
+
+  static int wait_exit(pid_t pid) {
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+    if (WIFSIGNALED(status)) return -WTERMSIG(status);
+    return WEXITSTATUS(status);
+  }
+
+  static std::string slurp(const fs::path& p) {
+    std::ifstream in(p);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+};
+
+TEST_F(CliRobustness, HostileCaseNameIsRefusedBeforeAnythingRuns) {
+  const fs::path c = write_case("a';touch${IFS}X;'", R"({"type": "static", "steps": 1})");
+  const Result r = run_argv({"run", c.string(), "--results", (dir_ / "res").string()}, dir_ / "log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("key 'name'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("contains '''"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists("X"));
+  EXPECT_FALSE(fs::exists(dir_ / "X"));
+  EXPECT_FALSE(fs::exists(dir_ / "res"));
+}
+
+TEST_F(CliRobustness, HostileResultsPathNeverReachesAShell) {
+  // The results path is the user's to choose; with quotes and command substitutions in it, the
+  // plotter (python3, when installed) gets it as one argument and nothing is executed.
+  const fs::path res = dir_ / "r'$(touch X)';touch${IFS}Y;'";
+  const fs::path c = write_case("hostile-path", R"({"type": "static", "steps": 1})", /*plots=*/true);
+  const Result r = run_argv({"run", c.string(), "--results", res.string()}, dir_ / "log");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_TRUE(fs::exists(res / "hostile-path" / "summary.json"));
+  for (const fs::path& p : {fs::path("X"), fs::path("Y"), dir_ / "X", dir_ / "Y"})
+    EXPECT_FALSE(fs::exists(p)) << p;
+}
+
+TEST_F(CliRobustness, SecondRunIntoTheSameDirectoryIsRefusedAndSigintInterruptsTheFirst) {
+  const fs::path c = write_long_case();
+  const fs::path res = dir_ / "res", dir = res / "long";
+  const pid_t first = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "first.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "first.log");
+
+  const Result second =
+      run_argv({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "second.log");
+  EXPECT_EQ(second.status, 1) << second.output;
+  EXPECT_NE(second.output.find("another tmlab run is writing"), std::string::npos) << second.output;
+  EXPECT_NE(second.output.find("pid " + std::to_string(first)), std::string::npos) << second.output;
+  EXPECT_FALSE(fs::exists(dir / "FAILED")) << "the refused run must not touch the first's directory";
+
+  ASSERT_EQ(::kill(first, SIGINT), 0);
+  EXPECT_EQ(wait_exit(first), 128 + SIGINT) << slurp(dir_ / "first.log");
+  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED")) << slurp(dir_ / "first.log");
+  EXPECT_NE(slurp(dir / "INTERRUPTED").find("SIGINT received at t = "), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+}
+
+TEST_F(CliRobustness, SigtermInterruptsToo) {
+  const fs::path c = write_long_case();
+  const fs::path res = dir_ / "res", dir = res / "long";
+  const pid_t pid = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "run.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "run.log");
+  ASSERT_EQ(::kill(pid, SIGTERM), 0);
+  EXPECT_EQ(wait_exit(pid), 128 + SIGTERM) << slurp(dir_ / "run.log");
+  EXPECT_NE(slurp(dir / "INTERRUPTED").find("SIGTERM"), std::string::npos);
+}
+
+TEST_F(CliRobustness, KilledRunLeavesAStaleMarkerThatTheNextRunReports) {
+  const fs::path c = write_long_case();
+  const fs::path res = dir_ / "res", dir = res / "long";
+  const pid_t pid = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "run.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "run.log");
+  ASSERT_EQ(::kill(pid, SIGKILL), 0);
+  EXPECT_EQ(wait_exit(pid), -SIGKILL);
+  EXPECT_TRUE(fs::exists(dir / "RUNNING"));  // nothing could clean up after SIGKILL
+
+  const fs::path quick = write_case("long", R"({"type": "static", "steps": 1})");
+  const Result r =
+      run_argv({"run", quick.string(), "--no-plots", "--results", res.string()}, dir_ / "next.log");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("stale RUNNING marker (pid " + std::to_string(pid)), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+}
+
+}  // namespace
