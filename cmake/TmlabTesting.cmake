@@ -26,3 +26,22 @@ function(tmlab_mpi_test_environment test_name)
     set_property(TEST ${test_name} APPEND PROPERTY ENVIRONMENT "ASAN_OPTIONS=detect_leaks=0")
   endif()
 endfunction()
+
+# tmlab_add_module(NAME n SOURCES ... [PUBLIC ...] [PRIVATE ...])
+# One concept folder = one static library tmlab_<n>, alias tmlab::<n>. Headers sit beside their
+# sources and are included from the repository root ("tensormass/kernels/tensor_mass.hpp"), so the
+# include path names the folder a reader finds the file in. A module without sources is INTERFACE.
+function(tmlab_add_module)
+  cmake_parse_arguments(M "" "NAME" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
+  if(M_SOURCES)
+    add_library(tmlab_${M_NAME} ${M_SOURCES})
+    target_include_directories(tmlab_${M_NAME} PUBLIC $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>
+                                                      $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated>)
+    target_link_libraries(tmlab_${M_NAME} PUBLIC ${M_PUBLIC} PRIVATE ${M_PRIVATE} tmlab::options)
+  else()
+    add_library(tmlab_${M_NAME} INTERFACE)
+    target_include_directories(tmlab_${M_NAME} INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>)
+    target_link_libraries(tmlab_${M_NAME} INTERFACE ${M_PUBLIC})
+  endif()
+  add_library(tmlab::${M_NAME} ALIAS tmlab_${M_NAME})
+endfunction()

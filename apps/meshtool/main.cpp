@@ -3,11 +3,11 @@
 //   meshtool convert IN OUT.msh [--scale F | --scale-to-extent L] [--translate X Y Z] [--repair]
 //   meshtool box OUT.msh NX NY NZ [--lo X Y Z] [--hi X Y Z]
 // Output files are Gmsh 2.2 ASCII. Errors print "meshtool: <message>" and exit with status 1.
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/gmsh_reader.hpp"
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/mesh_ops.hpp"
-#include "tmlab/core/mesh_quality.hpp"
+#include "core/base/error.hpp"
+#include "core/mesh/gmsh_reader.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "core/mesh/mesh_quality.hpp"
 
 #include <cstdio>
 #include <cstdlib>

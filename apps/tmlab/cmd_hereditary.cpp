@@ -6,12 +6,12 @@
 #include "cli_args.hpp"
 #include "commands.hpp"
 
-#include "tmlab/core/config_reader.hpp"
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/hdf5_file.hpp"
-#include "tmlab/core/process.hpp"
-#include "tmlab/core/run_output.hpp"
-#include "tmlab/tensormass/hereditary_study.hpp"
+#include "core/base/error.hpp"
+#include "core/base/process.hpp"
+#include "core/config/config_reader.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "core/results/run_output.hpp"
+#include "verification/studies/hereditary_study.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -359,7 +359,8 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
     std::ofstream(out.file("hereditary.md")) << md.str();
 
     if (!p.has("--no-plots")) {
-      const fs::path script = fs::path(tmlab_root()) / "core" / "python" / "tmlab_hereditary_plot.py";
+      const fs::path script =
+          fs::path(tmlab_root()) / "verification" / "studies" / "python" / "tmlab_hereditary_plot.py";
       const ProcessStatus ps = run_python(script, {out.staging_dir().string()});
       if (!ps.ok()) throw Error("drawing the hereditary plots failed (" + ps.describe() + ")");
     }

@@ -3,11 +3,12 @@
 #include "cli_args.hpp"
 #include "commands.hpp"
 
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/process.hpp"
-#include "tmlab/core/run_output.hpp"
-#include "tmlab/verification/report.hpp"
-#include "tmlab/verification/runner.hpp"
+#include "core/base/error.hpp"
+#include "core/base/process.hpp"
+#include "core/results/run_output.hpp"
+#include "verification/checks/builtin_checks.hpp"
+#include "verification/harness/report.hpp"
+#include "verification/harness/runner.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -75,7 +76,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     fs::remove_all(settings.work_root);
 
     verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : python_interpreter(),
-                           root / "verification" / "python" / "plot_convergence.py"};
+                           root / "verification" / "harness" / "python" / "plot_convergence.py"};
     verify::write_report(in, out.staging_dir());
     const nlohmann::json vj = verify::verification_json(in);
     if (p.has("--update-docs"))

@@ -6,10 +6,10 @@
 
 #include "cli_args.hpp"
 
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/process.hpp"
-#include "tmlab/core/run_output.hpp"
-#include "tmlab/tensormass/work_precision.hpp"
+#include "core/base/error.hpp"
+#include "core/base/process.hpp"
+#include "core/results/run_output.hpp"
+#include "verification/studies/work_precision.hpp"
 
 #include <cstdlib>
 #include <filesystem>
@@ -67,7 +67,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
     std::string plot_status = "skipped";
     if (!p.has("--no-plots")) {
       const fs::path script =
-          fs::path(opt.tmlab_root) / "tensormass" / "python" / "tmlab_workprecision_plot.py";
+          fs::path(opt.tmlab_root) / "verification" / "studies" / "python" / "tmlab_workprecision_plot.py";
       const ProcessStatus ps =
           run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
       const int rc = ps.ok() ? 0 : 1;

@@ -1,6 +1,9 @@
 // The tmlab sub-commands, one function each (commands.cpp).
 #pragma once
 
+#include "core/config/case_config.hpp"
+#include "tensormass/runner/case_runner.hpp"
+
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +16,13 @@ struct UsageError : std::runtime_error {
 
 /// The tmlab source tree (cases/, meshes/, results/): $TMLAB_ROOT, else the tree this binary was built from.
 std::string tmlab_root();
+
+/// A case argument: an existing file, else the shipped case cases/<arg>.json (tmlab::Error if neither).
+std::string resolve_case(const std::string& arg);
+/// Runs `cfg` with `model` (tensor_mass, tl_oracle or reference; degree and time integration for
+/// the reference).
+tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model,
+                        int degree, const std::string& time_integration = "fixed_step");
 
 int cmd_demo(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line);

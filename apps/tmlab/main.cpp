@@ -3,11 +3,11 @@
 // and exits with status 1 (2 for a usage error).
 #include "commands.hpp"
 
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/interrupt.hpp"
+#include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
-#include "tmlab/reference_fem/reference_runner.hpp"
+#include "reference_fem/dealii/reference_runner.hpp"
 #endif
 
 #include <cstdio>

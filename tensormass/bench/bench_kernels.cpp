@@ -1,11 +1,11 @@
 // Kernel benchmarks: internal force of the TL oracle, the relative tensor-mass form, Picinbono's
 // absolute mesh-level storage; tensor-mass tangent action and in-place tangent assembly. Kuhn-split
 // cubes of 3,072 / 24,576 / 196,608 tets. Counter "time/tet" = seconds per tet (ns shown as "n").
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/tensormass/picinbono_storage.hpp"
-#include "tmlab/tensormass/tensor_mass.hpp"
-#include "tmlab/tensormass/tl_oracle.hpp"
-#include "tmlab/tensormass/viscoelastic_model.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "tensormass/kernels/picinbono_storage.hpp"
+#include "tensormass/kernels/tensor_mass.hpp"
+#include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include <benchmark/benchmark.h>
 

@@ -10,29 +10,29 @@
 //
 // Every function measures and returns Measurements; the tolerances and their reasons live in the
 // cases' verify.json (verification/cases/analytic-*/).
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/mesh_ops.hpp"
-#include "tmlab/core/stopwatch.hpp"
-#include "tmlab/tensormass/dirichlet.hpp"
-#include "tmlab/tensormass/external_loads.hpp"
-#include "tmlab/tensormass/lumped_mass.hpp"
-#include "tmlab/tensormass/mechanical_system.hpp"
-#include "tmlab/tensormass/prony_series.hpp"
-#include "tmlab/tensormass/static_solver.hpp"
-#include "tmlab/tensormass/stvk_material.hpp"
-#include "tmlab/tensormass/tensor_mass.hpp"
-#include "tmlab/tensormass/tet_geometry.hpp"
-#include "tmlab/tensormass/viscoelastic_model.hpp"
-#include "tmlab/verification/registry.hpp"
+#include "core/base/error.hpp"
+#include "core/base/stopwatch.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "tensormass/kernels/tensor_mass.hpp"
+#include "tensormass/kernels/tet_geometry.hpp"
+#include "tensormass/materials/stvk_material.hpp"
+#include "tensormass/solvers/static_solver.hpp"
+#include "tensormass/system/dirichlet.hpp"
+#include "tensormass/system/external_loads.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/prony_series.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
+#include "verification/checks/builtin_checks.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
-#include "tmlab/core/case_config.hpp"
-#include "tmlab/core/hdf5_file.hpp"
-#include "tmlab/reference_fem/reference_runner.hpp"
-#include "tmlab/tensormass/case_runner.hpp"
+#include "core/config/case_config.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "reference_fem/dealii/reference_runner.hpp"
+#include "tensormass/runner/case_runner.hpp"
 #endif
 
 #include <Eigen/Dense>

@@ -1,9 +1,9 @@
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/core/case_config.hpp"
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/mesh_ops.hpp"
-#include "tmlab/core/mesh_quality.hpp"
+#include "core/config/case_config.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "core/mesh/mesh_quality.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,9 +1,9 @@
 // Small helpers shared by the check functions (verification/checks/*.cpp).
 #pragma once
 
-#include "tmlab/core/config_reader.hpp"
-#include "tmlab/core/mesh.hpp"
-#include "tmlab/verification/registry.hpp"
+#include "core/config/config_reader.hpp"
+#include "core/mesh/mesh.hpp"
+#include "verification/checks/builtin_checks.hpp"
 
 #include <Eigen/Core>
 

@@ -5,18 +5,18 @@
 //   kernel.rigid_invariance    W(Q(x) + c) = W(x), f rotates with Q, rigid motions give no force
 //   kernel.patch_test          an affine displacement on the boundary of an irregular mesh is
 //                              reproduced exactly in the interior (static Newton solve)
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/tensormass/dirichlet.hpp"
-#include "tmlab/tensormass/external_loads.hpp"
-#include "tmlab/tensormass/lumped_mass.hpp"
-#include "tmlab/tensormass/mechanical_system.hpp"
-#include "tmlab/tensormass/static_solver.hpp"
-#include "tmlab/tensormass/tensor_mass.hpp"
-#include "tmlab/tensormass/tl_oracle.hpp"
-#include "tmlab/tensormass/viscoelastic_model.hpp"
+#include "tensormass/kernels/tensor_mass.hpp"
+#include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/solvers/static_solver.hpp"
+#include "tensormass/system/dirichlet.hpp"
+#include "tensormass/system/external_loads.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
-#include "tmlab/core/mesh_ops.hpp"
+#include "core/mesh/mesh_ops.hpp"
 
 #include <Eigen/Geometry>
 

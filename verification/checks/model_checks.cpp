@@ -6,17 +6,17 @@
 //                       balance W_ext = Psi + D closes at second order in dt (objective history)
 //   model.volume_creep  under hydrostatic pressure the volume creeps with full relaxation (towards the
 //                       long-term compliance) and stays put with deviatoric relaxation
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/tensormass/dirichlet.hpp"
-#include "tmlab/tensormass/external_loads.hpp"
-#include "tmlab/tensormass/lumped_mass.hpp"
-#include "tmlab/tensormass/mechanical_system.hpp"
-#include "tmlab/tensormass/static_solver.hpp"
-#include "tmlab/tensormass/viscoelastic_model.hpp"
+#include "tensormass/solvers/static_solver.hpp"
+#include "tensormass/system/dirichlet.hpp"
+#include "tensormass/system/external_loads.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/mesh_ops.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
 
 #include <Eigen/Geometry>
 

@@ -15,19 +15,19 @@
 // whose selectors use the face groups of make_box_mesh (xmin ... zmax); the check function writes
 // the generated meshes into the work directory and sets the template's mesh path. Everything is
 // written into ctx.work_dir. Measurements only; the tolerances are in the cases' verify.json.
-#include "tmlab/verification/registry.hpp"
+#include "verification/checks/builtin_checks.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/core/case_config.hpp"
-#include "tmlab/core/error.hpp"
-#include "tmlab/core/hdf5_file.hpp"
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/result_compare.hpp"
-#include "tmlab/core/stopwatch.hpp"
-#include "tmlab/reference_fem/reference_runner.hpp"
-#include "tmlab/tensormass/case_runner.hpp"
+#include "core/base/error.hpp"
+#include "core/base/stopwatch.hpp"
+#include "core/config/case_config.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/results/result_compare.hpp"
+#include "reference_fem/dealii/reference_runner.hpp"
+#include "tensormass/runner/case_runner.hpp"
 
 #include <Eigen/Core>
 

@@ -7,21 +7,21 @@
 //                                quasi-static DAE (creep of a cube under a ramped traction)
 //   sundials.hereditary_recursion each recursion against the exact hereditary integral (Gauss-Legendre
 //                                convolution) of a smooth prescribed driver, as dt halves
-#include "check_support.hpp"
+#include "verification/checks/check_support.hpp"
 
-#include "tmlab/tensormass/dirichlet.hpp"
-#include "tmlab/tensormass/external_loads.hpp"
-#include "tmlab/tensormass/hereditary_integral.hpp"
-#include "tmlab/tensormass/implicit_dynamics.hpp"
-#include "tmlab/tensormass/lumped_mass.hpp"
-#include "tmlab/tensormass/mechanical_system.hpp"
-#include "tmlab/tensormass/ode_references.hpp"
-#include "tmlab/tensormass/static_solver.hpp"
-#include "tmlab/tensormass/sundials_adapter.hpp"
-#include "tmlab/tensormass/viscoelastic_model.hpp"
+#include "reference_fem/sundials/ode_references.hpp"
+#include "reference_fem/sundials/sundials_adapter.hpp"
+#include "tensormass/solvers/implicit_dynamics.hpp"
+#include "tensormass/solvers/static_solver.hpp"
+#include "tensormass/system/dirichlet.hpp"
+#include "tensormass/system/external_loads.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/hereditary_integral.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
-#include "tmlab/core/mesh_generator.hpp"
-#include "tmlab/core/mesh_ops.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -3,7 +3,7 @@
 // exit status and combined output, and a fixture that gives each test its own temporary directory.
 #pragma once
 
-#include "tmlab/core/process.hpp"
+#include "core/base/process.hpp"
 
 #include <gtest/gtest.h>
 

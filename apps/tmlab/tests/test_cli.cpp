@@ -2,8 +2,8 @@
 // no result that looks complete after a failure, and the embedded demo equal to cases/liver-probe.json.
 #include "../demo_case.hpp"
 
-#include "tmlab/core/config_reader.hpp"
-#include "tmlab/core/mesh_generator.hpp"
+#include "core/config/config_reader.hpp"
+#include "core/mesh/mesh_generator.hpp"
 
 #include "cli_test_support.hpp"
 

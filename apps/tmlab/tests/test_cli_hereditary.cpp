@@ -1,7 +1,7 @@
 // `tmlab hereditary` end to end (quick mode): the result directory follows the RunOutput protocol
 // (summary.json last, no RUNNING/FAILED), hereditary.h5 holds the sweeps, the amplification factors
 // and the liver runs, the plots exist, and bad input exits non-zero with a message naming it.
-#include "tmlab/core/hdf5_file.hpp"
+#include "core/io/hdf5_file.hpp"
 
 #include "cli_test_support.hpp"
 

@@ -1,7 +1,7 @@
 // The command line under hostile input and concurrent use (issue 12): no case name or path ever
 // reaches a shell, one writer per result directory, SIGINT/SIGTERM leave INTERRUPTED (not RUNNING),
 // and a run killed outright leaves a RUNNING marker that the next run reports as stale.
-#include "tmlab/core/mesh_generator.hpp"
+#include "core/mesh/mesh_generator.hpp"
 
 #include "cli_test_support.hpp"
 

@@ -1,7 +1,7 @@
 // Smoke tests of the study commands of the tmlab command line: `tmlab workprecision --quick` into a
 // temporary results directory (complete result protocol: summary.json, HDF5, table, manifest) and its
 // usage errors.
-#include "tmlab/core/hdf5_file.hpp"
+#include "core/io/hdf5_file.hpp"
 
 #include "cli_test_support.hpp"
 

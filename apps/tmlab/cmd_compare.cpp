@@ -1,0 +1,124 @@
+// tmlab compare: a case with the tensor-mass model and a reference, and their differences.
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "core/base/error.hpp"
+#include "core/base/process.hpp"
+#include "core/config/case_config.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "core/results/result_compare.hpp"
+#include "tensormass/runner/case_runner.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--results", "--against", "--degree", "--time-integration"}, {"--no-plots"});
+  if (p.positional.size() != 1) throw UsageError("compare needs exactly one case name or case file");
+  const CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
+  const std::string against = p.get("--against", "reference");
+  if (against != "reference" && against != "tl_oracle")
+    throw UsageError("--against must be reference or tl_oracle");
+  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  const std::string time_integration = p.get("--time-integration", "fixed_step");
+  if (time_integration != "fixed_step" && time_integration != "ida")
+    throw UsageError("--time-integration must be fixed_step or ida");
+  if (time_integration == "ida" && against != "reference")
+    throw UsageError("--time-integration ida needs --against reference");
+
+  tm::RunOptions opt;
+  opt.tmlab_root = tmlab_root();
+  opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
+  opt.command_line = split_words(command_line);
+  opt.plots = false;
+  opt.log = &std::cerr;
+  CaseConfig tm_cfg = cfg;
+  tm_cfg.model = "tensor_mass";
+  tm_cfg.effective["model"] = "tensor_mass";
+  std::cerr << "tmlab compare: tensor-mass run\n";
+  const tm::RunResult a = tm::run_case(tm_cfg, opt);
+  tm::RunResult b;
+  if (against == "reference") {
+    std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
+    b = run_model(cfg, opt, "reference", degree, time_integration);
+  } else {
+    CaseConfig o = cfg;
+    o.name = cfg.name + "-tl_oracle";
+    o.model = "tl_oracle";
+    o.effective["model"] = "tl_oracle";
+    o.effective["name"] = o.name;
+    std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
+    b = tm::run_case(o, opt);
+  }
+  ComparisonSeries series;
+  nlohmann::json cmp = compare_results(a.dir, b.dir, &series);
+  cmp["case"] = cfg.name;
+  cmp["a"] = a.dir;
+  cmp["b"] = b.dir;
+  cmp["against"] = against;
+  const fs::path dir = a.dir;
+  {
+    std::ofstream(dir / "compare.json") << cmp.dump(2) << "\n";
+    H5File h5 = H5File::create((dir / "compare.h5").string());
+    h5.write("/series/time", series.time, {series.time.size()});
+    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
+    h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
+    h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
+    h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
+    h5.close();
+  }
+  // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
+  std::string plot_note;
+  if (!p.has("--no-plots")) {
+    const fs::path pdir = dir / "compare";
+    fs::create_directories(pdir);
+    auto floored = [](std::vector<double> v) {
+      for (double& x : v) x = std::max(x, 1e-17);
+      return v;
+    };
+    H5File h5 = H5File::create((pdir / "timeseries.h5").string());
+    h5.write("/series/time", series.time, {series.time.size()});
+    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
+    h5.write("/series/rel_diff_displacement", floored(series.rel_displacement),
+             {series.rel_displacement.size()});
+    h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
+    h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
+    h5.close();
+    const nlohmann::json plots = nlohmann::json::array(
+        {{{"file", "compare_displacement.png"},
+          {"x", "time"},
+          {"y", {"rel_diff_displacement"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"},
+          {"xlabel", "time [s]"},
+          {"ylabel", "|u_a - u_b| / |u_b|"},
+          {"logy", true}},
+         {{"file", "compare_reaction_energy.png"},
+          {"x", "step_time"},
+          {"y", {"rel_diff_reaction", "rel_diff_energy"}},
+          {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"},
+          {"xlabel", "time [s]"},
+          {"ylabel", "relative difference"},
+          {"logy", true}}});
+    std::ofstream(pdir / "plots.json") << plots.dump(2) << "\n";
+    const ProcessStatus ps =
+        run_python(fs::path(tmlab_root()) / "core" / "results" / "python" / "tmlab_plot.py", {pdir.string()},
+                   ProcessOutput::discard());
+    plot_note = ps.ok() ? ", compare/*.png" : " (plotting failed: " + ps.describe() + ")";
+  }
+  std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
+            << "  quantity                          max over steps\n"
+            << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
+            << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
+            << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
+            << "written: " << (dir / "compare.json").string() << ", compare.h5" << plot_note << "\n";
+  return 0;
+}
+
+}  // namespace tmlab::cli

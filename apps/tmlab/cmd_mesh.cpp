@@ -1,0 +1,82 @@
+// tmlab mesh info|check and tmlab cases.
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "core/base/error.hpp"
+#include "core/config/config_reader.hpp"
+#include "core/mesh/gmsh_reader.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "core/mesh/mesh_quality.hpp"
+
+#include <algorithm>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+int cmd_cases(const std::vector<std::string>& args) {
+  if (!args.empty()) throw UsageError("cases takes no arguments");
+  const fs::path dir = fs::path(tmlab_root()) / "cases";
+  std::vector<fs::path> files;
+  if (fs::exists(dir))
+    for (const auto& e : fs::directory_iterator(dir))
+      if (e.path().extension() == ".json") files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  std::cout << "shipped cases (" << dir.string() << "); run one with 'tmlab run NAME':\n";
+  for (const auto& f : files) {
+    std::string desc;
+    try {
+      const auto j = ConfigReader::parse_file(f.string());
+      desc = j.value("description", "");
+    } catch (const Error& e) {
+      desc = std::string("(unreadable: ") + e.what() + ")";
+    }
+    std::cout << "  " << std::left << std::setw(28) << f.stem().string() << desc << "\n";
+  }
+  return 0;
+}
+
+int cmd_mesh(const std::vector<std::string>& args) {
+  if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE");
+  const std::string sub = args[0];
+  const Parsed p =
+      parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"}, {"--json"});
+  if (p.positional.size() != 1) throw UsageError("mesh " + sub + " needs exactly one mesh file");
+  Mesh mesh = read_mesh(p.positional[0]);
+  if (p.has("--scale")) scale_mesh(mesh, parse_double("--scale", p.get("--scale")));
+  if (sub == "info") {
+    const MeshReport rep = analyse_mesh(mesh);
+    if (p.has("--json"))
+      std::cout << mesh_report_json(rep).dump(2) << "\n";
+    else
+      std::cout << format_mesh_report(rep);
+    return 0;
+  }
+  if (sub == "check") {
+    if (p.has("--repair")) {
+      const int n = repair_orientation(mesh);
+      write_gmsh22(mesh, p.get("--repair"));
+      std::cout << "re-oriented " << n << " tets; wrote " << p.get("--repair") << "\n";
+    }
+    const MeshReport rep = analyse_mesh(mesh);
+    std::cout << format_mesh_report(rep);
+    if (!rep.inverted.empty() || !rep.degenerate.empty()) {
+      std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
+                << rep.degenerate.size() << " degenerate tets";
+      if (!rep.inverted.empty()) std::cerr << " (first inverted: tet " << rep.inverted.front() << ")";
+      if (!rep.degenerate.empty()) std::cerr << " (first degenerate: tet " << rep.degenerate.front() << ")";
+      std::cerr << "\n";
+      return 1;
+    }
+    std::cout << "check: OK (no inverted or degenerate tets)\n";
+    return 0;
+  }
+  throw UsageError("unknown mesh sub-command '" + sub + "' (info or check)");
+}
+
+}  // namespace tmlab::cli

@@ -1,0 +1,75 @@
+// tmlab paper fig5|fig6|fig7: the liver experiments of Xu et al. 2011.
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "core/base/error.hpp"
+#include "core/base/process.hpp"
+#include "core/config/case_config.hpp"
+#include "core/config/config_reader.hpp"
+#include "tensormass/runner/case_runner.hpp"
+#include "verification/studies/paper_experiments.hpp"
+
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+int cmd_paper(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots"});
+  if (p.positional.size() != 1) throw UsageError("paper needs one figure: fig5, fig6 or fig7");
+  const std::string params_file =
+      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
+  const nlohmann::json params = ConfigReader::parse_file(params_file);
+  const tm::PaperFigure fig = tm::paper_figure(p.positional[0], params, params_file);
+  const fs::path dir =
+      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
+  fs::create_directories(dir);
+  nlohmann::json spec = {{"name", fig.name},     {"title", fig.title},    {"xlabel", fig.xlabel},
+                         {"ylabel", fig.ylabel}, {"params", params_file}, {"runs", nlohmann::json::array()}};
+  std::size_t k = 0;
+  for (const auto& run : fig.runs) {
+    ++k;
+    std::cerr << "tmlab paper " << fig.name << ": run " << k << "/" << fig.runs.size() << " " << run.id
+              << "\n";
+    const CaseConfig cfg =
+        parse_case(run.case_doc, params_file + " (" + fig.name + "/" + run.id + ")", {tmlab_root()});
+    tm::RunOptions opt;
+    opt.tmlab_root = tmlab_root();
+    opt.results_root = dir.string();
+    opt.command_line = split_words(command_line);
+    opt.plots = false;
+    const tm::RunResult r = tm::run_case(cfg, opt);
+    spec["runs"].push_back({{"id", run.id},
+                            {"label", run.label},
+                            {"scheme", run.scheme},
+                            {"dir", r.dir},
+                            {"x", run.x},
+                            {"y", run.y},
+                            {"x_sign", run.x_sign},
+                            {"y_sign", run.y_sign}});
+  }
+  std::ofstream(dir / "figure.json") << spec.dump(2) << "\n";
+  if (p.has("--no-plots")) return 0;
+  const fs::path script =
+      fs::path(tmlab_root()) / "verification" / "studies" / "python" / "tmlab_paper_figure.py";
+  const ProcessStatus ps = run_python(script, {dir.string()});
+  if (!ps.ok()) throw Error("drawing " + fig.name + " failed (" + ps.describe() + ")");
+  if (fig.name == "fig7") {
+    std::ifstream in(dir / "fig7_energy.json");
+    const auto e = nlohmann::json::parse(in);
+    std::cout << "hysteresis: loop area = dissipated + stored at the end of the cycle\n";
+    for (const auto& row : e)
+      std::cout << "  " << std::left << std::setw(24) << row["run"].get<std::string>() << " loop "
+                << row["loop_area_J"].get<double>() << " J, dissipated " << row["dissipation_J"].get<double>()
+                << " J, stored " << row["stored_end_J"].get<double>() << " J, relative residual "
+                << row["relative_residual"].get<double>() << "\n";
+  }
+  return 0;
+}
+
+}  // namespace tmlab::cli

@@ -1,0 +1,110 @@
+// tmlab demo / tmlab run: one case with one model, and the printed summary.
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+#include "demo_case.hpp"
+
+#include "core/base/error.hpp"
+#include "core/config/case_config.hpp"
+#include "tensormass/runner/case_runner.hpp"
+
+#ifdef TMLAB_HAVE_REFERENCE
+#include "reference_fem/dealii/reference_runner.hpp"
+#endif
+
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model,
+                        int degree, const std::string& time_integration) {
+  if (model == "reference") {
+#ifdef TMLAB_HAVE_REFERENCE
+    ref::ReferenceOptions ro;
+    ro.degree = degree;
+    ro.time_integration = time_integration;
+    return ref::run_reference_case(cfg, opt, ro);
+#else
+    (void)degree;
+    (void)time_integration;
+    throw Error(
+        "this tmlab was built without the deal.II reference (reference_fem/): install libdeal.ii-dev and "
+        "rebuild");
+#endif
+  }
+  return tm::run_case(cfg, opt);
+}
+
+namespace {
+
+void print_summary(const tm::RunResult& r) {
+  const auto& s = r.summary;
+  std::cout << "case        " << s.value("case", "") << " (" << s.value("model", "") << ")\n"
+            << "mesh        " << s["mesh"]["points"] << " nodes, " << s["mesh"]["tets"] << " tets, volume "
+            << std::setprecision(4) << s["mesh"]["volume_m3"].get<double>() * 1e6 << " cm^3\n"
+            << "solver      " << s["solver"].dump() << "\n"
+            << "final time  " << s["final_time"].get<double>() << " s\n"
+            << "max |u|     " << s["max_displacement_m"].get<double>() * 1e3 << " mm\n"
+            << "energy      " << s["elastic_energy_J"].get<double>() << " J\n";
+  for (auto it = s["final_reactions_N"].begin(); it != s["final_reactions_N"].end(); ++it) {
+    const auto& v = it.value();
+    std::cout << "reaction    " << it.key() << ": (" << v[0].get<double>() << ", " << v[1].get<double>()
+              << ", " << v[2].get<double>() << ") N\n";
+  }
+  std::cout << "min J       " << s["min_volume_ratio"].get<double>()
+            << " (smallest deformed/rest tet volume)\n"
+            << "wall time   " << s["run_seconds"].get<double>() << " s\n"
+            << "results     " << r.dir << "/ (summary.json, timeseries.h5, fields.xdmf, result.pvd, *.png)\n";
+}
+
+int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& command_line) {
+  tm::RunOptions opt;
+  opt.tmlab_root = tmlab_root();
+  opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
+  opt.command_line = split_words(command_line);
+  opt.plots = !p.has("--no-plots");
+  opt.log = &std::cerr;
+  const std::string model = p.get("--model", cfg.model);
+  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  const std::string time_integration = p.get("--time-integration", "fixed_step");
+  if (time_integration != "fixed_step" && time_integration != "ida")
+    throw UsageError("--time-integration must be fixed_step or ida");
+  if (time_integration == "ida" && model != "reference")
+    throw UsageError("--time-integration ida needs --model reference");
+  std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
+  const tm::RunResult r = run_model(cfg, opt, model, degree, time_integration);
+  print_summary(r);
+  return 0;
+}
+
+}  // namespace
+
+int cmd_demo(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--results"}, {"--no-plots"});
+  if (!p.positional.empty()) throw UsageError("demo takes no positional arguments");
+  const nlohmann::json doc = nlohmann::json::parse(kDemoCase);
+  const CaseConfig cfg = parse_case(doc, "<embedded demo case>", {tmlab_root()});
+  return run_config(cfg, p, command_line);
+}
+
+int cmd_run(const std::vector<std::string>& args, const std::string& command_line) {
+  Parsed p = parse(args, {"--results", "--model", "--degree", "--time-integration"}, {"--no-plots"});
+  if (p.positional.size() != 1) throw UsageError("run needs exactly one case name or case file");
+  CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
+  if (p.has("--model")) {
+    const std::string m = p.get("--model");
+    if (m != "tensor_mass" && m != "tl_oracle" && m != "reference")
+      throw UsageError("--model must be tensor_mass, tl_oracle or reference");
+    if (m != "reference") {
+      cfg.model = m;
+      cfg.effective["model"] = m;
+    }
+  }
+  return run_config(cfg, p, command_line);
+}
+
+}  // namespace tmlab::cli

@@ -1,0 +1,93 @@
+// tmlab_reference: runs one case file with the deal.II reference solver (docs/reference-fem.md).
+//   tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]
+//                   [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]
+//                   [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] [--quiet]
+// Works under `mpirun -np N`: every rank runs the case, rank 0 writes the result directory.
+#include "core/config/case_config.hpp"
+#include "core/results/run_output.hpp"
+#include "reference_fem/dealii/reference_runner.hpp"
+
+#include <cstdio>
+#include <exception>
+#include <iostream>
+#include <string>
+
+namespace {
+int usage(const char* msg) {
+  if (tmlab::ref::MpiSession::rank() == 0)
+    std::cerr
+        << "tmlab_reference: " << msg << "\n"
+        << "usage: tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]\n"
+           "                       [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]\n"
+           "                       [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] "
+           "[--quiet]\n";
+  return 2;
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+  tmlab::ref::MpiSession mpi(argc, argv);
+  std::string case_file;
+  tmlab::ref::ReferenceOptions ro;
+  tmlab::tm::RunOptions opt;
+  opt.results_root = "results";
+  opt.tmlab_root = TMLAB_SOURCE_DIR;
+  opt.command_line = tmlab::command_line(argc, argv);
+  opt.plots = false;
+  bool quiet = false;
+  try {
+    for (int i = 1; i < argc; ++i) {
+      const std::string a = argv[i];
+      auto value = [&]() -> std::string {
+        if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+        return argv[++i];
+      };
+      if (a == "--degree")
+        ro.degree = std::stoi(value());
+      else if (a == "--law")
+        ro.law = value();
+      else if (a == "--results")
+        opt.results_root = value();
+      else if (a == "--solver")
+        ro.linear_solver = value();
+      else if (a == "--cells")
+        ro.cells = value();
+      else if (a == "--rtol")
+        ro.newton_rtol = std::stod(value());
+      else if (a == "--time-integration")
+        ro.time_integration = value();
+      else if (a == "--ida-rtol")
+        ro.ida_rtol = std::stod(value());
+      else if (a == "--ida-atol")
+        ro.ida_atol = std::stod(value());
+      else if (a == "--hex") {
+        const std::string v = value();
+        if (std::sscanf(v.c_str(), "%u,%u,%u", &ro.hex_subdivisions[0], &ro.hex_subdivisions[1],
+                        &ro.hex_subdivisions[2]) != 3)
+          throw std::invalid_argument("--hex needs NX,NY,NZ");
+      } else if (a == "--quiet")
+        quiet = true;
+      else if (!a.empty() && a[0] == '-')
+        throw std::invalid_argument("unknown option " + a);
+      else if (case_file.empty())
+        case_file = a;
+      else
+        throw std::invalid_argument("more than one case file");
+    }
+    if (case_file.empty()) return usage("no case file given");
+  } catch (const std::exception& e) {
+    return usage(e.what());
+  }
+  opt.log = quiet ? nullptr : &std::cout;
+  try {
+    const tmlab::CaseConfig cfg = tmlab::load_case(case_file, TMLAB_SOURCE_DIR);
+    const auto r = tmlab::ref::run_reference_case(cfg, opt, ro);
+    if (tmlab::ref::MpiSession::rank() == 0 && !quiet)
+      std::cout << "results     " << r.dir
+                << "/ (summary.json, timeseries.h5, displacement.h5, result.pvd)\n";
+  } catch (const std::exception& e) {
+    std::cerr << "tmlab_reference: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,118 @@
+// A case file: geometry, material, boundary conditions, loads, solver and outputs of one run,
+// read strictly from JSON (unknown keys are errors). It is model-agnostic: the tensor-mass runner
+// and the deal.II reference both build their problem from it. docs/case-files.md is the reference.
+#pragma once
+
+#include "core/config/time_function.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "core/mesh/mesh_quality.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace tmlab {
+
+struct MeshSpec {
+  std::string file;    ///< resolved path
+  double scale = 1.0;  ///< multiply coordinates (e.g. 0.001 for a mesh in mm)
+  bool repair_orientation = false;
+};
+
+/// Prony-series viscoelasticity (issue 3; docs/theory/viscoelasticity.md). Plain data here; the
+/// tensor-mass model validates and converts it (tmlab::tm::PronySeries).
+struct ViscoelasticSpec {
+  bool enabled = false;
+  std::string convention = "long_term";      ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
+  std::vector<double> weights, taus;         ///< one per Prony term
+  std::string history = "pk2";               ///< nodal_force (the seed's eq. 20) | pk2 (objective)
+  std::string integration = "exact_linear";  ///< midpoint | exact_linear | backward_euler
+  std::string relaxation = "full";           ///< full | deviatoric (pk2 only)
+  std::string scheme;                        ///< the shorthand given, if any (seed, objective, ...)
+};
+
+struct MaterialSpec {
+  std::string law = "stvk";  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
+  double young = 0.0;        ///< Pa; the long-term modulus E_inf of a viscoelastic material
+  double poisson = 0.0;
+  double density = 0.0;  ///< kg/m^3
+  ViscoelasticSpec viscoelastic;
+};
+
+struct BoundarySpec {
+  std::string name;
+  NodeSelector nodes;
+  std::array<bool, 3> components{true, true, true};
+  Vec3 value = Vec3::Zero();  ///< m, scaled by function(t)
+  TimeFunction function = TimeFunction::constant(1.0);
+};
+
+struct LoadSpec {
+  enum class Type { NodalForce, Pressure, Traction, Gravity };
+  Type type = Type::NodalForce;
+  std::string name;
+  NodeSelector selector;       ///< nodes (nodal force) or faces (pressure)
+  Vec3 vector = Vec3::Zero();  ///< total force (N), traction (Pa, per reference area) or gravity (m/s^2)
+  double pressure = 0.0;       ///< Pa
+  bool follower = false;
+  TimeFunction function = TimeFunction::constant(1.0);
+};
+
+struct SolverSpec {
+  enum class Type { Static, Explicit, Implicit };
+  Type type = Type::Static;
+  double t_end = 1.0;              ///< end time (pseudo-time for static)
+  int steps = 10;                  ///< static: number of load steps; dynamics: derived from dt
+  double dt = 0.0;                 ///< dynamics: time step
+  std::string scheme = "newmark";  ///< implicit: newmark | backward_euler
+  double damping_alpha = 0.0, damping_beta = 0.0;
+  int max_iterations = 25;
+  double rtol = 1e-10;
+  double atol = 1e-14;
+  bool line_search = true;
+  int max_cutbacks = 8;
+  bool check_stability = true;
+};
+
+struct ProbeSpec {
+  std::string name;
+  Vec3 point = Vec3::Zero();  ///< the nearest mesh node is tracked
+};
+
+struct OutputSpec {
+  int every = 1;  ///< write fields every n-th step (the last step always)
+  bool vtu = true;
+  bool xdmf = true;
+  bool plots = true;
+  std::vector<ProbeSpec> probes;
+};
+
+struct CaseConfig {
+  std::string name;
+  std::string description;
+  std::string file;                   ///< where the case came from ("<embedded>" for the demo)
+  std::string model = "tensor_mass";  ///< tensor_mass | tl_oracle
+  MeshSpec mesh;
+  MaterialSpec material;
+  std::vector<BoundarySpec> boundary;
+  std::vector<LoadSpec> loads;
+  SolverSpec solver;
+  OutputSpec output;
+  nlohmann::json effective;  ///< the case as read, with defaults filled in (for the manifest)
+};
+
+/// Parses a case document. `where` names it in messages; relative mesh paths are looked up in
+/// `search_dirs` in order (the case file's directory first, then the tmlab root).
+CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
+                      const std::vector<std::string>& search_dirs);
+/// Reads the case's mesh, scales it, re-orients tets when asked, and refuses a mesh with inverted
+/// or degenerate tets (tmlab::Error naming the file and the first bad tet). Every model's runner
+/// starts here. `report` receives the mesh report, `repaired` the number of re-oriented tets.
+Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired);
+
+/// Reads and parses a case file.
+CaseConfig load_case(const std::string& path, const std::string& tmlab_root);
+
+}  // namespace tmlab

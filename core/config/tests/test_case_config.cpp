@@ -1,0 +1,104 @@
+// Case-file parsing: defaults, strictness (unknown keys), and messages naming file and key path.
+#include "core/base/error.hpp"
+#include "core/config/case_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace tmlab {
+namespace {
+
+namespace fs = std::filesystem;
+
+class CaseConfigTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() / ("tmlab_case_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    std::ofstream(dir_ / "m.msh") << "placeholder";  // only existence is checked by parse_case
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  nlohmann::json minimal() const {
+    return nlohmann::json::parse(R"({
+      "name": "t", "mesh": {"file": "m.msh"},
+      "material": {"E": 1000, "nu": 0.3, "density": 1000},
+      "boundary": [{"name": "fixed", "nodes": {"plane": {"axis": "z", "value": 0}}}],
+      "solver": {"type": "static"}
+    })");
+  }
+  std::string error_of(const nlohmann::json& j) const {
+    try {
+      parse_case(j, "case.json", {dir_.string()});
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+  fs::path dir_;
+};
+
+TEST_F(CaseConfigTest, MinimalCaseGetsDefaults) {
+  const CaseConfig c = parse_case(minimal(), "case.json", {dir_.string()});
+  EXPECT_EQ(c.model, "tensor_mass");
+  EXPECT_EQ(c.solver.steps, 10);
+  EXPECT_DOUBLE_EQ(c.solver.t_end, 1.0);
+  ASSERT_EQ(c.boundary.size(), 1u);
+  EXPECT_EQ(c.boundary[0].components, (std::array<bool, 3>{true, true, true}));
+  EXPECT_TRUE(fs::exists(c.mesh.file));
+}
+
+TEST_F(CaseConfigTest, ErrorsNameTheKeyPath) {
+  auto j = minimal();
+  j["solver"]["stepz"] = 3;
+  EXPECT_NE(error_of(j).find("'solver.stepz'"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["material"]["nu"] = 0.5;
+  EXPECT_NE(error_of(j).find("'material.nu'"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["material"]["E"] = -3;
+  EXPECT_NE(error_of(j).find("'material.E' must be > 0"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["boundary"][0]["components"] = "xw";
+  EXPECT_NE(error_of(j).find("'boundary[0].components'"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["solver"] = {{"type", "explicit"}, {"dt", 2.0}, {"t_end", 1.0}};
+  EXPECT_NE(error_of(j).find("'solver.dt'"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["mesh"]["file"] = "missing.msh";
+  EXPECT_NE(error_of(j).find("file not found"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["loads"] = {{{"type", "gravity"}, {"acceleration", {0, 0}}}};
+  EXPECT_NE(error_of(j).find("'loads[0].acceleration'"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["boundary"][0]["function"] = {{"type", "ramp"}, {"t0", 1.0}, {"t1", 0.5}};
+  EXPECT_NE(error_of(j).find("boundary[0].function"), std::string::npos) << error_of(j);
+
+  j = minimal();
+  j["extra"] = true;
+  EXPECT_NE(error_of(j).find("unknown key 'extra'"), std::string::npos) << error_of(j);
+}
+
+TEST_F(CaseConfigTest, JsonSyntaxErrorNamesFileAndLine) {
+  const fs::path p = dir_ / "bad.json";
+  std::ofstream(p) << "{\n  \"name\": \"x\",\n  \"mesh\": {\n}}}\n";
+  try {
+    load_case(p.string(), dir_.string());
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("bad.json"), std::string::npos) << m;
+    EXPECT_NE(m.find("line 4"), std::string::npos) << m;
+  }
+}
+
+}  // namespace
+}  // namespace tmlab

@@ -1,0 +1,169 @@
+// Structured box meshes and the Gmsh 2.2 writer.
+#include "core/mesh/mesh_generator.hpp"
+
+#include "core/base/error.hpp"
+#include "core/mesh/mesh_ops.hpp"
+
+#include <array>
+#include <cassert>
+#include <charconv>
+#include <fstream>
+#include <limits>
+#include <utility>
+
+namespace tmlab {
+
+Mesh make_box_mesh(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz) {
+  if (nx < 1 || ny < 1 || nz < 1) {
+    throw Error("make_box_mesh: cell counts must be >= 1, got " + std::to_string(nx) + " x " +
+                std::to_string(ny) + " x " + std::to_string(nz));
+  }
+  if (!lo.allFinite() || !hi.allFinite() || !(hi.array() > lo.array()).all()) {
+    throw Error("make_box_mesh: need finite corners with hi > lo on every axis");
+  }
+  const long long npts = static_cast<long long>(nx + 1) * (ny + 1) * (nz + 1);
+  if (npts > std::numeric_limits<Index>::max() / 2 ||
+      6LL * nx * ny * nz > std::numeric_limits<Index>::max() / 2) {
+    throw Error("make_box_mesh: too many cells");
+  }
+  const std::array<int, 3> n{nx, ny, nz};
+  const auto id = [&](int i, int j, int k) { return static_cast<Index>(i + (nx + 1) * (j + (ny + 1) * k)); };
+
+  Mesh mesh;
+  mesh.points.reserve(static_cast<std::size_t>(npts));
+  for (int k = 0; k <= nz; ++k) {
+    for (int j = 0; j <= ny; ++j) {
+      for (int i = 0; i <= nx; ++i) {
+        Vec3 p;
+        const std::array<int, 3> ijk{i, j, k};
+        for (int a = 0; a < 3; ++a) {
+          const double t =
+              static_cast<double>(ijk[static_cast<std::size_t>(a)]) / n[static_cast<std::size_t>(a)];
+          // Exact end values, linear in between.
+          p[a] = ijk[static_cast<std::size_t>(a)] == n[static_cast<std::size_t>(a)]
+                     ? hi[a]
+                     : lo[a] + t * (hi[a] - lo[a]);
+        }
+        mesh.points.push_back(p);
+        mesh.point_file_ids.push_back(static_cast<long>(mesh.points.size()));
+      }
+    }
+  }
+
+  // The six axis permutations and their signs; a path low corner -> +e_p0 -> +e_p1 -> high corner.
+  constexpr int kPerm[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  constexpr bool kOdd[6] = {false, true, true, false, false, true};
+  mesh.tets.reserve(6 * static_cast<std::size_t>(nx) * ny * nz);
+  for (int k = 0; k < nz; ++k) {
+    for (int j = 0; j < ny; ++j) {
+      for (int i = 0; i < nx; ++i) {
+        for (int p = 0; p < 6; ++p) {
+          std::array<int, 3> c{i, j, k};
+          const Index v0 = id(c[0], c[1], c[2]);
+          ++c[static_cast<std::size_t>(kPerm[p][0])];
+          const Index v1 = id(c[0], c[1], c[2]);
+          ++c[static_cast<std::size_t>(kPerm[p][1])];
+          const Index v2 = id(c[0], c[1], c[2]);
+          const Index v3 = id(i + 1, j + 1, k + 1);
+          mesh.tets.push_back(kOdd[p] ? Tet{v0, v1, v3, v2} : Tet{v0, v1, v2, v3});
+          mesh.tet_physical.push_back(kBoxBody);
+        }
+      }
+    }
+  }
+
+  // Boundary triangles, grouped by face tag.
+  const std::vector<Tri> faces = boundary_faces(mesh);
+  const auto ijk_of = [&](Index v) {
+    const int i = v % (nx + 1);
+    const int j = (v / (nx + 1)) % (ny + 1);
+    const int k = v / ((nx + 1) * (ny + 1));
+    return std::array<int, 3>{i, j, k};
+  };
+  for (int tag = kBoxXmin; tag <= kBoxZmax; ++tag) {
+    const int axis = (tag - 1) / 2;
+    const int value = (tag - 1) % 2 == 0 ? 0 : n[static_cast<std::size_t>(axis)];
+    for (const Tri& f : faces) {
+      bool on = true;
+      for (const Index v : f) on = on && ijk_of(v)[static_cast<std::size_t>(axis)] == value;
+      if (on) {
+        mesh.triangles.push_back(f);
+        mesh.triangle_physical.push_back(tag);
+      }
+    }
+  }
+  assert(mesh.triangles.size() == faces.size());
+  const char* names[6] = {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"};
+  for (int tag = kBoxXmin; tag <= kBoxZmax; ++tag) mesh.groups.push_back({2, tag, names[tag - 1]});
+  mesh.groups.push_back({3, kBoxBody, "body"});
+  return mesh;
+}
+
+namespace {
+
+void put_double(std::string& out, double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  assert(res.ec == std::errc());
+  out.append(buf, res.ptr);
+}
+
+}  // namespace
+
+void write_gmsh22(const Mesh& mesh, const std::string& path) {
+  std::string out;
+  out.reserve(64 * mesh.points.size() + 48 * (mesh.tets.size() + mesh.triangles.size()));
+  out += "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
+  std::size_t named = 0;
+  for (const PhysicalGroup& g : mesh.groups) named += g.name.empty() ? 0 : 1;
+  if (named > 0) {
+    out += "$PhysicalNames\n" + std::to_string(named) + "\n";
+    for (const PhysicalGroup& g : mesh.groups) {
+      if (g.name.empty()) continue;
+      if (g.name.find('"') != std::string::npos) {
+        throw input_error(path, 0, "physical group name contains a double quote: " + g.name);
+      }
+      out += std::to_string(g.dim) + " " + std::to_string(g.tag) + " \"" + g.name + "\"\n";
+    }
+    out += "$EndPhysicalNames\n";
+  }
+  out += "$Nodes\n" + std::to_string(mesh.points.size()) + "\n";
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    const Vec3& p = mesh.points[i];
+    if (!p.allFinite())
+      throw input_error(path, 0, "point " + std::to_string(i) + " has non-finite coordinates");
+    out += std::to_string(i + 1);
+    for (int a = 0; a < 3; ++a) {
+      out += ' ';
+      put_double(out, p[a]);
+    }
+    out += '\n';
+  }
+  out += "$EndNodes\n$Elements\n" +
+         std::to_string(mesh.vertices.size() + mesh.triangles.size() + mesh.tets.size()) + "\n";
+  std::size_t eid = 0;
+  const auto element = [&](int type, int phys, const Index* nodes, int count) {
+    out += std::to_string(++eid) + " " + std::to_string(type) + " 2 " + std::to_string(phys) + " " +
+           std::to_string(phys > 0 ? phys : 1);
+    for (int k = 0; k < count; ++k) {
+      assert(nodes[k] >= 0 && nodes[k] < mesh.num_points());
+      out += " " + std::to_string(nodes[k] + 1);
+    }
+    out += '\n';
+  };
+  for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
+    element(15, mesh.vertex_physical[v], &mesh.vertices[v], 1);
+  for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+    element(2, mesh.triangle_physical[t], mesh.triangles[t].data(), 3);
+  }
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) element(4, mesh.tet_physical[t], mesh.tets[t].data(), 4);
+  out += "$EndElements\n";
+
+  std::ofstream file(path, std::ios::binary | std::ios::trunc);
+  if (!file) throw input_error(path, 0, "cannot open file for writing");
+  file.write(out.data(), static_cast<std::streamsize>(out.size()));
+  file.close();
+  if (!file) throw input_error(path, 0, "error while writing mesh file");
+}
+
+}  // namespace tmlab

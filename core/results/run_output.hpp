@@ -1,0 +1,127 @@
+// The result-directory protocol for results/<case>/, and the run manifest.
+//
+// One writer: a RunOutput holds an exclusive lock (flock on the result directory itself) for its
+// whole life; a second RunOutput on the same directory, in this or any other process, is refused
+// with a message naming the process that holds it (from its RUNNING marker). A RUNNING marker
+// left by a process that is gone (its lock died with it) is reported as stale and cleared.
+//
+// A run writes every result file into the staging directory <dir>/.incomplete/ while a RUNNING
+// marker sits in <dir>. finalize() writes summary.json into the staged tree, syncs it, and swaps
+// the staged tree into place with one rename (renameat2 RENAME_EXCHANGE), so the complete result
+// appears at once: a directory holding summary.json is a complete run, and nothing else is.
+// A run that ends any other way (an exception unwinding past the RunOutput, or an explicit fail())
+// leaves a FAILED marker with the reason, keeps .incomplete/ for inspection, and has no
+// summary.json; a run stopped by SIGINT/SIGTERM (interrupt()) leaves INTERRUPTED instead.
+// Typical use:
+//
+//   tmlab::RunOutput out("results/" + case_name);
+//   try {
+//     out.write_json("manifest.json", tmlab::make_manifest({args, config, {mesh_file}}));
+//     tmlab::VtuWriter(mesh).write(out.file("rest.vtu"));
+//     ...
+//     out.finalize({{"steps", n}});
+//   } catch (const std::exception& e) {
+//     out.fail(e.what());  // records the reason; without this the destructor records a generic one
+//     throw;
+//   }
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace tmlab {
+
+/// 64-bit FNV-1a hash of a file's bytes. Throws tmlab::Error naming the file when it can't be read.
+std::uint64_t fnv1a64_file(const std::filesystem::path& path);
+/// 64-bit FNV-1a hash of a byte string.
+std::uint64_t fnv1a64(const void* data, std::size_t size, std::uint64_t seed = 0xcbf29ce484222325ULL);
+/// "2026-11-22T03:10:50Z" (UTC, ISO-8601, whole seconds).
+std::string utc_iso8601(std::chrono::system_clock::time_point t);
+/// This machine's host name ("unknown" when it can't be found).
+std::string host_name();
+/// argv as strings.
+std::vector<std::string> command_line(int argc, const char* const* argv);
+
+/// What a manifest records beyond the build identity, which comes from tmlab/build_info.hpp.
+struct ManifestInput {
+  std::vector<std::string> command_line;             ///< argv of the run
+  nlohmann::json config = nlohmann::json::object();  ///< the effective (defaults-filled) config
+  std::vector<std::filesystem::path> input_files;    ///< mesh, config and other inputs
+  std::chrono::system_clock::time_point started = std::chrono::system_clock::now();
+};
+
+/// The manifest: tmlab version, git SHA and dirty flag, build type, compiler and flags, command
+/// line, effective config, start and write times (UTC ISO-8601), host name, and each input file's
+/// absolute path, size and FNV-1a-64 hash (16 hex digits). Throws tmlab::Error for a missing input.
+nlohmann::json make_manifest(const ManifestInput& input);
+
+/// Empty when `name` may name a result directory, else why not. Names are 1 to 100 characters
+/// from A-Z a-z 0-9 and . _ - +, and do not start with '.' or '-': they become directory names
+/// and appear in plots and command lines, so nothing else is allowed.
+std::string result_name_problem(const std::string& name);
+
+/// One run's result directory; see the file comment for the protocol.
+class RunOutput {
+ public:
+  static constexpr const char* kStaging = ".incomplete";
+  static constexpr const char* kRunning = "RUNNING";
+  static constexpr const char* kFailed = "FAILED";
+  static constexpr const char* kInterrupted = "INTERRUPTED";
+  static constexpr const char* kSummary = "summary.json";
+
+  /// Takes the directory's lock, creates `dir` (and parents) and the staging area, and writes
+  /// RUNNING. A previous run's contents are removed first, summary.json before anything else; a
+  /// non-empty directory that shows no sign of being a result directory is refused (tmlab::Error)
+  /// rather than emptied, and so is a directory another live RunOutput holds (the message names
+  /// its process). A stale RUNNING marker (its process is gone) is reported on `log` when given.
+  explicit RunOutput(std::filesystem::path dir, std::ostream* log = nullptr);
+  /// When neither finalize() nor fail() ran: writes FAILED (never throws). Releases the lock.
+  ~RunOutput();
+  RunOutput(const RunOutput&) = delete;
+  RunOutput& operator=(const RunOutput&) = delete;
+
+  /// The final result directory.
+  const std::filesystem::path& dir() const { return dir_; }
+  /// Where files are written until finalize().
+  std::filesystem::path staging_dir() const { return dir_ / kStaging; }
+  /// Path for result file `name` (relative; may contain subdirectories, which are created) in
+  /// the staging area. It ends up at dir()/name after finalize().
+  std::filesystem::path file(const std::string& name) const;
+  /// Writes `value` as indented JSON to file(name), atomically.
+  void write_json(const std::string& name, const nlohmann::json& value) const;
+
+  /// Moves the staged files into dir(), removes the staging area and RUNNING, and writes
+  /// summary.json last: `summary` plus "status", "started_utc", "finished_utc", "wall_seconds"
+  /// and "files". Throws tmlab::Error (and records FAILED) if anything goes wrong.
+  void finalize(const nlohmann::json& summary = nlohmann::json::object());
+  /// Records that the run failed: writes FAILED with `message` and removes RUNNING; staged files
+  /// stay in staging_dir(). The first reason recorded wins. Never throws.
+  void fail(const std::string& message) noexcept;
+  /// Records that the run was stopped by a signal: writes INTERRUPTED with `message` (what was
+  /// done, where a checkpoint is) and removes RUNNING; staged files stay. Never throws.
+  void interrupt(const std::string& message) noexcept;
+  /// fail() or interrupt(), chosen by the exception's type (tmlab::Interrupted -> interrupt()).
+  void abandon(const std::exception& e) noexcept;
+
+  bool finalized() const { return state_ == State::Finalized; }
+  bool failed() const { return state_ == State::Failed; }
+  bool interrupted() const { return state_ == State::Interrupted; }
+
+ private:
+  enum class State { Running, Finalized, Failed, Interrupted };
+  void mark_stopped(State state, const char* marker, const std::string& message) noexcept;
+  std::filesystem::path dir_;
+  int lock_fd_ = -1;
+  State state_ = State::Running;
+  std::chrono::system_clock::time_point started_;
+  std::chrono::steady_clock::time_point started_steady_;
+  int uncaught_at_start_ = 0;
+};
+
+}  // namespace tmlab

@@ -1,0 +1,304 @@
+// RunOutput protocol (staging, summary.json last, FAILED on unwinding) and make_manifest.
+#include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
+#include "core/results/run_output.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string slurp(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::ostringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
+
+class RunOutputTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("tmlab_run_" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  fs::path root_;
+};
+
+TEST_F(RunOutputTest, FinalizeMovesFilesAndWritesSummaryLast) {
+  const fs::path dir = root_ / "results" / "cube";
+  {
+    tmlab::RunOutput out(dir);
+    EXPECT_TRUE(fs::exists(dir / "RUNNING"));
+    EXPECT_TRUE(fs::is_directory(dir / ".incomplete"));
+    const fs::path vtu = out.file("steps/step_000001.vtu");
+    EXPECT_EQ(vtu, dir / ".incomplete" / "steps" / "step_000001.vtu");
+    spit(vtu, "<VTKFile/>");
+    out.write_json("manifest.json", {{"a", 1}});
+    EXPECT_FALSE(fs::exists(dir / "manifest.json"));  // staged, not in place yet
+    EXPECT_FALSE(fs::exists(dir / "summary.json"));
+    out.finalize({{"steps", 12}});
+    EXPECT_TRUE(out.finalized());
+  }
+  EXPECT_TRUE(fs::exists(dir / "steps" / "step_000001.vtu"));
+  EXPECT_TRUE(fs::exists(dir / "manifest.json"));
+  EXPECT_FALSE(fs::exists(dir / ".incomplete"));
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  const auto summary = nlohmann::json::parse(slurp(dir / "summary.json"));
+  EXPECT_EQ(summary["steps"], 12);
+  EXPECT_EQ(summary["status"], "complete");
+  EXPECT_EQ(summary["files"], (nlohmann::json{"manifest.json", "steps"}));
+  EXPECT_GE(summary["wall_seconds"].get<double>(), 0.0);
+  EXPECT_EQ(summary["finished_utc"].get<std::string>().back(), 'Z');
+}
+
+TEST_F(RunOutputTest, ExceptionBeforeFinalizeLeavesFailedAndNoSummary) {
+  const fs::path dir = root_ / "diverges";
+  try {
+    tmlab::RunOutput out(dir);
+    spit(out.file("u.vtu"), "partial");
+    throw tmlab::Error("step 17: element 4 inverted");
+  } catch (const tmlab::Error&) {
+  }
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+  EXPECT_FALSE(fs::exists(dir / "u.vtu"));                 // never moved into place
+  EXPECT_TRUE(fs::exists(dir / ".incomplete" / "u.vtu"));  // kept for inspection
+  ASSERT_TRUE(fs::exists(dir / "FAILED"));
+  EXPECT_NE(slurp(dir / "FAILED").find("exception"), std::string::npos) << slurp(dir / "FAILED");
+}
+
+TEST_F(RunOutputTest, ExplicitFailRecordsTheMessage) {
+  const fs::path dir = root_ / "explicit";
+  try {
+    tmlab::RunOutput out(dir);
+    try {
+      throw tmlab::Error("mesh.msh:12: bad node");
+    } catch (const std::exception& e) {
+      out.fail(e.what());
+      throw;
+    }
+  } catch (const tmlab::Error&) {
+  }
+  EXPECT_NE(slurp(dir / "FAILED").find("mesh.msh:12: bad node"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+}
+
+TEST_F(RunOutputTest, RerunClearsPreviousResultFirst) {
+  const fs::path dir = root_ / "rerun";
+  {
+    tmlab::RunOutput out(dir);
+    spit(out.file("old.txt"), "old");
+    out.finalize();
+  }
+  ASSERT_TRUE(fs::exists(dir / "summary.json"));
+  {
+    tmlab::RunOutput out(dir);
+    EXPECT_FALSE(fs::exists(dir / "summary.json"));  // the old run no longer marks it complete
+    EXPECT_FALSE(fs::exists(dir / "old.txt"));
+  }  // destroyed without finalize
+  EXPECT_TRUE(fs::exists(dir / "FAILED"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  {
+    tmlab::RunOutput out(dir);
+    EXPECT_FALSE(fs::exists(dir / "FAILED"));
+    out.finalize();
+    EXPECT_THROW(out.finalize(), tmlab::Error);
+  }
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+}
+
+TEST_F(RunOutputTest, RefusesForeignDirectoryAndBadNames) {
+  const fs::path dir = root_ / "home";
+  fs::create_directories(dir);
+  spit(dir / "thesis.tex", "precious");
+  EXPECT_THROW(tmlab::RunOutput out(dir), tmlab::Error);
+  EXPECT_TRUE(fs::exists(dir / "thesis.tex"));
+
+  tmlab::RunOutput out(root_ / "ok");
+  EXPECT_THROW(out.file("../escape.txt"), tmlab::Error);
+  EXPECT_THROW(out.file("/abs.txt"), tmlab::Error);
+  EXPECT_THROW(out.file(""), tmlab::Error);
+  out.finalize();
+}
+
+TEST_F(RunOutputTest, SecondWriterIsRefusedAndNamesTheFirst) {
+  const fs::path dir = root_ / "busy";
+  {
+    tmlab::RunOutput first(dir);
+    spit(first.file("a.txt"), "first");
+    try {
+      tmlab::RunOutput second(dir);
+      FAIL() << "a second writer was accepted";
+    } catch (const tmlab::Error& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("another tmlab run is writing"), std::string::npos) << m;
+      EXPECT_NE(m.find("pid " + std::to_string(::getpid())), std::string::npos) << m;
+    }
+    // The refused writer touched nothing: the first run goes on and completes.
+    EXPECT_TRUE(fs::exists(dir / "RUNNING"));
+    EXPECT_FALSE(fs::exists(dir / "FAILED"));
+    first.finalize();
+  }
+  EXPECT_EQ(slurp(dir / "a.txt"), "first");
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  // Released with the first: a new run may start.
+  tmlab::RunOutput again(dir);
+  again.finalize();
+}
+
+TEST_F(RunOutputTest, LockHoldsAcrossProcesses) {
+  const fs::path dir = root_ / "shared";
+  int ready[2], done[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  ASSERT_EQ(::pipe(done), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    {
+      tmlab::RunOutput out(dir);
+      char c = 'r';
+      (void)!::write(ready[1], &c, 1);
+      (void)!::read(done[0], &c, 1);  // hold the directory until the parent has tried
+      out.finalize();
+    }
+    std::_Exit(0);
+  }
+  char c = 0;
+  ASSERT_EQ(::read(ready[0], &c, 1), 1);
+  try {
+    tmlab::RunOutput second(dir);
+    ADD_FAILURE() << "the directory held by pid " << child << " was taken";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("pid " + std::to_string(child)), std::string::npos) << e.what();
+  }
+  c = 'd';
+  ASSERT_EQ(::write(done[1], &c, 1), 1);
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+}
+
+TEST_F(RunOutputTest, StaleRunningMarkerIsReportedAndCleared) {
+  // A process killed with SIGKILL leaves RUNNING and .incomplete/ but no lock.
+  const fs::path dir = root_ / "stale";
+  fs::create_directories(dir / ".incomplete");
+  spit(dir / "RUNNING", R"({"pid": 999999, "hostname": "gone", "started_utc": "2026-01-01T00:00:00Z"})");
+  spit(dir / ".incomplete" / "half.h5", "half");
+  std::ostringstream log;
+  tmlab::RunOutput out(dir, &log);
+  EXPECT_NE(log.str().find("stale RUNNING marker (pid 999999 on gone"), std::string::npos) << log.str();
+  EXPECT_FALSE(fs::exists(dir / ".incomplete" / "half.h5"));
+  out.finalize();
+  EXPECT_TRUE(fs::exists(dir / "summary.json"));
+}
+
+TEST_F(RunOutputTest, InterruptLeavesInterruptedNotFailed) {
+  const fs::path dir = root_ / "stopped";
+  try {
+    tmlab::RunOutput out(dir);
+    spit(out.file("timeseries.h5"), "partial");
+    try {
+      throw tmlab::Interrupted(2, "SIGINT received at t = 0.5 s (step 5 of 10)");
+    } catch (const std::exception& e) {
+      out.abandon(e);
+      EXPECT_TRUE(out.interrupted());
+      throw;
+    }
+  } catch (const tmlab::Interrupted&) {
+  }
+  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED"));
+  EXPECT_NE(slurp(dir / "INTERRUPTED").find("step 5 of 10"), std::string::npos);
+  EXPECT_FALSE(fs::exists(dir / "FAILED"));
+  EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+  EXPECT_FALSE(fs::exists(dir / "summary.json"));
+  EXPECT_TRUE(fs::exists(dir / ".incomplete" / "timeseries.h5"));
+  // An interrupted directory is a result directory: the next run may reuse it.
+  tmlab::RunOutput next(dir);
+  EXPECT_FALSE(fs::exists(dir / "INTERRUPTED"));
+  next.finalize();
+}
+
+TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
+  const fs::path dir = root_ / "swap";
+  {
+    tmlab::RunOutput out(dir);
+    spit(out.file("x.txt"), "x");
+    out.finalize();
+  }
+  // Only the result is left in the parent: no staging tree, no lock file.
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(root_)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"swap"}));
+  EXPECT_EQ(slurp(dir / "x.txt"), "x");
+}
+
+TEST(ResultNames, SafeCharactersOnly) {
+  EXPECT_EQ(tmlab::result_name_problem("liver-probe_2.p2+ida"), "");
+  EXPECT_NE(tmlab::result_name_problem(""), "");
+  EXPECT_NE(tmlab::result_name_problem("a';touch${IFS}X;'"), "");
+  EXPECT_NE(tmlab::result_name_problem("a b"), "");
+  EXPECT_NE(tmlab::result_name_problem("a/b"), "");
+  EXPECT_NE(tmlab::result_name_problem(".hidden"), "");
+  EXPECT_NE(tmlab::result_name_problem("-rf"), "");
+  EXPECT_NE(tmlab::result_name_problem("$(x)"), "");
+  EXPECT_NE(tmlab::result_name_problem(std::string(101, 'a')), "");
+  EXPECT_NE(tmlab::result_name_problem("caf\xc3\xa9"), "");
+}
+
+TEST_F(RunOutputTest, ManifestRecordsBuildInputsAndTimes) {
+  const fs::path input = root_ / "mesh.msh";
+  spit(input, "a");
+  tmlab::ManifestInput in;
+  in.command_line = tmlab::command_line(2, std::array<const char*, 2>{"tmlab", "run"}.data());
+  in.config = {{"dt", 1e-3}};
+  in.input_files = {input};
+  const nlohmann::json m = tmlab::make_manifest(in);
+  EXPECT_EQ(m["command_line"], (nlohmann::json{"tmlab", "run"}));
+  EXPECT_EQ(m["config"]["dt"], 1e-3);
+  EXPECT_TRUE(m["git"]["sha"].is_string());
+  EXPECT_TRUE(m["git"]["dirty"].is_boolean());
+  EXPECT_TRUE(m["build"].contains("type"));
+  EXPECT_TRUE(m["build"].contains("compiler"));
+  EXPECT_TRUE(m["build"].contains("flags"));
+  EXPECT_FALSE(m["tmlab_version"].get<std::string>().empty());
+  EXPECT_FALSE(m["hostname"].get<std::string>().empty());
+  EXPECT_EQ(m["started_utc"].get<std::string>().size(), std::string("2026-01-01T00:00:00Z").size());
+  ASSERT_EQ(m["inputs"].size(), 1u);
+  EXPECT_EQ(m["inputs"][0]["size"], 1);
+  EXPECT_EQ(m["inputs"][0]["fnv1a64"], "af63dc4c8601ec8c");  // FNV-1a-64("a")
+  EXPECT_TRUE(fs::path(m["inputs"][0]["path"].get<std::string>()).is_absolute());
+
+  in.input_files = {root_ / "missing.msh"};
+  try {
+    tmlab::make_manifest(in);
+    FAIL() << "expected tmlab::Error";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.msh"), std::string::npos);
+  }
+}
+
+TEST(ManifestHelpers, HashAndTime) {
+  EXPECT_EQ(tmlab::fnv1a64("", 0), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(tmlab::fnv1a64("foobar", 6), 0x85944171f73967e8ULL);
+  EXPECT_EQ(tmlab::utc_iso8601(std::chrono::system_clock::from_time_t(0)), "1970-01-01T00:00:00Z");
+  EXPECT_EQ(tmlab::utc_iso8601(std::chrono::system_clock::from_time_t(1700000000)), "2023-11-14T22:13:20Z");
+}
+
+}  // namespace

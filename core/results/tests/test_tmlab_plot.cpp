@@ -1,0 +1,97 @@
+// core/results/python/tmlab_plot.py: writes a PNG from a small timeseries.h5 written with H5File, and fails
+// clearly on a missing dataset. Skipped when no python3 with matplotlib and h5py is found.
+#include "core/io/hdf5_file.hpp"
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int run(const std::string& command) {
+  const int status = std::system(command.c_str());
+  return (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+}
+
+/// The first python3 that imports matplotlib and h5py: $TMLAB_PYTHON, python3 on PATH, then the
+/// system one (a pyenv python3 on PATH may lack them). Empty when none does.
+std::string find_python() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("TMLAB_PYTHON")) candidates.emplace_back(env);
+  candidates.emplace_back("python3");
+  candidates.emplace_back("/usr/bin/python3");
+  for (const std::string& py : candidates) {
+    if (run("'" + py + "' -c 'import matplotlib, h5py' >/dev/null 2>&1") == 0) return py;
+  }
+  return "";
+}
+
+class TmlabPlotTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    python_ = find_python();
+    if (python_.empty()) GTEST_SKIP() << "no python3 with matplotlib and h5py";
+    dir_ = fs::temp_directory_path() / ("tmlab_plot_" + std::to_string(::getpid()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    tmlab::H5File f = tmlab::H5File::create((dir_ / "timeseries.h5").string());
+    for (int k = 0; k < 20; ++k) {
+      f.append("/series/time", 0.1 * k);
+      f.append("/series/kinetic", 1.0 / (1 + k));
+      f.append("/series/elastic", 0.5 + 0.01 * k);
+    }
+    f.set_attribute("/series/time", "unit", "s");
+    f.set_attribute("/series/kinetic", "unit", "J");
+    f.set_attribute("/series/elastic", "unit", "J");
+    f.close();
+  }
+  void TearDown() override {
+    if (!dir_.empty()) fs::remove_all(dir_);
+  }
+  int plot() const {
+    const std::string script = std::string(TMLAB_SOURCE_DIR) + "/core/results/python/tmlab_plot.py";
+    return run("'" + python_ + "' '" + script + "' '" + dir_.string() + "' >'" + (dir_ / "log.txt").string() +
+               "' 2>&1");
+  }
+  std::string log() const {
+    std::ifstream in(dir_ / "log.txt");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  }
+  std::string python_;
+  fs::path dir_;
+};
+
+TEST_F(TmlabPlotTest, WritesPng) {
+  std::ofstream(dir_ / "plots.json") << R"([{"file": "energy.png", "x": "time", "y": ["kinetic", "elastic"],
+    "title": "Energy", "xlabel": "t [s]", "ylabel": "E [J]", "logy": true}])";
+  ASSERT_EQ(plot(), 0) << log();
+  std::ifstream png(dir_ / "energy.png", std::ios::binary);
+  ASSERT_TRUE(png.good());
+  char magic[8] = {};
+  png.read(magic, 8);
+  EXPECT_EQ(std::string(magic + 1, 3), "PNG");
+}
+
+TEST_F(TmlabPlotTest, MissingDatasetFailsWithMessage) {
+  std::ofstream(dir_ / "plots.json") << R"([{"file": "x.png", "y": ["no_such_series"]}])";
+  EXPECT_NE(plot(), 0);
+  EXPECT_NE(log().find("/series/no_such_series"), std::string::npos) << log();
+  EXPECT_FALSE(fs::exists(dir_ / "x.png"));
+}
+
+TEST_F(TmlabPlotTest, MissingPlotsJsonFails) {
+  EXPECT_NE(plot(), 0);
+  EXPECT_NE(log().find("plots.json"), std::string::npos) << log();
+}
+
+}  // namespace

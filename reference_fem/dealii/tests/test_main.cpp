@@ -1,0 +1,15 @@
+// gtest main for the reference tests: MPI (and deal.II) initialised once per process.
+#include "reference_fem/dealii/reference_runner.hpp"
+
+#include <gtest/gtest.h>
+
+int main(int argc, char** argv) {
+  tmlab::ref::MpiSession mpi(argc, argv);
+  ::testing::InitGoogleTest(&argc, argv);
+  // Under mpirun only rank 0 prints gtest's report.
+  if (tmlab::ref::MpiSession::rank() != 0) {
+    auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
+    delete listeners.Release(listeners.default_result_printer());
+  }
+  return RUN_ALL_TESTS();
+}

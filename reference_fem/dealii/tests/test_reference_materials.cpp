@@ -1,0 +1,155 @@
+// Constitutive laws of the reference: S = dW/dE and D = dS/dE against central finite differences
+// for every law, St VK identical to the tensor-mass material, the small-strain limit of every law,
+// and the Prony update (factors, consistent tangent, instantaneous-weight conversion).
+#include "reference_fem/dealii/materials.hpp"
+
+#include "core/base/error.hpp"
+#include "tensormass/materials/stvk_material.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+using namespace tmlab::ref;
+
+namespace {
+
+SymTensor2 random_strain(std::mt19937& rng, double scale) {
+  std::uniform_real_distribution<double> d(-scale, scale);
+  SymTensor2 E;
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = i; j < 3; ++j) E[i][j] = d(rng);
+  return E;
+}
+
+double max_abs(const SymTensor2& A) {
+  double m = 0.0;
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = 0; j < 3; ++j) m = std::max(m, std::abs(A[i][j]));
+  return m;
+}
+
+/// Checks S against dW/dE and D against dS/dE by central differences along random directions.
+void check_derivatives(const Material& m, const SymTensor2& E, std::mt19937& rng) {
+  const double h = 1e-6;
+  for (int trial = 0; trial < 5; ++trial) {
+    const SymTensor2 dE = random_strain(rng, 1.0);
+    // dW = S : dE (the symmetric-tensor product counts off-diagonal entries twice, as it must).
+    const double fd_w = (m.energy(E + h * dE) - m.energy(E - h * dE)) / (2 * h);
+    const double an_w = m.stress(E) * dE;
+    EXPECT_NEAR(fd_w, an_w, 1e-7 * (std::abs(an_w) + m.mu)) << m.name();
+    const SymTensor2 fd_s = (m.stress(E + h * dE) - m.stress(E - h * dE)) / (2 * h);
+    const SymTensor2 an_s = m.tangent(E) * dE;
+    EXPECT_LE(max_abs(fd_s - an_s), 1e-7 * (max_abs(an_s) + m.mu)) << m.name();
+  }
+}
+
+}  // namespace
+
+TEST(ReferenceMaterials, StressAndTangentMatchFiniteDifferences) {
+  std::mt19937 rng(42);
+  for (const std::string law : {"stvk", "neo_hookean", "yeoh"}) {
+    const Material m = Material::make(law, 5000.0, 0.45, 2.0, 0.5);
+    for (int k = 0; k < 10; ++k) check_derivatives(m, random_strain(rng, 0.15), rng);
+  }
+}
+
+TEST(ReferenceMaterials, StVenantKirchhoffIsTheTensorMassMaterial) {
+  const Material m = Material::make("stvk", 5000.0, 0.45);
+  const auto tm = tmlab::tm::StVenantKirchhoff::from_young_poisson(5000.0, 0.45);
+  EXPECT_EQ(m.lambda, tm.lambda);
+  EXPECT_EQ(m.mu, tm.mu);
+  std::mt19937 rng(1);
+  for (int k = 0; k < 10; ++k) {
+    const SymTensor2 E = random_strain(rng, 0.3);
+    tmlab::tm::Mat3 Em;
+    for (unsigned i = 0; i < 3; ++i)
+      for (unsigned j = 0; j < 3; ++j) Em(i, j) = E[i][j];
+    EXPECT_NEAR(m.energy(E), tm.energy_density(Em), 1e-13 * tm.energy_density(Em));
+    const auto Sm = tm.pk2_stress(Em);
+    const SymTensor2 S = m.stress(E);
+    for (unsigned i = 0; i < 3; ++i)
+      for (unsigned j = 0; j < 3; ++j) EXPECT_NEAR(S[i][j], Sm(i, j), 1e-12 * Sm.norm());
+  }
+}
+
+TEST(ReferenceMaterials, EveryLawLinearisesToTheLameConstants) {
+  const Material stvk = Material::make("stvk", 3000.0, 0.3);
+  for (const std::string law : {"neo_hookean", "yeoh"}) {
+    const Material m = Material::make(law, 3000.0, 0.3, 5.0, 3.0);
+    const SymTensor4 D = m.tangent(SymTensor2()), D0 = stvk.tangent(SymTensor2());
+    EXPECT_LE((D - D0).norm(), 1e-10 * D0.norm()) << law;
+    EXPECT_NEAR(m.energy(SymTensor2()), 0.0, 1e-12) << law;
+    EXPECT_LE(max_abs(m.stress(SymTensor2())), 1e-12) << law;
+  }
+}
+
+TEST(ReferenceMaterials, YeohStiffensInShearBeyondNeoHookean) {
+  // Simple shear, F = I + g e1 (x) e2: J = 1, I1 = 3 + g^2; the Yeoh shear stress is
+  // 2 Psi'(I1 - 3) g with Psi' = C10 + 2 C20 x + 3 C30 x^2 (closed form).
+  const Material y = Material::make("yeoh", 3000.0, 0.3, 2.0, 0.5);
+  for (double g : {0.1, 0.5, 1.0}) {
+    dealii::Tensor<2, 3> F = dealii::unit_symmetric_tensor<3>();
+    F[0][1] = g;
+    const SymTensor2 E =
+        0.5 * (dealii::symmetrize(dealii::transpose(F) * F) - dealii::unit_symmetric_tensor<3>());
+    const dealii::Tensor<2, 3> sigma = F * dealii::Tensor<2, 3>(y.stress(E)) * dealii::transpose(F);
+    const double x = g * g, c10 = y.yeoh.c10;
+    const double expect = 2.0 * (c10 + 2.0 * y.yeoh.c20 * x + 3.0 * y.yeoh.c30 * x * x) * g;
+    EXPECT_NEAR(sigma[0][1], expect, 1e-10 * expect);
+  }
+}
+
+TEST(ReferenceMaterials, PronyFactorsAndConversion) {
+  const PronySeries p = PronySeries::make("instantaneous", {0.3, 0.2}, {0.5, 5.0}, "exact_linear", "full");
+  EXPECT_NEAR(p.alpha[0], 0.3 / 0.5, 1e-15);
+  EXPECT_NEAR(p.alpha[1], 0.2 / 0.5, 1e-15);
+  double a = 0, c = 0;
+  p.factors(0, 0.1, a, c);
+  EXPECT_NEAR(a, std::exp(-0.2), 1e-15);
+  EXPECT_NEAR(c, (1 - std::exp(-0.2)) / 0.2, 1e-15);
+  PronySeries m = p;
+  m.integration = PronySeries::Integration::Midpoint;
+  m.factors(0, 0.1, a, c);
+  EXPECT_NEAR(c, std::exp(-0.1), 1e-15);
+  m.integration = PronySeries::Integration::BackwardEuler;
+  m.factors(0, 0.1, a, c);
+  EXPECT_NEAR(a, 1 / 1.2, 1e-15);
+  EXPECT_NEAR(c, 1 / 1.2, 1e-15);
+  EXPECT_THROW(PronySeries::make("instantaneous", {0.6, 0.5}, {1, 2}, "exact_linear", "full"), tmlab::Error);
+  EXPECT_THROW(PronySeries::make("long_term", {0.6}, {1}, "trapezoid", "full"), tmlab::Error);
+}
+
+TEST(ReferenceMaterials, PronyTangentIsConsistent) {
+  std::mt19937 rng(7);
+  for (const std::string law : {"stvk", "neo_hookean"})
+    for (const std::string relax : {"full", "deviatoric"}) {
+      if (relax == "deviatoric" && law != "stvk") continue;
+      const Material m = Material::make(law, 4000.0, 0.4);
+      const PronySeries p = PronySeries::make("long_term", {0.7, 1.3}, {0.2, 3.0}, "exact_linear", relax);
+      PronyState st;
+      st.resize(2);
+      // Some committed history.
+      SymTensor2 S;
+      prony_update(m, p, random_strain(rng, 0.1), 0.05, st, S, nullptr);
+      st.commit();
+      const SymTensor2 E = random_strain(rng, 0.1), dE = random_strain(rng, 1.0);
+      const double h = 1e-6, dt = 0.1;
+      SymTensor2 Sp, Sm, S0;
+      SymTensor4 D;
+      PronyState a = st, b = st, c = st;
+      prony_update(m, p, E + h * dE, dt, a, Sp, nullptr);
+      prony_update(m, p, E - h * dE, dt, b, Sm, nullptr);
+      prony_update(m, p, E, dt, c, S0, &D);
+      const SymTensor2 fd = (Sp - Sm) / (2 * h), an = D * dE;
+      EXPECT_LE(max_abs(fd - an), 1e-7 * max_abs(an)) << law << " " << relax;
+      // Deviatoric relaxation leaves a purely volumetric strain's stress unrelaxed.
+      if (relax == "deviatoric") {
+        PronyState v;
+        v.resize(2);
+        SymTensor2 Sv;
+        prony_update(m, p, 0.01 * dealii::unit_symmetric_tensor<3>(), dt, v, Sv, nullptr);
+        EXPECT_LE(max_abs(Sv - m.stress(0.01 * dealii::unit_symmetric_tensor<3>())), 1e-12 * max_abs(Sv));
+      }
+    }
+}

@@ -1,0 +1,233 @@
+// The solver's internals (deal.II level):
+//   * the assembled tangent is the derivative of the assembled residual (central differences),
+//     for every law, P1/P2 simplices and Q2 hexahedra, with and without Prony history;
+//   * (3) refinement study with a manufactured solution (body force b0 = -Div P(u_exact), exact
+//     Dirichlet data on the whole boundary): L2 and H1 errors converge at the rates k+1 and k of
+//     P1 and P2 (the finest P2 level is labelled slow);
+//   * the triangulation built from tmlab's mesh (vertex i = node i, cell c = tet c) is the one
+//     deal.II's own GridIn::read_msh builds from the same file.
+#include "core/mesh/gmsh_reader.hpp"
+#include "core/mesh/mesh_ops.hpp"
+#include "reference_fem/dealii/solid.hpp"
+
+#include <deal.II/base/function.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/dofs/dof_tools.h>
+#include <deal.II/grid/grid_generator.h>
+#include <deal.II/grid/grid_in.h>
+#include <deal.II/numerics/vector_tools.h>
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+
+namespace tmlab::ref {
+namespace {
+
+using namespace dealii;
+
+void make_cube(Triangulation<3>& tria, bool simplex, unsigned n) {
+  if (simplex)
+    GridGenerator::subdivided_hyper_cube_with_simplices(tria, n, 0.0, 1.0);
+  else
+    GridGenerator::subdivided_hyper_cube(tria, n, 0.0, 1.0);
+}
+
+// ---- consistent tangent -------------------------------------------------------------------------
+
+double tangent_fd_error(const std::string& law, bool simplex, unsigned degree, bool with_prony) {
+  Triangulation<3> coarse;
+  make_cube(coarse, simplex, 2);
+  const Material m = Material::make(law, 1000.0, 0.35, 1.5, 0.5);
+  std::optional<PronySeries> p;
+  if (with_prony) p = PronySeries::make("long_term", {0.8, 0.3}, {0.1, 1.0}, "midpoint", "full");
+  Solid s(MPI_COMM_SELF, coarse, Discretisation{simplex, degree}, m, p, NewtonParameters{});
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), up(u), um(u), r0, rp, rm,
+      Kv(u);
+  for (auto i : s.locally_owned_dofs()) {
+    u[i] = 0.03 * d(rng);
+    v[i] = d(rng);
+  }
+  u.compress(VectorOperation::insert);
+  v.compress(VectorOperation::insert);
+  TrilinosWrappers::SparseMatrix K;
+  s.residual_and_tangent(u, 1.0, 0.05, r0, &K);
+  K.vmult(Kv, v);
+  const double h = 1e-6;
+  up = u;
+  up.add(h, v);
+  um = u;
+  um.add(-h, v);
+  s.residual_and_tangent(up, 1.0, 0.05, rp, nullptr);
+  s.residual_and_tangent(um, 1.0, 0.05, rm, nullptr);
+  TrilinosWrappers::MPI::Vector fd(rp);
+  fd -= rm;
+  fd /= 2 * h;
+  fd -= Kv;
+  return fd.l2_norm() / Kv.l2_norm();
+}
+
+TEST(ReferenceSolid, TangentIsTheDerivativeOfTheResidual) {
+  for (const std::string law : {"stvk", "neo_hookean", "yeoh"})
+    for (const auto& [simplex, degree] :
+         std::vector<std::pair<bool, unsigned>>{{true, 1}, {true, 2}, {false, 2}}) {
+      const double e = tangent_fd_error(law, simplex, degree, false);
+      EXPECT_LE(e, 1e-7) << law << (simplex ? " P" : " Q") << degree;
+      std::printf("[ measured ] tangent vs central differences, %s %s%u: %.2e\n", law.c_str(),
+                  simplex ? "P" : "Q", degree, e);
+    }
+  const double e = tangent_fd_error("neo_hookean", true, 2, true);
+  EXPECT_LE(e, 1e-7) << "with Prony history";
+  std::printf("[ measured ] tangent vs central differences, neo_hookean P2 + Prony: %.2e\n", e);
+}
+
+// ---- manufactured solution ----------------------------------------------------------------------
+
+constexpr double kA = 0.1;  // amplitude: displacement gradients up to ~0.3
+
+class ExactSolution : public Function<3> {
+ public:
+  ExactSolution() : Function<3>(3) {}
+  double value(const Point<3>& X, const unsigned c) const override {
+    const double x = X[0], y = X[1], z = X[2];
+    if (c == 0) return kA * std::sin(x + 2 * y);
+    if (c == 1) return kA * std::cos(2 * x - z);
+    return kA * std::sin(y * z + x);
+  }
+  Tensor<1, 3> gradient(const Point<3>& X, const unsigned c) const override {
+    const double x = X[0], y = X[1], z = X[2];
+    Tensor<1, 3> g;
+    if (c == 0) {
+      g[0] = kA * std::cos(x + 2 * y), g[1] = 2 * kA * std::cos(x + 2 * y);
+    } else if (c == 1) {
+      g[0] = -2 * kA * std::sin(2 * x - z), g[2] = kA * std::sin(2 * x - z);
+    } else {
+      const double cc = kA * std::cos(y * z + x);
+      g[0] = cc, g[1] = z * cc, g[2] = y * cc;
+    }
+    return g;
+  }
+};
+
+/// b0 = -Div P(F(X)), P = F S(E), by fourth-order central differences of the exact P.
+Tensor<1, 3> manufactured_body_force(const Material& m, const Point<3>& X) {
+  const ExactSolution u;
+  auto P = [&](const Point<3>& Y) {
+    Tensor<2, 3> F = unit_symmetric_tensor<3>();
+    for (unsigned c = 0; c < 3; ++c) F[c] += u.gradient(Y, c);
+    const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
+    return Tensor<2, 3>(F * Tensor<2, 3>(m.stress(E)));
+  };
+  const double h = 1e-3;
+  Tensor<1, 3> div;
+  for (unsigned j = 0; j < 3; ++j) {
+    Tensor<1, 3> e;
+    e[j] = h;
+    const Tensor<2, 3> dP = (8.0 * (P(X + e) - P(X - e)) - (P(X + 2 * e) - P(X - 2 * e))) / (12.0 * h);
+    for (unsigned i = 0; i < 3; ++i) div[i] += dP[i][j];
+  }
+  return -div;
+}
+
+struct Errors {
+  double l2, h1;
+  global_dof_index dofs;
+};
+
+Errors mms_errors(unsigned degree, unsigned n, const std::string& solver = "direct") {
+  Triangulation<3> coarse;
+  make_cube(coarse, true, n);
+  const Material m = Material::make("neo_hookean", 1000.0, 0.3);
+  NewtonParameters np;
+  np.linear_solver = solver;
+  Solid s(MPI_COMM_SELF, coarse, Discretisation{true, degree}, m, std::nullopt, np);
+  const ExactSolution exact;
+  const int cond = s.add_condition("boundary", TimeFunction::ramp(0.0, 1.0));
+  std::map<global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(s.mapping(), s.dof_handler(), support);
+  const IndexSet boundary = DoFTools::extract_boundary_dofs(s.dof_handler());
+  std::vector<global_dof_index> dofs(s.fe().n_dofs_per_cell());
+  for (const auto& cell : s.dof_handler().active_cell_iterators()) {
+    cell->get_dof_indices(dofs);
+    for (unsigned i = 0; i < dofs.size(); ++i)
+      if (boundary.is_element(dofs[i])) {
+        const unsigned c = s.fe().system_to_component_index(i).first;
+        s.prescribe(dofs[i], c, cond, exact.value(support.at(dofs[i]), c));
+      }
+  }
+  const int lf = s.add_load_function(TimeFunction::ramp(0.0, 1.0));
+  s.add_body_force([m](const Point<3>& X) { return manufactured_body_force(m, X); }, lf);
+  s.advance(0.0, 0.5);
+  s.advance(0.5, 1.0);
+  Vector<float> cellwise(coarse.n_active_cells());
+  const QGaussSimplex<3> q(degree + 2);
+  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q,
+                                    VectorTools::L2_norm);
+  const double l2 = VectorTools::compute_global_error(s.triangulation(), cellwise, VectorTools::L2_norm);
+  VectorTools::integrate_difference(s.mapping(), s.dof_handler(), s.solution(), exact, cellwise, q,
+                                    VectorTools::H1_seminorm);
+  const double h1 = VectorTools::compute_global_error(s.triangulation(), cellwise, VectorTools::H1_seminorm);
+  return {l2, h1, s.n_dofs()};
+}
+
+void refinement_study(unsigned degree, const std::vector<unsigned>& ns,
+                      const std::string& solver = "direct") {
+  std::vector<Errors> e;
+  for (unsigned n : ns) {
+    e.push_back(mms_errors(degree, n, solver));
+    const std::size_t k = e.size() - 1;
+    if (k == 0)
+      std::printf("[ measured ] P%u n=%2u dofs=%7u  L2 %.3e  H1 %.3e\n", degree, n,
+                  static_cast<unsigned>(e[k].dofs), e[k].l2, e[k].h1);
+    else
+      std::printf("[ measured ] P%u n=%2u dofs=%7u  L2 %.3e (rate %.2f)  H1 %.3e (rate %.2f)\n", degree, n,
+                  static_cast<unsigned>(e[k].dofs), e[k].l2, std::log2(e[k - 1].l2 / e[k].l2), e[k].h1,
+                  std::log2(e[k - 1].h1 / e[k].h1));
+  }
+  const std::size_t k = e.size() - 1;
+  EXPECT_GT(std::log2(e[k - 1].l2 / e[k].l2), degree + 1 - 0.3) << "L2 rate of P" << degree;
+  EXPECT_GT(std::log2(e[k - 1].h1 / e[k].h1), degree - 0.2) << "H1 rate of P" << degree;
+}
+
+TEST(ReferenceSolid, ManufacturedSolutionConvergesAtTheExpectedRates) {
+  refinement_study(1, {2, 4, 8});
+  refinement_study(2, {2, 4, 8});
+}
+
+TEST(ReferenceSolidSlow, ManufacturedSolutionP2Fine) { refinement_study(2, {8, 16}, "cg_amg"); }
+
+// ---- GridIn ---------------------------------------------------------------------------------------
+
+TEST(ReferenceSolid, TriangulationFromTmlabMeshIsTheOneGridInReads) {
+  const std::string file = std::string(TMLAB_SOURCE_DIR) + "/meshes/cube_n2.msh";
+  const Mesh mesh = read_mesh(file);
+  std::vector<Point<3>> pts;
+  for (const auto& p : mesh.points) pts.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::array<unsigned, 4>> tets;
+  for (const auto& t : mesh.tets)
+    tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
+  Triangulation<3> ours, theirs;
+  build_tet_triangulation(pts, tets, ours);
+  GridIn<3> gi;
+  gi.attach_triangulation(theirs);
+  std::ifstream in(file);
+  gi.read_msh(in);
+  ASSERT_EQ(ours.n_vertices(), theirs.n_vertices());
+  ASSERT_EQ(ours.n_active_cells(), theirs.n_active_cells());
+  for (unsigned i = 0; i < ours.n_vertices(); ++i)
+    EXPECT_LE(ours.get_vertices()[i].distance(theirs.get_vertices()[i]), 1e-15) << "vertex " << i;
+  auto a = ours.begin_active();
+  auto b = theirs.begin_active();
+  for (; a != ours.end(); ++a, ++b)
+    for (unsigned v = 0; v < 4; ++v)
+      EXPECT_EQ(a->vertex_index(v), b->vertex_index(v)) << "cell " << a->index();
+  // And vertex i is node i of the tmlab mesh (the same order, so displacement.h5 columns match).
+  for (unsigned i = 0; i < ours.n_vertices(); ++i) EXPECT_EQ(ours.get_vertices()[i], pts[i]);
+}
+
+}  // namespace
+}  // namespace tmlab::ref

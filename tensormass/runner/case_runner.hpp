@@ -1,0 +1,34 @@
+// Runs one case file with the tensor-mass model (or its total-Lagrangian oracle) and writes
+// results/<case>/: timeseries.h5 (quantities per step), fields.h5 + fields.xdmf and vtu/*.vtu +
+// result.pvd (fields for ParaView), PNG plots, manifest.json, and summary.json last.
+#pragma once
+
+#include "core/config/case_config.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace tmlab::tm {
+
+struct RunOptions {
+  std::string results_root = "results";  ///< results go to <results_root>/<case name>
+  std::string tmlab_root = ".";          ///< for the plotting script
+  std::vector<std::string> command_line;
+  bool plots = true;
+  std::ostream* log = nullptr;  ///< progress and a short report (nullptr: silent)
+};
+
+struct RunResult {
+  std::string dir;
+  nlohmann::json summary;
+};
+
+/// Runs the case. Bad input (mesh, parameters, empty selections), an inverted element, an unstable
+/// explicit step or a failed Newton solve throw tmlab::Error; the result directory then holds a
+/// FAILED marker and no summary.json.
+RunResult run_case(const CaseConfig& config, const RunOptions& options);
+
+}  // namespace tmlab::tm

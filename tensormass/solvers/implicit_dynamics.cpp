@@ -1,0 +1,127 @@
+#include "tensormass/solvers/implicit_dynamics.hpp"
+
+#include "core/base/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace tmlab::tm {
+
+ImplicitScheme implicit_scheme_from_string(const std::string& name) {
+  if (name == "backward_euler") return ImplicitScheme::BackwardEuler;
+  if (name == "newmark") return ImplicitScheme::Newmark;
+  throw Error("unknown implicit scheme '" + name + "' (expected backward_euler or newmark)");
+}
+
+std::string to_string(ImplicitScheme s) {
+  return s == ImplicitScheme::BackwardEuler ? "backward_euler" : "newmark";
+}
+
+namespace {
+struct Coefficients {
+  double ca, cv, caa;  // a = ca (u - un) - cv vn - caa an
+  double du, dv, da;   // v = du (u - un) + dv vn + da an
+};
+
+Coefficients coefficients(ImplicitScheme s, double dt) {
+  if (s == ImplicitScheme::BackwardEuler) {
+    // v = (u - un)/dt, a = (v - vn)/dt.
+    return {1.0 / (dt * dt), 1.0 / dt, 0.0, 1.0 / dt, 0.0, 0.0};
+  }
+  const double beta = 0.25, gamma = 0.5;
+  return {1.0 / (beta * dt * dt), 1.0 / (beta * dt),  1.0 / (2.0 * beta) - 1.0,
+          gamma / (beta * dt),    1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))};
+}
+
+class StepResidual final : public NonlinearSystem {
+ public:
+  StepResidual(const MechanicalSystem& s, double t1, const Coefficients& c, const VecX& un, const VecX& vn,
+               const VecX& an)
+      : s_(s), t1_(t1), c_(c), un_(un), vn_(vn), an_(an) {
+    VecX f, fi;
+    s_.loads().assemble(un_, t1_, f);
+    s_.model().internal_force(un_, fi);
+    scale_ = std::max({f.norm(), fi.norm(), s_.mass().cwiseProduct(an_).norm()});
+  }
+  void acc_vel(const VecX& u, VecX& a, VecX& v) const {
+    a = c_.ca * (u - un_) - c_.cv * vn_ - c_.caa * an_;
+    v = c_.du * (u - un_) + c_.dv * vn_ + c_.da * an_;
+  }
+  void residual(const VecX& u, VecX& r) override {
+    VecX a, v, cv, fext;
+    acc_vel(u, a, v);
+    s_.model().internal_force(u, r);
+    s_.damping_force(v, cv);
+    s_.loads().assemble(u, t1_, fext);
+    r += s_.mass().cwiseProduct(a) + cv - fext;
+  }
+  void jacobian(const VecX& u, SpMat& J) override {
+    s_.model().tangent(u, J);
+    const double mass_coef = c_.ca + c_.du * s_.damping().alpha;
+    for (Eigen::Index i = 0; i < J.rows(); ++i) J.coeffRef(i, i) += mass_coef * s_.mass()[i];
+    if (s_.damping().beta != 0.0) J += (c_.du * s_.damping().beta) * s_.reference_tangent();
+    s_.add_load_stiffness(u, t1_, J);
+  }
+  bool symmetric() const override { return !s_.loads().has_follower(); }
+  double force_scale() const override { return scale_; }
+
+ private:
+  const MechanicalSystem& s_;
+  double t1_;
+  Coefficients c_;
+  const VecX& un_;
+  const VecX& vn_;
+  const VecX& an_;
+  double scale_ = 0.0;
+};
+}  // namespace
+
+ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme,
+                                   NewtonOptions options)
+    : system_(system), scheme_(scheme), options_(options) {}
+
+void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
+  t_ = t0;
+  u_ = u0;
+  system_.bc().apply(t0, u_);
+  v_ = v0;
+  // The initial state is the committed one: an initial displacement is applied instantaneously.
+  system_.model().begin_step(0.0);
+  system_.model().commit_step(u_);
+  VecX fint, fext, fd;
+  system_.model().internal_force(u_, fint);
+  system_.loads().assemble(u_, t0, fext);
+  system_.damping_force(v_, fd);
+  a_ = (fext - fint - fd).cwiseQuotient(system_.mass());
+  for (Index d : system_.bc().dofs()) a_[d] = 0.0;
+}
+
+NewtonResult ImplicitDynamics::step(double t, double dt) {
+  if (!(dt > 0.0)) throw Error("implicit time step dt must be > 0");
+  if (std::abs(t - t_) > 1e-9 * std::max(1.0, std::abs(t_)))
+    throw Error("ImplicitDynamics::step called with t inconsistent with its state");
+  const Coefficients c = coefficients(scheme_, dt);
+  StepResidual res(system_, t + dt, c, u_, v_, a_);
+  system_.model().begin_step(dt);
+  // Predictor: constant velocity.
+  VecX u = u_ + dt * v_;
+  NewtonResult nr = newton_solve(res, system_.bc(), t + dt, u, options_, linear_);
+  if (!nr.converged) {
+    std::ostringstream msg;
+    msg << to_string(scheme_) << " step from t = " << t << " s with dt = " << dt
+        << " s: Newton did not converge in " << nr.iterations << " iterations (residual " << nr.residual_final
+        << " from " << nr.residual_initial << "); reduce solver.dt";
+    throw Error(msg.str());
+  }
+  system_.model().commit_step(u);
+  VecX a, v;
+  res.acc_vel(u, a, v);
+  u_.swap(u);
+  v_.swap(v);
+  a_.swap(a);
+  t_ = t + dt;
+  return nr;
+}
+
+}  // namespace tmlab::tm

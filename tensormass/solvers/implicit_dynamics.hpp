@@ -1,0 +1,43 @@
+// Implicit dynamics: backward Euler (first order, strongly dissipative) and the trapezoidal
+// Newmark scheme (beta = 1/4, gamma = 1/2: second order, energy conserving for linear problems).
+// Each step solves  M a(u) + C v(u) + f_int(u) - f_ext(u, t+dt) = 0  for u = u^{n+1} by Newton, with
+//   a(u) = c_a (u - u^n) - c_v v^n - c_aa a^n,     v(u) = d_u (u - u^n) + d_v v^n + d_a a^n
+// and Jacobian c_a M + d_u C + K(u) (+ load stiffness).
+#pragma once
+
+#include "tensormass/solvers/newton.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+
+#include <string>
+
+namespace tmlab::tm {
+
+enum class ImplicitScheme { BackwardEuler, Newmark };
+ImplicitScheme implicit_scheme_from_string(const std::string& name);  ///< "backward_euler" | "newmark"
+std::string to_string(ImplicitScheme s);
+
+class ImplicitDynamics {
+ public:
+  ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme, NewtonOptions options);
+
+  /// Initial state at t0; the initial acceleration solves M a0 = f_ext - f_int - C v0.
+  void initialize(double t0, const VecX& u0, const VecX& v0);
+  /// Advances from t (= time()) to t + dt; throws tmlab::Error when Newton fails.
+  NewtonResult step(double t, double dt);
+
+  double time() const { return t_; }
+  const VecX& displacement() const { return u_; }
+  const VecX& velocity() const { return v_; }
+  const VecX& acceleration() const { return a_; }
+  double kinetic_energy() const { return 0.5 * v_.dot(system_.mass().cwiseProduct(v_)); }
+
+ private:
+  const MechanicalSystem& system_;
+  ImplicitScheme scheme_;
+  NewtonOptions options_;
+  ConstrainedLinearSolver linear_;
+  double t_ = 0.0;
+  VecX u_, v_, a_;
+};
+
+}  // namespace tmlab::tm

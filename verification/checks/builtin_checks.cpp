@@ -1,0 +1,14 @@
+// register_builtin_checks: see builtin_checks.hpp.
+#include "verification/checks/builtin_checks.hpp"
+
+namespace tmlab::verify {
+
+void register_builtin_checks(CheckRegistry& registry) {
+  register_kernel_checks(registry);
+  register_analytic_checks(registry);
+  register_model_checks(registry);
+  register_sundials_checks(registry);
+  register_reference_checks(registry);
+}
+
+}  // namespace tmlab::verify

@@ -1,0 +1,18 @@
+// The check functions this build provides, registered explicitly (no static initialisers).
+#pragma once
+
+#include "verification/harness/registry.hpp"
+
+namespace tmlab::verify {
+
+/// All check functions of this build (the deal.II ones only when the reference was built).
+void register_builtin_checks(CheckRegistry& registry);
+
+// One registration function per family (verification/checks/<family>_checks.cpp).
+void register_kernel_checks(CheckRegistry& registry);
+void register_analytic_checks(CheckRegistry& registry);
+void register_model_checks(CheckRegistry& registry);
+void register_sundials_checks(CheckRegistry& registry);
+void register_reference_checks(CheckRegistry& registry);  ///< no-op without deal.II
+
+}  // namespace tmlab::verify
