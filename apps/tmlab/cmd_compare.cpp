@@ -8,6 +8,7 @@
 #include "core/config/case_config.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/result_compare.hpp"
+#include "core/results/run_output.hpp"
 #include "tensormass/runner/case_runner.hpp"
 
 #include <algorithm>
@@ -41,7 +42,6 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   opt.log = &std::cerr;
   CaseConfig tm_cfg = cfg;
   tm_cfg.model = "tensor_mass";
-  tm_cfg.effective["model"] = "tensor_mass";
   std::cerr << "tmlab compare: tensor-mass run\n";
   const tm::RunResult a = tm::run_case(tm_cfg, opt);
   tm::RunResult b;
@@ -52,8 +52,6 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     CaseConfig o = cfg;
     o.name = cfg.name + "-tl_oracle";
     o.model = "tl_oracle";
-    o.effective["model"] = "tl_oracle";
-    o.effective["name"] = o.name;
     std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
     b = tm::run_case(o, opt);
   }
@@ -63,61 +61,77 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   cmp["a"] = a.dir;
   cmp["b"] = b.dir;
   cmp["against"] = against;
-  const fs::path dir = a.dir;
-  {
-    std::ofstream(dir / "compare.json") << cmp.dump(2) << "\n";
-    H5File h5 = H5File::create((dir / "compare.h5").string());
-    h5.write("/series/time", series.time, {series.time.size()});
-    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
-    h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
-    h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
-    h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
-    h5.close();
+  // The comparison is a result of its own, <results>/<case>-compare/, written through the same
+  // protocol as every run (staged, summary.json last, one writer, FAILED/INTERRUPTED on failure).
+  RunOutput out(fs::path(opt.results_root) / (cfg.name + "-compare"), &std::cerr);
+  try {
+    ManifestInput mi;
+    mi.command_line = opt.command_line;
+    mi.config = {{"case", effective_case_json(cfg)},     {"against", against}, {"degree", degree},
+                 {"time_integration", time_integration}, {"a", a.dir},         {"b", b.dir}};
+    out.write_json("manifest.json", make_manifest(mi));
+    out.write_json("compare.json", cmp);
+    {
+      H5File h5 = H5File::create(out.file("compare.h5").string());
+      h5.write("/series/time", series.time, {series.time.size()});
+      h5.write("/series/step_time", series.step_time, {series.step_time.size()});
+      h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
+      h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
+      h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
+      h5.close();
+    }
+    // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
+    std::string plot_status = "skipped (--no-plots)";
+    if (!p.has("--no-plots")) {
+      auto floored = [](std::vector<double> v) {
+        for (double& x : v) x = std::max(x, 1e-17);
+        return v;
+      };
+      H5File h5 = H5File::create(out.file("timeseries.h5").string());
+      h5.write("/series/time", series.time, {series.time.size()});
+      h5.write("/series/step_time", series.step_time, {series.step_time.size()});
+      h5.write("/series/rel_diff_displacement", floored(series.rel_displacement),
+               {series.rel_displacement.size()});
+      h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
+      h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
+      h5.close();
+      const nlohmann::json plots = nlohmann::json::array(
+          {{{"file", "compare_displacement.png"},
+            {"x", "time"},
+            {"y", {"rel_diff_displacement"}},
+            {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"},
+            {"xlabel", "time [s]"},
+            {"ylabel", "|u_a - u_b| / |u_b|"},
+            {"logy", true}},
+           {{"file", "compare_reaction_energy.png"},
+            {"x", "step_time"},
+            {"y", {"rel_diff_reaction", "rel_diff_energy"}},
+            {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"},
+            {"xlabel", "time [s]"},
+            {"ylabel", "relative difference"},
+            {"logy", true}}});
+      out.write_json("plots.json", plots);
+      const ProcessStatus ps =
+          run_python(fs::path(tmlab_root()) / "core" / "results" / "python" / "tmlab_plot.py",
+                     {out.staging_dir().string()}, ProcessOutput::discard());
+      plot_status = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+    }
+    nlohmann::json summary = cmp;
+    summary["plots"] = plot_status;
+    out.finalize(summary);
+    std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
+              << "  quantity                          max over steps\n"
+              << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
+              << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
+              << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
+              << "written: " << out.dir().string() << "/ (compare.json, compare.h5, summary.json"
+              << (plot_status == "ok" ? ", *.png" : "") << ")\n";
+    if (plot_status != "ok" && !p.has("--no-plots"))
+      std::cerr << "tmlab compare: plots " << plot_status << "\n";
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
   }
-  // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
-  std::string plot_note;
-  if (!p.has("--no-plots")) {
-    const fs::path pdir = dir / "compare";
-    fs::create_directories(pdir);
-    auto floored = [](std::vector<double> v) {
-      for (double& x : v) x = std::max(x, 1e-17);
-      return v;
-    };
-    H5File h5 = H5File::create((pdir / "timeseries.h5").string());
-    h5.write("/series/time", series.time, {series.time.size()});
-    h5.write("/series/step_time", series.step_time, {series.step_time.size()});
-    h5.write("/series/rel_diff_displacement", floored(series.rel_displacement),
-             {series.rel_displacement.size()});
-    h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
-    h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
-    h5.close();
-    const nlohmann::json plots = nlohmann::json::array(
-        {{{"file", "compare_displacement.png"},
-          {"x", "time"},
-          {"y", {"rel_diff_displacement"}},
-          {"title", cfg.name + ": tensor-mass vs " + against + ", nodal displacements"},
-          {"xlabel", "time [s]"},
-          {"ylabel", "|u_a - u_b| / |u_b|"},
-          {"logy", true}},
-         {{"file", "compare_reaction_energy.png"},
-          {"x", "step_time"},
-          {"y", {"rel_diff_reaction", "rel_diff_energy"}},
-          {"title", cfg.name + ": tensor-mass vs " + against + ", reactions and energy"},
-          {"xlabel", "time [s]"},
-          {"ylabel", "relative difference"},
-          {"logy", true}}});
-    std::ofstream(pdir / "plots.json") << plots.dump(2) << "\n";
-    const ProcessStatus ps =
-        run_python(fs::path(tmlab_root()) / "core" / "results" / "python" / "tmlab_plot.py", {pdir.string()},
-                   ProcessOutput::discard());
-    plot_note = ps.ok() ? ", compare/*.png" : " (plotting failed: " + ps.describe() + ")";
-  }
-  std::cout << "comparison of " << cfg.name << ": tensor-mass vs " << against << "\n"
-            << "  quantity                          max over steps\n"
-            << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
-            << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
-            << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
-            << "written: " << (dir / "compare.json").string() << ", compare.h5" << plot_note << "\n";
   return 0;
 }
 

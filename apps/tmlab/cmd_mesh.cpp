@@ -65,11 +65,20 @@ int cmd_mesh(const std::vector<std::string>& args) {
     }
     const MeshReport rep = analyse_mesh(mesh);
     std::cout << format_mesh_report(rep);
+    if (mesh.num_points() == 0 || mesh.num_tets() == 0) {
+      std::cerr << "tmlab: error: " << p.positional[0] << ": the mesh has " << mesh.num_points()
+                << " nodes and " << mesh.num_tets()
+                << " tetrahedra: nothing to simulate (a volume mesh of linear tets, Gmsh type 4, "
+                << "is needed)\n";
+      return 1;
+    }
     if (!rep.inverted.empty() || !rep.degenerate.empty()) {
       std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
                 << rep.degenerate.size() << " degenerate tets";
-      if (!rep.inverted.empty()) std::cerr << " (first inverted: tet " << rep.inverted.front() << ")";
-      if (!rep.degenerate.empty()) std::cerr << " (first degenerate: tet " << rep.degenerate.front() << ")";
+      if (!rep.inverted.empty())
+        std::cerr << " (first inverted: " << mesh.tet_name(rep.inverted.front()) << ")";
+      if (!rep.degenerate.empty())
+        std::cerr << " (first degenerate: " << mesh.tet_name(rep.degenerate.front()) << ")";
       std::cerr << "\n";
       return 1;
     }

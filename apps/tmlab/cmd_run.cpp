@@ -41,7 +41,7 @@ tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const 
 
 namespace {
 
-void print_summary(const tm::RunResult& r) {
+void print_summary(const tm::RunResult& r, bool plots) {
   const auto& s = r.summary;
   std::cout << "case        " << s.value("case", "") << " (" << s.value("model", "") << ")\n"
             << "mesh        " << s["mesh"]["points"] << " nodes, " << s["mesh"]["tets"] << " tets, volume "
@@ -56,9 +56,12 @@ void print_summary(const tm::RunResult& r) {
               << ", " << v[2].get<double>() << ") N\n";
   }
   std::cout << "min J       " << s["min_volume_ratio"].get<double>()
-            << " (smallest deformed/rest tet volume)\n"
+            << " (smallest deformed/rest volume ratio over all recorded steps, t = 0 included)\n"
             << "wall time   " << s["run_seconds"].get<double>() << " s\n"
-            << "results     " << r.dir << "/ (summary.json, timeseries.h5, fields.xdmf, result.pvd, *.png)\n";
+            << "results     " << r.dir << "/ (summary.json, timeseries.h5";
+  if (s.value("field_frames", 0) > 0) std::cout << ", fields.xdmf, result.pvd";
+  if (plots && s.value("plots", std::string()) == "ok") std::cout << ", *.png";
+  std::cout << ")\n";
 }
 
 int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& command_line) {
@@ -69,7 +72,15 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   opt.plots = !p.has("--no-plots");
   opt.log = &std::cerr;
   const std::string model = p.get("--model", cfg.model);
-  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  int degree = 1;
+  if (p.has("--degree")) {
+    const std::string d = p.get("--degree");
+    if (d != "1" && d != "2") throw UsageError("--degree must be 1 or 2 (got '" + d + "')");
+    if (model != "reference")
+      throw UsageError("--degree applies to the deal.II reference only (add --model reference); the " +
+                       model + " model is P1 (linear tets)");
+    degree = d == "2" ? 2 : 1;
+  }
   const std::string time_integration = p.get("--time-integration", "fixed_step");
   if (time_integration != "fixed_step" && time_integration != "ida")
     throw UsageError("--time-integration must be fixed_step or ida");
@@ -77,7 +88,7 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
     throw UsageError("--time-integration ida needs --model reference");
   std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
   const tm::RunResult r = run_model(cfg, opt, model, degree, time_integration);
-  print_summary(r);
+  print_summary(r, opt.plots);
   return 0;
 }
 
@@ -101,7 +112,6 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
       throw UsageError("--model must be tensor_mass, tl_oracle or reference");
     if (m != "reference") {
       cfg.model = m;
-      cfg.effective["model"] = m;
     }
   }
   return run_config(cfg, p, command_line);

@@ -22,14 +22,24 @@ namespace fs = std::filesystem;
 namespace {
 
 void print_list(const std::vector<verify::VerificationCase>& cases) {
-  std::size_t w = 4;
-  for (const auto& c : cases) w = std::max(w, c.name.size());
+  // Column widths from the widest entry of each column (and its header), two spaces between.
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string s;
+    for (const auto& l : v) s += (s.empty() ? "" : ",") + l;
+    return s;
+  };
+  std::size_t wn = 4, ws = 5, wl = 6;
   for (const auto& c : cases) {
-    std::string labels;
-    for (const auto& l : c.labels) labels += (labels.empty() ? "" : ",") + l;
-    std::cout << std::left << std::setw(static_cast<int>(w) + 2) << c.name << std::setw(6) << c.suite
-              << std::setw(28) << labels << c.title << "\n";
+    wn = std::max(wn, c.name.size());
+    ws = std::max(ws, c.suite.size());
+    wl = std::max(wl, joined(c.labels).size());
   }
+  auto row = [&](const std::string& a, const std::string& b, const std::string& c, const std::string& d) {
+    std::cout << std::left << std::setw(static_cast<int>(wn + 2)) << a << std::setw(static_cast<int>(ws + 2))
+              << b << std::setw(static_cast<int>(wl + 2)) << c << d << "\n";
+  };
+  row("case", "suite", "labels", "title");
+  for (const auto& c : cases) row(c.name, c.suite, joined(c.labels), c.title);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ void print_usage(std::ostream& os) {
         "  compare NAME|PATH [--against reference|tl_oracle] [--degree 1|2]\n"
         "          [--time-integration fixed_step|ida]\n"
         "                            run the case with tensormass and the reference; write\n"
-        "                            results/<case>/compare.json (max relative differences)\n"
+        "                            results/<case>-compare/ (compare.json: max relative differences)\n"
         "  cases                     list the shipped case files\n"
         "  mesh info FILE [--scale F]            counts, volume, bounding box, quality\n"
         "  mesh check FILE [--scale F] [--repair OUT.msh]\n"

@@ -1,4 +1,5 @@
 #include "core/config/case_config.hpp"
+#include "core/mesh/mesh_ops.hpp"
 
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
@@ -236,7 +237,23 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
       if (c.solver.max_iterations < 1) throw n.error("max_iterations", "must be >= 1");
       c.solver.rtol = n.positive("rtol", 1e-10);
       c.solver.atol = n.positive("atol", 1e-14, true);
-      c.solver.line_search = n.get<bool>("line_search", true);
+      if (n.has("line_search")) {
+        // "energy" | "residual" | "none"; true and false are kept for older case files (true = energy).
+        const nlohmann::json& ls = n.raw("line_search");
+        if (ls.is_boolean()) {
+          c.solver.line_search =
+              ls.get<bool>() ? SolverSpec::LineSearch::Energy : SolverSpec::LineSearch::None;
+        } else if (ls.is_string() && ls.get<std::string>() == "energy") {
+          c.solver.line_search = SolverSpec::LineSearch::Energy;
+        } else if (ls.is_string() && ls.get<std::string>() == "residual") {
+          c.solver.line_search = SolverSpec::LineSearch::Residual;
+        } else if (ls.is_string() && ls.get<std::string>() == "none") {
+          c.solver.line_search = SolverSpec::LineSearch::None;
+        } else {
+          throw n.error("line_search",
+                        "must be \"energy\", \"residual\" or \"none\" (got " + ls.dump() + ")");
+        }
+      }
       c.solver.max_cutbacks = n.get<int>("max_cutbacks", 8);
       if (c.solver.max_cutbacks < 0) throw n.error("max_cutbacks", "must be >= 0");
       n.finish();
@@ -266,10 +283,99 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
   }
   root.finish();
 
-  c.effective = doc;
-  c.effective["mesh"]["file"] = c.mesh.file;
-  c.effective["model"] = c.model;
   return c;
+}
+
+nlohmann::json effective_case_json(const CaseConfig& c) {
+  using nlohmann::json;
+  auto v3 = [](const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); };
+  json doc = {
+      {"name", c.name},
+      {"description", c.description},
+      {"model", c.model},
+      {"mesh",
+       {{"file", c.mesh.file}, {"scale", c.mesh.scale}, {"repair_orientation", c.mesh.repair_orientation}}}};
+  json material = {{"law", c.material.law},
+                   {"E", c.material.young},
+                   {"nu", c.material.poisson},
+                   {"density", c.material.density}};
+  const ViscoelasticSpec& vs = c.material.viscoelastic;
+  if (vs.enabled) {
+    json terms = json::array();
+    for (std::size_t k = 0; k < vs.weights.size(); ++k)
+      terms.push_back({{"weight", vs.weights[k]}, {"tau", vs.taus[k]}});
+    material["viscoelastic"] = {{"history", vs.history},
+                                {"integration", vs.integration},
+                                {"relaxation", vs.relaxation},
+                                {"prony", {{"convention", vs.convention}, {"terms", terms}}}};
+  }
+  doc["material"] = material;
+  json boundary = json::array();
+  for (const BoundarySpec& b : c.boundary) {
+    std::string comps;
+    for (int k = 0; k < 3; ++k)
+      if (b.components[static_cast<std::size_t>(k)]) comps += "xyz"[k];
+    boundary.push_back({{"name", b.name},
+                        {"nodes", b.nodes.to_json()},
+                        {"components", comps},
+                        {"value", v3(b.value)},
+                        {"function", b.function.to_json()}});
+  }
+  doc["boundary"] = boundary;
+  json loads = json::array();
+  for (const LoadSpec& l : c.loads) {
+    json j = {{"name", l.name}, {"function", l.function.to_json()}};
+    switch (l.type) {
+      case LoadSpec::Type::NodalForce:
+        j["type"] = "nodal_force", j["nodes"] = l.selector.to_json(), j["force"] = v3(l.vector);
+        break;
+      case LoadSpec::Type::Pressure:
+        j["type"] = "pressure", j["faces"] = l.selector.to_json(), j["pressure"] = l.pressure;
+        j["follower"] = l.follower;
+        break;
+      case LoadSpec::Type::Traction:
+        j["type"] = "traction", j["faces"] = l.selector.to_json(), j["traction"] = v3(l.vector);
+        break;
+      case LoadSpec::Type::Gravity:
+        j["type"] = "gravity", j["acceleration"] = v3(l.vector);
+        break;
+    }
+    loads.push_back(j);
+  }
+  doc["loads"] = loads;
+  const SolverSpec& sv = c.solver;
+  json solver = {{"t_end", sv.t_end}};
+  if (sv.type == SolverSpec::Type::Static) {
+    solver["type"] = "static";
+    solver["steps"] = sv.steps;
+  } else {
+    solver["type"] = sv.type == SolverSpec::Type::Explicit ? "explicit" : "implicit";
+    solver["dt"] = sv.dt;
+    if (sv.type == SolverSpec::Type::Implicit)
+      solver["scheme"] = sv.scheme;
+    else
+      solver["check_stability"] = sv.check_stability;
+    solver["damping"] = {{"alpha", sv.damping_alpha}, {"beta", sv.damping_beta}};
+  }
+  if (sv.type != SolverSpec::Type::Explicit) {
+    const char* ls = sv.line_search == SolverSpec::LineSearch::Energy     ? "energy"
+                     : sv.line_search == SolverSpec::LineSearch::Residual ? "residual"
+                                                                          : "none";
+    solver["newton"] = {{"max_iterations", sv.max_iterations},
+                        {"rtol", sv.rtol},
+                        {"atol", sv.atol},
+                        {"line_search", ls},
+                        {"max_cutbacks", sv.max_cutbacks}};
+  }
+  doc["solver"] = solver;
+  json probes = json::array();
+  for (const ProbeSpec& p : c.output.probes) probes.push_back({{"name", p.name}, {"point", v3(p.point)}});
+  doc["output"] = {{"every", c.output.every},
+                   {"vtu", c.output.vtu},
+                   {"xdmf", c.output.xdmf},
+                   {"plots", c.output.plots},
+                   {"probes", probes}};
+  return doc;
 }
 
 Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired) {
@@ -291,6 +397,27 @@ CaseConfig load_case(const std::string& path, const std::string& tmlab_root) {
   const nlohmann::json doc = ConfigReader::parse_file(path);
   const std::string dir = fs::path(path).parent_path().string();
   return parse_case(doc, path, {dir.empty() ? "." : dir, tmlab_root});
+}
+
+Index probe_node(const Mesh& mesh, const ProbeSpec& probe, const std::string& case_file) {
+  if (mesh.num_points() == 0) throw Error(case_file + ": probe '" + probe.name + "': the mesh has no nodes");
+  const Index n = nearest_node(mesh, probe.point);
+  Vec3 lo = mesh.points[0], hi = mesh.points[0];
+  for (const Vec3& x : mesh.points) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  const double diagonal = (hi - lo).norm(), distance = (mesh.points[n] - probe.point).norm();
+  if (distance > 0.05 * diagonal) {
+    std::ostringstream msg;
+    msg << case_file << ": output.probes '" << probe.name << "' at (" << probe.point.x() << ", "
+        << probe.point.y() << ", " << probe.point.z() << ") is " << distance
+        << " m from the nearest mesh node, more than 5 % of the mesh's bounding-box diagonal (" << diagonal
+        << " m; the mesh spans (" << lo.x() << ", " << lo.y() << ", " << lo.z() << ") to (" << hi.x() << ", "
+        << hi.y() << ", " << hi.z() << ")): check the point and its units";
+    throw Error(msg.str());
+  }
+  return n;
 }
 
 }  // namespace tmlab

@@ -71,7 +71,10 @@ struct SolverSpec {
   int max_iterations = 25;
   double rtol = 1e-10;
   double atol = 1e-14;
-  bool line_search = true;
+  /// Newton line search: energy (Armijo on the potential where one exists, else full steps; the
+  /// default), residual (sufficient decrease of |R|), none (full Newton steps).
+  enum class LineSearch { Energy, Residual, None };
+  LineSearch line_search = LineSearch::Energy;
   int max_cutbacks = 8;
   bool check_stability = true;
 };
@@ -100,7 +103,6 @@ struct CaseConfig {
   std::vector<LoadSpec> loads;
   SolverSpec solver;
   OutputSpec output;
-  nlohmann::json effective;  ///< the case as read, with defaults filled in (for the manifest)
 };
 
 /// Parses a case document. `where` names it in messages; relative mesh paths are looked up in
@@ -114,5 +116,15 @@ Mesh load_case_mesh(const MeshSpec& spec, MeshReport& report, int& repaired);
 
 /// Reads and parses a case file.
 CaseConfig load_case(const std::string& path, const std::string& tmlab_root);
+
+/// The case in case-file form with every default filled in and every choice resolved (the mesh
+/// path absolute, a viscoelastic "scheme" shorthand as its history + integration): what the run
+/// actually used, for the manifest. parse_case() of it gives the same case again.
+nlohmann::json effective_case_json(const CaseConfig& config);
+
+/// The mesh node a probe tracks: the nearest node to its point. A point farther from every node
+/// than 5 % of the mesh's bounding-box diagonal is refused (a typo or wrong units would otherwise
+/// snap silently to some boundary node); the error names the case file, the probe and the distance.
+Index probe_node(const Mesh& mesh, const ProbeSpec& probe, const std::string& case_file);
 
 }  // namespace tmlab

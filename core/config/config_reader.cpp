@@ -1,8 +1,11 @@
 #include "core/config/config_reader.hpp"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
+#include <vector>
 
 namespace tmlab {
 
@@ -14,15 +17,78 @@ ConfigReader::ConfigReader(const nlohmann::json& j, std::string where, std::stri
   }
 }
 
+namespace {
+/// Tracks the keys of each open object during parsing to refuse duplicates, naming the key path.
+class DuplicateKeyGuard {
+ public:
+  explicit DuplicateKeyGuard(std::string file) : file_(std::move(file)) {}
+  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start:
+        frames_.push_back({true, {}, current_key()});
+        break;
+      case E::array_start:
+        frames_.push_back({false, {}, current_key()});
+        break;
+      case E::object_end:
+      case E::array_end:
+        if (!frames_.empty()) frames_.pop_back();
+        break;
+      case E::key: {
+        const std::string key = parsed.get<std::string>();
+        Frame& f = frames_.back();
+        if (!f.keys.insert(key).second)
+          throw Error(
+              file_ + ": key '" + join(f.path, key) +
+              "' is given twice in the same object (JSON keeps only one of the values; remove the other)");
+        last_key_ = key;
+        break;
+      }
+      case E::value:
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string path;
+  };
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  std::string current_key() const {
+    if (frames_.empty()) return "";
+    const Frame& f = frames_.back();
+    return f.object ? join(f.path, last_key_) : f.path + "[]";
+  }
+  std::string file_;
+  std::vector<Frame> frames_;
+  std::string last_key_;
+};
+}  // namespace
+
 nlohmann::json ConfigReader::parse_file(const std::string& file) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(file, ec)) throw Error(file + ": is a directory, not a JSON file");
   std::ifstream in(file);
   if (!in) throw Error(file + ": cannot open file");
   std::stringstream ss;
   ss << in.rdbuf();
+  if (in.bad()) throw Error(file + ": read error");
+  DuplicateKeyGuard guard(file);
   try {
-    return nlohmann::json::parse(ss.str(), nullptr, true, /*ignore_comments=*/true);
+    return nlohmann::json::parse(ss.str(), std::ref(guard), true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
     // nlohmann reports "... at line L, column C: reason"; keep it, prefixed by the file.
+    throw Error(file + ": invalid JSON: " + e.what());
+  } catch (const nlohmann::json::out_of_range& e) {
+    // "number overflow parsing '1e999'": a number no double can hold.
+    throw Error(file + ": invalid number: " + e.what() + " (numbers must fit a double, |x| < 1.8e308)");
+  } catch (const nlohmann::json::exception& e) {
     throw Error(file + ": invalid JSON: " + e.what());
   }
 }

@@ -9,8 +9,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <set>
 #include <string>
+#include <type_traits>
 
 namespace tmlab {
 
@@ -19,7 +23,9 @@ class ConfigReader {
   /// `where` is the file (or other origin) used in messages; `path` the key path of `j` ("" at root).
   ConfigReader(const nlohmann::json& j, std::string where, std::string path = "");
 
-  /// Parses a JSON file; syntax errors name the file, line and column.
+  /// Parses a JSON file; syntax errors name the file, line and column. Also refused, naming the
+  /// file: a directory, a number that does not fit a double (1e999), a key given twice in one
+  /// object (JSON parsers keep one silently).
   static nlohmann::json parse_file(const std::string& file);
 
   bool has(const std::string& key) const;
@@ -56,6 +62,23 @@ class ConfigReader {
   template <class T>
   T convert(const std::string& key) {
     used_.insert(key);
+    if constexpr (std::is_integral_v<T> && !std::is_same_v<T, bool>) {
+      // nlohmann converts 2.5 to 2 silently: integers must be written as whole numbers in range.
+      const nlohmann::json& v = j_.at(key);
+      if (v.is_number_float()) {
+        const double d = v.get<double>();
+        if (d != std::floor(d) || d < double(std::numeric_limits<T>::min()) ||
+            d > double(std::numeric_limits<T>::max()))
+          throw error(key, "must be a whole number (got " + v.dump() + ")");
+        return static_cast<T>(d);
+      }
+      if (v.is_number_unsigned() && v.get<std::uint64_t>() > std::uint64_t(std::numeric_limits<T>::max()))
+        throw error(key, "is out of range (got " + v.dump() + ")");
+      if (v.is_number_integer() && !v.is_number_unsigned() &&
+          (v.get<std::int64_t>() < std::int64_t(std::numeric_limits<T>::min()) ||
+           v.get<std::int64_t>() > std::int64_t(std::numeric_limits<T>::max())))
+        throw error(key, "is out of range (got " + v.dump() + ")");
+    }
     try {
       return j_.at(key).get<T>();
     } catch (const nlohmann::json::exception&) {

@@ -277,7 +277,7 @@ class MeshBuilder {
   }
 
   /// Adds one element. `fields` holds the file node ids starting at field index `first`.
-  void add_element(long long code, const ElemType& et, std::size_t first, int physical) {
+  void add_element(long long id, long long code, const ElemType& et, std::size_t first, int physical) {
     if (et.kind == ElemKind::Skip) {
       ++skipped_[static_cast<int>(code)];
       return;
@@ -285,10 +285,10 @@ class MeshBuilder {
     assert(et.kind == ElemKind::Keep);
     std::array<Index, 4> nodes{};
     for (int k = 0; k < et.num_nodes; ++k) {
-      const long long id = src_.integer(first + static_cast<std::size_t>(k), "element node id");
-      const auto it = id_to_index_.find(id);
+      const long long node_id = src_.integer(first + static_cast<std::size_t>(k), "element node id");
+      const auto it = id_to_index_.find(node_id);
       if (it == id_to_index_.end()) {
-        src_.fail("element refers to undefined node id " + std::to_string(id));
+        src_.fail("element refers to undefined node id " + std::to_string(node_id));
       }
       nodes[static_cast<std::size_t>(k)] = it->second;
     }
@@ -307,6 +307,7 @@ class MeshBuilder {
     if (et.dim == 3) {
       mesh_.tets.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
       mesh_.tet_physical.push_back(physical);
+      mesh_.tet_file_ids.push_back(static_cast<long>(id));
       tet_lines_.push_back(src_.line());
     } else if (et.dim == 2) {
       mesh_.triangles.push_back({nodes[0], nodes[1], nodes[2]});
@@ -411,7 +412,7 @@ void read_v1_elements(LineSource& src, MeshBuilder& mb) {
                std::to_string(nn) + " nodes, expected " + std::to_string(et.num_nodes));
     }
     src.expect_fields(5 + static_cast<std::size_t>(et.num_nodes), "element");
-    mb.add_element(code, et, 5, static_cast<int>(phys));
+    mb.add_element(src.integer(0, "element id"), code, et, 5, static_cast<int>(phys));
   }
   src.expect_marker("$ENDELM", "after " + std::to_string(n) + " elements");
 }
@@ -476,7 +477,7 @@ void read_v2_elements(LineSource& src, MeshBuilder& mb) {
   for (long long k = 0; k < n; ++k) {
     src.record("Elements", count_progress("elements", n, k));
     src.expect_min_fields(3, "element");
-    src.integer(0, "element id");
+    const long long id = src.integer(0, "element id");
     const long long code = src.integer(1, "element type");
     const ElemType et = mb.check_type(code);
     const long long ntags = src.integer_in(2, 0, 64, "number of element tags");
@@ -486,7 +487,7 @@ void read_v2_elements(LineSource& src, MeshBuilder& mb) {
     long long phys = 0;
     if (ntags >= 1) phys = src.integer_in(3, 0, std::numeric_limits<int>::max(), "physical tag");
     for (std::size_t t = 4; t < first; ++t) src.integer(t, "element tag");
-    mb.add_element(code, et, first, static_cast<int>(phys));
+    mb.add_element(id, code, et, first, static_cast<int>(phys));
   }
   src.expect_marker("$EndElements", "after " + std::to_string(n) + " elements");
 }
@@ -621,13 +622,13 @@ void read_v4_elements(LineSource& src, MeshBuilder& mb, const EntityMap& entitie
     for (long long k = 0; k < n; ++k) {
       src.record("Elements", count_progress("elements in block", n, k));
       src.expect_fields(1 + static_cast<std::size_t>(et.num_nodes), std::string("element (") + et.name + ")");
-      src.integer(0, "element tag");
+      const long long id = src.integer(0, "element tag");
       if (phys->empty()) {
-        mb.add_element(code, et, 1, 0);
+        mb.add_element(id, code, et, 1, 0);
       } else if (dim == 3) {
-        mb.add_element(code, et, 1, phys->front());
+        mb.add_element(id, code, et, 1, phys->front());
       } else {
-        for (const int p : *phys) mb.add_element(code, et, 1, p);
+        for (const int p : *phys) mb.add_element(id, code, et, 1, p);
       }
     }
   }

@@ -27,6 +27,7 @@ struct Mesh {
   std::vector<Vec3> points;            ///< rest positions, metres
   std::vector<long> point_file_ids;    ///< node id in the source file (for error messages)
   std::vector<Tet> tets;               ///< linear tets, positively oriented after check/repair
+  std::vector<long> tet_file_ids;      ///< element id in the source file (empty when generated)
   std::vector<int> tet_physical;       ///< physical tag per tet (0 when none)
   std::vector<Tri> triangles;          ///< surface triangles given in the file (not derived)
   std::vector<int> triangle_physical;  ///< physical tag per triangle (0 when none)
@@ -37,6 +38,9 @@ struct Mesh {
 
   Index num_points() const { return static_cast<Index>(points.size()); }
   Index num_tets() const { return static_cast<Index>(tets.size()); }
+  /// How messages name tet t: "tetrahedron 12 (Gmsh element 345)" when the mesh came from a file,
+  /// "tetrahedron 12" otherwise (t is tmlab's 0-based index, the id is the file's).
+  std::string tet_name(Index t) const;
 };
 
 }  // namespace tmlab

@@ -118,6 +118,7 @@ MeshReport analyse_mesh(const Mesh& mesh) {
   if (!edges.empty()) r.edge_mean = len_sum / static_cast<double>(edges.size());
 
   r.num_boundary_faces = static_cast<Index>(boundary_faces(mesh).size());
+  r.tet_file_ids = mesh.tet_file_ids;
   return r;
 }
 
@@ -139,6 +140,22 @@ std::string index_list(const std::vector<Index>& idx) {
   return out;
 }
 
+/// The file's element ids of the listed tets, when the mesh came from a file.
+std::vector<long> file_ids(const MeshReport& r, const std::vector<Index>& idx) {
+  std::vector<long> out;
+  if (r.tet_file_ids.size() != static_cast<std::size_t>(r.num_tets)) return out;
+  for (Index t : idx) out.push_back(r.tet_file_ids[static_cast<std::size_t>(t)]);
+  return out;
+}
+
+std::string id_list(const MeshReport& r, const std::vector<Index>& idx) {
+  const std::vector<long> ids = file_ids(r, idx);
+  std::string out = "tmlab index " + index_list(idx);
+  if (ids.empty()) return out;
+  std::vector<Index> as_index(ids.begin(), ids.end());
+  return out + "; Gmsh element " + index_list(as_index);
+}
+
 }  // namespace
 
 std::string format_mesh_report(const MeshReport& r) {
@@ -157,18 +174,19 @@ std::string format_mesh_report(const MeshReport& r) {
      << fmt(r.max_volume) << "\n";
   os << "  edge length min " << fmt(r.edge_min) << " mean " << fmt(r.edge_mean) << " max " << fmt(r.edge_max)
      << "\n";
-  os << "  quality q = 6 sqrt(2) V / l_rms^3: min " << fmt(r.q_min) << " (tet " << r.q_min_tet << ") mean "
-     << fmt(r.q_mean) << " max " << fmt(r.q_max) << "\n";
+  os << "  quality q = 6 sqrt(2) V / l_rms^3: min " << fmt(r.q_min) << " ("
+     << (r.q_min_tet >= 0 ? id_list(r, {r.q_min_tet}) : std::string("no tets")) << ") mean " << fmt(r.q_mean)
+     << " max " << fmt(r.q_max) << "\n";
   os << "  q histogram:";
   for (std::size_t k = 0; k < r.q_histogram.size(); ++k) {
     os << " [" << fmt(0.1 * static_cast<double>(k)) << ")" << r.q_histogram[k];
   }
   os << "\n";
   os << "  inverted tets (V < 0): " << r.inverted.size();
-  if (!r.inverted.empty()) os << ": " << index_list(r.inverted);
+  if (!r.inverted.empty()) os << ": " << id_list(r, r.inverted);
   os << "\n";
   os << "  degenerate tets (|V| < " << fmt(kDegenerateRelVolume) << " l_rms^3): " << r.degenerate.size();
-  if (!r.degenerate.empty()) os << ": " << index_list(r.degenerate);
+  if (!r.degenerate.empty()) os << ": " << id_list(r, r.degenerate);
   os << "\n";
   return os.str();
 }
@@ -201,7 +219,9 @@ nlohmann::json mesh_report_json(const MeshReport& r) {
         {"histogram", r.q_histogram},
         {"histogram_bins", "10 bins of width 0.1 on [0,1]; q<=0 in the first, q>=1 in the last"}}},
       {"inverted", r.inverted},
+      {"inverted_file_ids", file_ids(r, r.inverted)},
       {"degenerate", r.degenerate},
+      {"degenerate_file_ids", file_ids(r, r.degenerate)},
       {"degenerate_rel_volume", kDegenerateRelVolume},
   };
 }

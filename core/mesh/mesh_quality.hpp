@@ -57,6 +57,9 @@ struct MeshReport {
 
   std::vector<Index> inverted;    ///< tets with V < 0
   std::vector<Index> degenerate;  ///< tets with |V| < kDegenerateRelVolume * l_rms^3
+  /// The source file's element ids of the tets (Mesh::tet_file_ids; empty for generated meshes):
+  /// messages and the report name Gmsh element ids next to tmlab's 0-based indices.
+  std::vector<long> tet_file_ids;
 
   Index num_edges = 0;  ///< unique tet edges
   double edge_min = 0.0;

@@ -197,7 +197,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   np.max_iterations = cfg.solver.max_iterations;
   np.rtol = ro.newton_rtol;
   np.atol = cfg.solver.atol;
-  np.line_search = cfg.solver.line_search;
+  np.line_search = cfg.solver.line_search != SolverSpec::LineSearch::None;
+  np.energy_merit = cfg.solver.line_search == SolverSpec::LineSearch::Energy;
   np.max_cutbacks = cfg.solver.max_cutbacks;
   np.linear_solver = ro.linear_solver;
   Solid solid(comm, coarse, Discretisation{!hex, static_cast<unsigned>(ro.degree)}, material, prony, np, log);
@@ -336,7 +337,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   solid.finalize_setup();
 
   std::vector<Index> probe_nodes;
-  for (const auto& p : cfg.output.probes) probe_nodes.push_back(nearest_node(nodes, p.point));
+  for (const auto& p : cfg.output.probes) probe_nodes.push_back(probe_node(nodes, p, cfg.file));
 
   // Vertex values in node order, gathered from the DoF owners.
   auto vertex_displacements = [&]() {
@@ -377,7 +378,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
     if (root) {
       ManifestInput mi;
       mi.command_line = opt.command_line;
-      mi.config = cfg.effective;
+      mi.config = effective_case_json(cfg);
       mi.config["reference"] = {{"degree", ro.degree},
                                 {"law", ro.law},
                                 {"cells", ro.cells},
@@ -492,6 +493,8 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
                             {"newton_iterations", st.newton_iterations},
                             {"linear_iterations", st.linear_iterations},
                             {"cutbacks", st.cutbacks},
+                            {"sub_increments", st.sub_increments},
+                            {"at_roundoff", st.at_roundoff},
                             {"backtracks", st.backtracks},
                             {"assembly_seconds", st.assembly_seconds},
                             {"solve_seconds", st.solve_seconds},
@@ -627,6 +630,7 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
                  {"max_displacement_m", table.last("max_displacement")},
                  {"elastic_energy_J", table.last("elastic_energy")},
                  {"min_volume_ratio", jmin_overall},
+                 {"min_volume_ratio_over", "all recorded steps, t = 0 included"},
                  {"field_frames", field_frames},
                  {"plots", "skipped"},
                  {"run_seconds", wall}};

@@ -487,7 +487,8 @@ int Solid::linear_solve(TrilinosWrappers::MPI::Vector& du, const TrilinosWrapper
 }
 
 // =====================================================================================================
-// Newton with backtracking line search (the same algorithm as tmlab::tm::newton_solve)
+// Newton with backtracking line search (the same algorithm as tmlab::tm::newton_solve: Armijo on the
+// potential where there is one, a falling |R| accepted too, round-off stagnation stop)
 // =====================================================================================================
 
 bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepStats& stats) {
@@ -534,6 +535,15 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
   TrilinosWrappers::MPI::Vector fe(owned_, comm_);
   assemble(g, t, dt, Mode::External, nullptr, fe, nullptr, nullptr);
   const double fext_norm = fe.l2_norm();
+  // Mode::External assembles r = -f_ext. Potential Pi(v) = int W dV - f_ext . v (dead loads; none
+  // with Prony history, whose trial forces are not a gradient).
+  const TrilinosWrappers::MPI::Vector minus_fext(fe);
+  const bool has_potential = !prony_;
+  auto potential = [&](const TrilinosWrappers::MPI::Vector& v) {
+    g = v;
+    return hyperelastic_energy(g) + (minus_fext * v);
+  };
+  const double eps = std::numeric_limits<double>::epsilon();
 
   double rnorm = residual(u, r);
   stats.residuals.assign(1, rnorm);
@@ -567,31 +577,70 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     hom_constraints_.set_zero(du_free);
 
     double rref = rnorm;
+    u_trial = u;
+    u_trial += du_c;  // u_ref: the constrained DoFs moved in full
     if (pending) {
-      u_trial = u;
-      u_trial += du_c;
       rref = residual(u_trial, r_trial);
       scale = std::max(scale, rref);
+    } else {
+      r_trial = r;
+    }
+    // Energy merit (see tmlab::tm::newton_solve): slope = R(u_ref) . du_free must be a descent.
+    double pi_ref = 0.0, slope = 0.0;
+    bool energy = newton_.line_search && newton_.energy_merit && has_potential && std::isfinite(rref);
+    if (energy) {
+      slope = r_trial * du_free;
+      const TrilinosWrappers::MPI::Vector u_ref(u_trial);
+      pi_ref = potential(u_ref);
+      energy = slope < 0.0 && std::isfinite(pi_ref);
     }
     double alpha = 1.0;
     int backtracks = 0;
     double rt = 0.0;
+    const TrilinosWrappers::MPI::Vector u_ref(u_trial);
     while (true) {
-      u_trial = u;
-      u_trial += du_c;
+      u_trial = u_ref;
       u_trial.add(alpha, du_free);
       rt = residual(u_trial, r_trial);
-      const bool ok = std::isfinite(rt) && rt <= (1.0 - 1e-4 * alpha) * rref;
-      if (ok || !newton_.line_search || backtracks >= newton_.max_backtracks || !std::isfinite(rref)) {
+      double pi = std::numeric_limits<double>::quiet_NaN();
+      bool ok;
+      if (!std::isfinite(rt)) {
+        ok = false;  // an element inverted: always shorten the step
+      } else if (!newton_.line_search) {
+        ok = true;
+      } else if (energy) {
+        pi = potential(u_trial);
+        ok = (std::isfinite(pi) &&
+              pi <= pi_ref + 1e-4 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(pi))) ||
+             rt <= (1.0 - 1e-4 * alpha) * rref;
+      } else if (!newton_.energy_merit) {
+        ok = rt <= (1.0 - 1e-4 * alpha) * rref || !std::isfinite(rref);
+      } else {
+        ok = true;  // energy merit but no potential (Prony history): the full step, as the fast model
+      }
+      if (ok) break;
+      if (backtracks >= newton_.max_backtracks) {
         if (!std::isfinite(rt))
           throw Error("reference: non-finite residual in Newton iteration " + std::to_string(k + 1) +
                       " at t = " + std::to_string(t) + " (step too large or element inversion)");
         break;
       }
-      alpha *= 0.5;
+      double next = 0.5 * alpha;
+      if (energy && std::isfinite(pi)) {  // minimiser of the quadratic through Pi(0), Pi'(0), Pi(alpha)
+        const double curvature = pi - pi_ref - slope * alpha;
+        if (curvature > 0.0)
+          next = std::clamp(-slope * alpha * alpha / (2.0 * curvature), 0.1 * alpha, 0.5 * alpha);
+      }
+      alpha = next;
       ++backtracks;
     }
     stats.backtracks += backtracks;
+    // Size of the step actually taken, for the round-off stagnation test.
+    TrilinosWrappers::MPI::Vector step(u_trial);
+    step -= u;
+    const double step_inf = step.linfty_norm();
+    const double rprev = rnorm;
+    const bool was_pending = pending;
     u.swap(u_trial);
     r.swap(r_trial);
     rnorm = rt;
@@ -599,6 +648,15 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     pending = false;
     iterations = k + 1;
     stats.residuals.push_back(rnorm);
+    // Round-off: |R| fell by less than 2x with a step at the round-off of u. Within 1e3 of the
+    // target that is the floor of this residual (converged); far above, further steps cannot help.
+    if (!was_pending && k >= 1 && rnorm > 0.5 * rprev &&
+        step_inf <= newton_.stagnation_tol * std::max(u.linfty_norm(), 1e-300)) {
+      const double target = newton_.rtol * scale + newton_.atol;
+      converged = rnorm <= 1e3 * target;
+      if (converged && rnorm > target) stats.at_roundoff = true;
+      break;
+    }
   }
   if (!converged && !pending && rnorm <= newton_.rtol * scale + newton_.atol) converged = true;
   stats.newton_iterations += iterations;
@@ -647,6 +705,11 @@ StepStats Solid::advance(double t0, double t1) {
       t_committed_ = t_try;
       commit(t_try - t_done);
       t_done = t_try;
+      ++stats.sub_increments;
+      if (depth > 0) {  // success after a cut-back: let the increment grow back
+        h *= 2.0;
+        --depth;
+      }
       continue;
     }
     if (depth >= newton_.max_cutbacks) {
@@ -678,6 +741,24 @@ SymTensor2 committed_stress(const Material& m, const std::optional<PronySeries>&
   return S;
 }
 }  // namespace
+
+double Solid::hyperelastic_energy(const TrilinosWrappers::MPI::Vector& u_ghost) const {
+  FEValues<3> fev(*mapping_, *fe_, qcell_, update_gradients | update_JxW_values);
+  const FEValuesExtractors::Vector disp(0);
+  std::vector<Tensor<2, 3>> grad_u(qcell_.size());
+  double w = 0.0;
+  for (const auto& cell : dof_handler_.active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    fev.reinit(cell);
+    fev[disp].get_function_gradients(u_ghost, grad_u);
+    for (unsigned q = 0; q < qcell_.size(); ++q) {
+      const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
+      const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
+      w += material_.energy(E) * fev.JxW(q);
+    }
+  }
+  return Utilities::MPI::sum(w, comm_);
+}
 
 double Solid::elastic_energy() const {
   FEValues<3> fev(*mapping_, *fe_, qcell_, update_gradients | update_JxW_values);

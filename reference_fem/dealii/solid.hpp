@@ -52,7 +52,12 @@ struct NewtonParameters {
   double rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|, |R after moving the constraints|) + atol
   double atol = 1e-14;  ///< newtons
   bool line_search = true;
+  /// Merit of the line search: true (default) Armijo on the potential Pi = int W dV - f_ext . u
+  /// where one exists (no Prony history; the loads here are dead), accepting also a falling |R|;
+  /// false: sufficient decrease of |R_free| only (rejects good steps of large rotations).
+  bool energy_merit = true;
   int max_backtracks = 12;
+  double stagnation_tol = 1e-13;         ///< relative step below which a stalled |R| is round-off
   int max_cutbacks = 8;                  ///< halvings of a load increment whose Newton solve fails
   std::string linear_solver = "direct";  ///< direct | cg_amg
   double cg_rtol = 1e-8;                 ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
@@ -65,6 +70,8 @@ struct StepStats {
   int linear_iterations = 0;  ///< CG iterations (0 for the direct solver)
   int backtracks = 0;
   int cutbacks = 0;
+  int sub_increments = 0;         ///< accepted (sub-)increments (1 without cut-backs)
+  bool at_roundoff = false;       ///< a sub-increment converged by the round-off stagnation test
   double assembly_seconds = 0.0;  ///< tangent + residual assembly
   double solve_seconds = 0.0;     ///< linear solves (factorisation or AMG setup included)
   double newton_seconds = 0.0;    ///< the whole step
@@ -119,6 +126,9 @@ class Solid {
   /// Stored energy, summed over ranks: int W(E) dV (long-term spring) plus, with Prony terms, the
   /// branch energies int sum_j alpha_j/2 h_j : C0^-1 : h_j dV of the committed history.
   double elastic_energy() const;
+  /// int W(E(u)) dV over all ranks for any ghosted displacement u (no history terms): the
+  /// hyperelastic part of the potential the Newton line search decreases.
+  double hyperelastic_energy(const dealii::TrilinosWrappers::MPI::Vector& u_ghost) const;
   /// Smallest det F over the quadrature points of all ranks.
   double min_volume_ratio() const;
   /// Reaction of each condition: sum over its DoFs of f_int - f_ext at time t (summed over ranks).

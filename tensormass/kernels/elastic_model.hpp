@@ -41,6 +41,9 @@ class ElasticModel {
 
   /// True when the model carries history (begin_step/commit_step matter).
   virtual bool has_history() const { return false; }
+  /// True when internal_force() is the gradient of energy() (hyperelastic models). The trial
+  /// forces of a history model are not, so its solvers cannot use the energy as a merit function.
+  virtual bool energy_is_potential() const { return !has_history(); }
   /// Sets the trial step size from the committed state (dt >= 0; dt = 0 gives the instantaneous response).
   virtual void begin_step(double /*dt*/) {}
   /// Accepts the step ending at displacement u: advances the committed history.

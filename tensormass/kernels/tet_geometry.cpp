@@ -10,7 +10,7 @@
 
 namespace tmlab::tm {
 
-TetRest tet_rest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, Index element) {
+TetRest tet_rest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, const std::string& element) {
   Eigen::Matrix3d J;
   J.col(0) = p1 - p0;
   J.col(1) = p2 - p0;
@@ -22,7 +22,7 @@ TetRest tet_rest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3,
     for (int j = i + 1; j < 4; ++j) lmax = std::max(lmax, (p[j] - p[i]).norm());
   if (!std::isfinite(det) || det <= 0.0 || det < 1e-12 * lmax * lmax * lmax) {
     std::ostringstream os;
-    os << "tetrahedron " << element << ": ";
+    os << element << ": ";
     if (!std::isfinite(det))
       os << "non-finite vertex coordinates";
     else if (det < 0.0)
@@ -50,14 +50,14 @@ std::vector<TetRest> compute_tet_rest(const Mesh& mesh) {
     for (Index v : tet) {
       if (v < 0 || v >= n) {
         std::ostringstream os;
-        os << "tetrahedron " << t << ": node index " << v << " out of range [0, " << n << ")";
+        os << mesh.tet_name(t) << ": node index " << v << " out of range [0, " << n << ")";
         throw Error(os.str());
       }
     }
     const auto& P = mesh.points;
     rest[static_cast<std::size_t>(t)] =
         tet_rest(P[static_cast<std::size_t>(tet[0])], P[static_cast<std::size_t>(tet[1])],
-                 P[static_cast<std::size_t>(tet[2])], P[static_cast<std::size_t>(tet[3])], t);
+                 P[static_cast<std::size_t>(tet[2])], P[static_cast<std::size_t>(tet[3])], mesh.tet_name(t));
   }
   return rest;
 }

@@ -8,6 +8,7 @@
 #include "core/mesh/mesh.hpp"
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace tmlab::tm {
@@ -20,7 +21,7 @@ struct TetRest {
 /// Rest volume and shape gradients of one tet from its four rest positions. Throws tmlab::Error
 /// naming `element` when the tet is inverted (V < 0), flat (V == 0) or degenerate
 /// (6V < 1e-12 * longest_edge^3).
-TetRest tet_rest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, Index element);
+TetRest tet_rest(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& p3, const std::string& element);
 
 /// Rest geometry of every tet of a mesh (index t <-> mesh.tets[t]). Throws tmlab::Error naming the
 /// first bad element, or a tet that references a missing node.

@@ -65,7 +65,72 @@ std::vector<Vec3> as_vec3(const VecX& u) {
   return out;
 }
 
+std::string to_string(SolverSpec::LineSearch ls) {
+  switch (ls) {
+    case SolverSpec::LineSearch::Energy:
+      return "energy";
+    case SolverSpec::LineSearch::Residual:
+      return "residual";
+    case SolverSpec::LineSearch::None:
+      break;
+  }
+  return "none";
+}
+
+/// The iteration history of a run, one entry per step, for summary.json ("solver.newton"):
+/// iterations, cut-backs, sub-increments, backtracks, the final |R| and its target, whether the
+/// step stopped at round-off, and the residual history of the last (sub-)increment.
+class NewtonLog {
+ public:
+  void add(const NewtonResult& last, int iterations, int cutbacks, int sub_increments, bool at_roundoff) {
+    iterations_.push_back(iterations);
+    cutbacks_.push_back(cutbacks);
+    sub_increments_.push_back(sub_increments);
+    backtracks_.push_back(last.backtracks);
+    residual_.push_back(last.residual_final);
+    target_.push_back(last.target);
+    roundoff_.push_back(at_roundoff);
+    history_.push_back(last.history);
+  }
+  nlohmann::json json(const SolverSpec& s) const {
+    int roundoff_steps = 0, max_its = 0;
+    for (bool b : roundoff_) roundoff_steps += b ? 1 : 0;
+    for (int i : iterations_) max_its = std::max(max_its, i);
+    return {{"line_search", to_string(s.line_search)},
+            {"rtol", s.rtol},
+            {"atol", s.atol},
+            {"max_iterations", s.max_iterations},
+            {"max_iterations_in_a_step", max_its},
+            {"steps_at_roundoff", roundoff_steps},
+            {"per_step",
+             {{"iterations", iterations_},
+              {"cutbacks", cutbacks_},
+              {"sub_increments", sub_increments_},
+              {"backtracks_last_solve", backtracks_},
+              {"residual_final", residual_},
+              {"residual_target", target_},
+              {"at_roundoff", roundoff_},
+              {"residual_history_last_solve", history_}}}};
+  }
+
+ private:
+  std::vector<int> iterations_, cutbacks_, sub_increments_, backtracks_;
+  std::vector<double> residual_, target_;
+  std::vector<bool> roundoff_;
+  std::vector<std::vector<double>> history_;
+};
 }  // namespace
+
+NewtonOptions newton_options(const SolverSpec& s) {
+  NewtonOptions o;
+  o.max_iterations = s.max_iterations;
+  o.rtol = s.rtol;
+  o.atol = s.atol;
+  o.line_search = s.line_search != SolverSpec::LineSearch::None;
+  o.merit =
+      s.line_search == SolverSpec::LineSearch::Residual ? LineSearchMerit::Residual : LineSearchMerit::Energy;
+  return o;
+}
 
 RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
@@ -143,14 +208,14 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
 
   std::vector<Index> probe_nodes;
-  for (const auto& p : cfg.output.probes) probe_nodes.push_back(nearest_node(mesh, p.point));
+  for (const auto& p : cfg.output.probes) probe_nodes.push_back(probe_node(mesh, p, cfg.file));
 
   // ---- Result directory (staged; summary.json only when everything succeeded). ----
   RunOutput out(fs::path(opt.results_root) / cfg.name, log);
   try {
     ManifestInput mi;
     mi.command_line = opt.command_line;
-    mi.config = cfg.effective;
+    mi.config = effective_case_json(cfg);
     mi.input_files.push_back(cfg.mesh.file);
     if (fs::exists(cfg.file)) mi.input_files.push_back(cfg.file);
     out.write_json("manifest.json", make_manifest(mi));
@@ -182,7 +247,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       const auto [jmin, jtet] = min_volume_ratio(mesh, u);
       if (!(jmin > 0.0)) {
         std::ostringstream m;
-        m << "element " << jtet << " inverted at t = " << t << " (step " << step << ", volume ratio " << jmin
+        m << mesh.tet_name(jtet) << " inverted at t = " << t << " (step " << step << ", volume ratio " << jmin
           << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or "
              "refine the mesh";
         throw Error(m.str());
@@ -298,21 +363,22 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     nlohmann::json solver_info;
     record(0, 0.0, 0, true);
     if (cfg.solver.type == SolverSpec::Type::Static) {
-      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search,
-                         12};
-      StaticSolver solver(system, nopt, cfg.solver.max_cutbacks);
+      StaticSolver solver(system, newton_options(cfg.solver), cfg.solver.max_cutbacks);
+      NewtonLog newton_log;
       for (int k = 1; k <= n_steps; ++k) {
         const double t0 = t_end * (k - 1) / n_steps, t1 = t_end * k / n_steps;
         const StaticStepReport rep = solver.advance(t0, t1, u);
         total_newton += rep.newton_iterations;
         total_cutbacks += rep.cutbacks;
+        newton_log.add(rep.newton, rep.newton_iterations, rep.cutbacks, rep.sub_increments, rep.at_roundoff);
         record(k, t1, rep.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
         progress(k, t1);
       }
       solver_info = {{"type", "static"},
                      {"load_steps", n_steps},
                      {"newton_iterations", total_newton},
-                     {"cutbacks", total_cutbacks}};
+                     {"cutbacks", total_cutbacks},
+                     {"newton", newton_log.json(cfg.solver)}};
     } else if (cfg.solver.type == SolverSpec::Type::Explicit) {
       const double dt = cfg.solver.dt;
       CentralDifference integ(system, dt, cfg.solver.check_stability);
@@ -342,9 +408,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                      {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
     } else {
       const ImplicitScheme scheme = implicit_scheme_from_string(cfg.solver.scheme);
-      NewtonOptions nopt{cfg.solver.max_iterations, cfg.solver.rtol, cfg.solver.atol, cfg.solver.line_search,
-                         12};
-      ImplicitDynamics integ(system, scheme, nopt);
+      ImplicitDynamics integ(system, scheme, newton_options(cfg.solver));
+      NewtonLog newton_log;
       integ.initialize(0.0, u, v);
       double t = 0.0;
       for (int k = 1; k <= n_steps; ++k) {
@@ -352,6 +417,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         const NewtonResult nr = integ.step(t, dt);
         t = integ.time();
         total_newton += nr.iterations;
+        newton_log.add(nr, nr.iterations, 0, 1, nr.at_roundoff);
         u = integ.displacement();
         v = integ.velocity();
         record(k, t, nr.iterations, k % cfg.output.every == 0 || k == n_steps);
@@ -362,6 +428,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                      {"dt", cfg.solver.dt},
                      {"steps", n_steps},
                      {"newton_iterations", total_newton},
+                     {"newton", newton_log.json(cfg.solver)},
                      {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
     }
     if (reporter) reporter->finish();
@@ -456,6 +523,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                               {"max_displacement_m", table.last("max_displacement")},
                               {"elastic_energy_J", table.last("elastic_energy")},
                               {"min_volume_ratio", jmin_overall},
+                              {"min_volume_ratio_over", "all recorded steps, t = 0 included"},
                               {"field_frames", field_frames},
                               {"plots", plot_status},
                               {"run_seconds", wall}};

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/config/case_config.hpp"
+#include "tensormass/solvers/newton.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -30,5 +31,8 @@ struct RunResult {
 /// explicit step or a failed Newton solve throw tmlab::Error; the result directory then holds a
 /// FAILED marker and no summary.json.
 RunResult run_case(const CaseConfig& config, const RunOptions& options);
+
+/// The Newton settings of a case file's solver section (solver.newton, docs/case-files.md).
+NewtonOptions newton_options(const SolverSpec& solver);
 
 }  // namespace tmlab::tm

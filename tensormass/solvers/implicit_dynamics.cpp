@@ -18,13 +18,7 @@ std::string to_string(ImplicitScheme s) {
   return s == ImplicitScheme::BackwardEuler ? "backward_euler" : "newmark";
 }
 
-namespace {
-struct Coefficients {
-  double ca, cv, caa;  // a = ca (u - un) - cv vn - caa an
-  double du, dv, da;   // v = du (u - un) + dv vn + da an
-};
-
-Coefficients coefficients(ImplicitScheme s, double dt) {
+ImplicitCoefficients implicit_coefficients(ImplicitScheme s, double dt) {
   if (s == ImplicitScheme::BackwardEuler) {
     // v = (u - un)/dt, a = (v - vn)/dt.
     return {1.0 / (dt * dt), 1.0 / dt, 0.0, 1.0 / dt, 0.0, 0.0};
@@ -34,48 +28,51 @@ Coefficients coefficients(ImplicitScheme s, double dt) {
           gamma / (beta * dt),    1.0 - gamma / beta, dt * (1.0 - gamma / (2.0 * beta))};
 }
 
-class StepResidual final : public NonlinearSystem {
- public:
-  StepResidual(const MechanicalSystem& s, double t1, const Coefficients& c, const VecX& un, const VecX& vn,
-               const VecX& an)
-      : s_(s), t1_(t1), c_(c), un_(un), vn_(vn), an_(an) {
-    VecX f, fi;
-    s_.loads().assemble(un_, t1_, f);
-    s_.model().internal_force(un_, fi);
-    scale_ = std::max({f.norm(), fi.norm(), s_.mass().cwiseProduct(an_).norm()});
-  }
-  void acc_vel(const VecX& u, VecX& a, VecX& v) const {
-    a = c_.ca * (u - un_) - c_.cv * vn_ - c_.caa * an_;
-    v = c_.du * (u - un_) + c_.dv * vn_ + c_.da * an_;
-  }
-  void residual(const VecX& u, VecX& r) override {
-    VecX a, v, cv, fext;
-    acc_vel(u, a, v);
-    s_.model().internal_force(u, r);
-    s_.damping_force(v, cv);
-    s_.loads().assemble(u, t1_, fext);
-    r += s_.mass().cwiseProduct(a) + cv - fext;
-  }
-  void jacobian(const VecX& u, SpMat& J) override {
-    s_.model().tangent(u, J);
-    const double mass_coef = c_.ca + c_.du * s_.damping().alpha;
-    for (Eigen::Index i = 0; i < J.rows(); ++i) J.coeffRef(i, i) += mass_coef * s_.mass()[i];
-    if (s_.damping().beta != 0.0) J += (c_.du * s_.damping().beta) * s_.reference_tangent();
-    s_.add_load_stiffness(u, t1_, J);
-  }
-  bool symmetric() const override { return !s_.loads().has_follower(); }
-  double force_scale() const override { return scale_; }
+ImplicitStepResidual::ImplicitStepResidual(const MechanicalSystem& s, double t1,
+                                           const ImplicitCoefficients& c, const VecX& un, const VecX& vn,
+                                           const VecX& an)
+    : s_(s), t1_(t1), c_(c), un_(un), vn_(vn), an_(an) {
+  VecX f, fi;
+  s_.loads().assemble(un_, t1_, f);
+  s_.model().internal_force(un_, fi);
+  scale_ = std::max({f.norm(), fi.norm(), s_.mass().cwiseProduct(an_).norm()});
+}
 
- private:
-  const MechanicalSystem& s_;
-  double t1_;
-  Coefficients c_;
-  const VecX& un_;
-  const VecX& vn_;
-  const VecX& an_;
-  double scale_ = 0.0;
-};
-}  // namespace
+void ImplicitStepResidual::acc_vel(const VecX& u, VecX& a, VecX& v) const {
+  a = c_.ca * (u - un_) - c_.cv * vn_ - c_.caa * an_;
+  v = c_.du * (u - un_) + c_.dv * vn_ + c_.da * an_;
+}
+
+void ImplicitStepResidual::residual(const VecX& u, VecX& r) {
+  VecX a, v, cv, fext;
+  acc_vel(u, a, v);
+  s_.model().internal_force(u, r);
+  s_.damping_force(v, cv);
+  s_.loads().assemble(u, t1_, fext);
+  r += s_.mass().cwiseProduct(a) + cv - fext;
+}
+
+void ImplicitStepResidual::jacobian(const VecX& u, SpMat& J) {
+  s_.model().tangent(u, J);
+  const double mass_coef = c_.ca + c_.du * s_.damping().alpha;
+  for (Eigen::Index i = 0; i < J.rows(); ++i) J.coeffRef(i, i) += mass_coef * s_.mass()[i];
+  if (s_.damping().beta != 0.0) J += (c_.du * s_.damping().beta) * s_.reference_tangent();
+  s_.add_load_stiffness(u, t1_, J);
+}
+
+bool ImplicitStepResidual::symmetric() const { return !s_.loads().has_follower(); }
+
+bool ImplicitStepResidual::potential(const VecX& u, double& value) {
+  if (s_.loads().has_follower() || !s_.model().energy_is_potential()) return false;
+  const VecX d = u - un_;
+  const VecX a_half = 0.5 * c_.ca * d - c_.cv * vn_ - c_.caa * an_;
+  const VecX v_half = 0.5 * c_.du * d + c_.dv * vn_ + c_.da * an_;
+  VecX cv, fext;
+  s_.damping_force(v_half, cv);
+  s_.loads().assemble(u, t1_, fext);
+  value = s_.model().energy(u) + d.dot(s_.mass().cwiseProduct(a_half)) + d.dot(cv) - fext.dot(u);
+  return true;
+}
 
 ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme,
                                    NewtonOptions options)
@@ -101,8 +98,8 @@ NewtonResult ImplicitDynamics::step(double t, double dt) {
   if (!(dt > 0.0)) throw Error("implicit time step dt must be > 0");
   if (std::abs(t - t_) > 1e-9 * std::max(1.0, std::abs(t_)))
     throw Error("ImplicitDynamics::step called with t inconsistent with its state");
-  const Coefficients c = coefficients(scheme_, dt);
-  StepResidual res(system_, t + dt, c, u_, v_, a_);
+  const ImplicitCoefficients c = implicit_coefficients(scheme_, dt);
+  ImplicitStepResidual res(system_, t + dt, c, u_, v_, a_);
   system_.model().begin_step(dt);
   // Predictor: constant velocity.
   VecX u = u_ + dt * v_;

@@ -16,6 +16,41 @@ enum class ImplicitScheme { BackwardEuler, Newmark };
 ImplicitScheme implicit_scheme_from_string(const std::string& name);  ///< "backward_euler" | "newmark"
 std::string to_string(ImplicitScheme s);
 
+/// a = ca (u - un) - cv vn - caa an;  v = du (u - un) + dv vn + da an.
+struct ImplicitCoefficients {
+  double ca, cv, caa;
+  double du, dv, da;
+};
+ImplicitCoefficients implicit_coefficients(ImplicitScheme s, double dt);
+
+/// The nonlinear system of one implicit step to t1:
+///   R(u) = f_int(u) + M a(u) + C v(u) - f_ext(u, t1),  J = K(u) + (ca + du alpha) M + du beta K_0 (+ load
+///   stiffness),
+/// with the incremental potential (hyperelastic model, dead loads; d = u - un)
+///   Pi(u) = W(u) + d.M (ca/2 d + a0) + d.C (du/2 d + v0) - f_ext . u,   a0 = a(un), v0 = v(un),
+/// whose gradient is R (tested by finite differences).
+class ImplicitStepResidual final : public NonlinearSystem {
+ public:
+  /// un, vn, an are referenced, not copied: they must outlive the residual.
+  ImplicitStepResidual(const MechanicalSystem& s, double t1, const ImplicitCoefficients& c, const VecX& un,
+                       const VecX& vn, const VecX& an);
+  void acc_vel(const VecX& u, VecX& a, VecX& v) const;
+  void residual(const VecX& u, VecX& r) override;
+  void jacobian(const VecX& u, SpMat& J) override;
+  bool symmetric() const override;
+  double force_scale() const override { return scale_; }
+  bool potential(const VecX& u, double& value) override;
+
+ private:
+  const MechanicalSystem& s_;
+  double t1_;
+  ImplicitCoefficients c_;
+  const VecX& un_;
+  const VecX& vn_;
+  const VecX& an_;
+  double scale_ = 0.0;
+};
+
 class ImplicitDynamics {
  public:
   ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme, NewtonOptions options);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace tmlab::tm {
 
@@ -54,6 +55,29 @@ double free_norm(const VecX& r, const DirichletSet& bc) {
 }
 }  // namespace
 
+LineSearchMerit line_search_merit_from_string(const std::string& name) {
+  if (name == "energy") return LineSearchMerit::Energy;
+  if (name == "residual") return LineSearchMerit::Residual;
+  throw Error("unknown line-search merit '" + name + "' (expected energy or residual)");
+}
+
+std::string to_string(LineSearchMerit merit) {
+  return merit == LineSearchMerit::Energy ? "energy" : "residual";
+}
+
+namespace {
+std::string where(int k, double t) {
+  return "Newton iteration " + std::to_string(k + 1) + " at t = " + std::to_string(t);
+}
+
+/// One trial point of the line search: u + du_c + alpha (du - du_c), its residual and norm.
+struct Trial {
+  VecX u, r;
+  double rnorm = 0.0;
+  double pi = 0.0;  ///< potential, when used
+};
+}  // namespace
+
 NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, double t, VecX& u,
                           const NewtonOptions& options, ConstrainedLinearSolver& linear) {
   NewtonResult result;
@@ -62,8 +86,9 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
   bc.apply(t, target);
   VecX du_c = target - u;
 
-  VecX r, du, u_trial, r_trial;
+  VecX r, du, u_ref, r_ref;
   SpMat J;
+  Trial trial;
   system.residual(u, r);
   double rnorm = free_norm(r, bc);
   if (!std::isfinite(rnorm))
@@ -72,9 +97,20 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
   result.history.push_back(rnorm);
   bool constraints_pending = du_c.lpNorm<Eigen::Infinity>() > 0.0;
   double scale = std::max(rnorm, system.force_scale());
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double c1 = 1e-4;
+
+  auto evaluate = [&](double alpha, Trial& tr, bool with_potential) {
+    tr.u = u_ref + alpha * (du - du_c);
+    system.residual(tr.u, tr.r);
+    tr.rnorm = free_norm(tr.r, bc);
+    if (with_potential && std::isfinite(tr.rnorm) && !system.potential(tr.u, tr.pi))
+      tr.pi = std::numeric_limits<double>::quiet_NaN();
+  };
 
   for (int k = 0; k < options.max_iterations; ++k) {
-    if (!constraints_pending && rnorm <= options.rtol * scale + options.atol) {
+    result.target = options.rtol * scale + options.atol;
+    if (!constraints_pending && rnorm <= result.target) {
       result.converged = true;
       break;
     }
@@ -82,42 +118,91 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
     VecX rhs = -r;
     linear.solve(J, rhs, bc, du_c, system.symmetric(), du);
 
-    // Reference residual for the line search: with pending constraints, the residual after the
-    // constrained DOFs have moved (the free part of the step is what the search scales).
+    // The line search scales the free part of the step from u_ref = u + du_c (the constrained DOFs
+    // move to their prescribed values in full). Reference residual and potential at u_ref.
+    u_ref = u + du_c;
     double rref = rnorm;
     if (constraints_pending) {
-      u_trial = u + du_c;
-      system.residual(u_trial, r_trial);
-      rref = free_norm(r_trial, bc);
+      system.residual(u_ref, r_ref);
+      rref = free_norm(r_ref, bc);
       scale = std::max(scale, rref);
+    } else {
+      r_ref = r;
     }
+    double pi_ref = 0.0, slope = 0.0;
+    bool energy = options.line_search && options.merit == LineSearchMerit::Energy && std::isfinite(rref) &&
+                  system.potential(u_ref, pi_ref) && std::isfinite(pi_ref);
+    if (energy) {
+      // Directional derivative of Pi along the free step: R(u_ref) . (du - du_c) over the free DOFs.
+      const auto& mask = bc.mask();
+      for (Eigen::Index i = 0; i < du.size(); ++i)
+        if (!mask[i]) slope += r_ref[i] * (du[i] - du_c[i]);
+      energy = slope < 0.0;  // not a descent direction (indefinite tangent): full step
+    }
+
     double alpha = 1.0;
     int backtracks = 0;
     while (true) {
-      u_trial = u + du_c + alpha * (du - du_c);
-      system.residual(u_trial, r_trial);
-      const double rt = free_norm(r_trial, bc);
-      const bool ok = std::isfinite(rt) && rt <= (1.0 - 1e-4 * alpha) * rref;
-      if (ok || !options.line_search || backtracks >= options.max_backtracks || !std::isfinite(rref)) {
-        if (!std::isfinite(rt))
-          throw Error("non-finite residual in Newton iteration " + std::to_string(k + 1) +
-                      " at t = " + std::to_string(t) + " (step too large or element inversion)");
-        break;
+      evaluate(alpha, trial, energy);
+      bool ok;
+      if (!std::isfinite(trial.rnorm)) {
+        ok = false;  // an element inverted or the model broke down: always shorten the step
+      } else if (!options.line_search) {
+        ok = true;
+      } else if (energy) {
+        // Armijo on Pi; near the solution the decrease of Pi drowns in its round-off (Pi is a
+        // difference of large sums), where a decreasing residual norm is accepted instead.
+        ok = (std::isfinite(trial.pi) &&
+              trial.pi <=
+                  pi_ref + c1 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(trial.pi))) ||
+             trial.rnorm <= (1.0 - c1 * alpha) * rref;
+      } else if (options.merit == LineSearchMerit::Residual) {
+        ok = trial.rnorm <= (1.0 - c1 * alpha) * rref || !std::isfinite(rref);
+      } else {
+        ok = true;  // energy merit requested but no potential: full step
       }
-      alpha *= 0.5;
+      if (ok) break;
+      if (backtracks >= options.max_backtracks) {
+        if (!std::isfinite(trial.rnorm))
+          throw Error("non-finite residual in " + where(k, t) + " after " + std::to_string(backtracks) +
+                      " step halvings (step too large or element inversion)");
+        break;  // take the shortest step tried; the iteration limit or the cut-backs decide
+      }
+      double next = 0.5 * alpha;
+      if (energy && std::isfinite(trial.pi)) {
+        // Minimiser of the quadratic through Pi(0), Pi'(0) = slope and Pi(alpha).
+        const double curvature = trial.pi - pi_ref - slope * alpha;
+        if (curvature > 0.0)
+          next = std::clamp(-slope * alpha * alpha / (2.0 * curvature), 0.1 * alpha, 0.5 * alpha);
+      }
+      alpha = next;
       ++backtracks;
     }
     result.backtracks += backtracks;
-    u.swap(u_trial);
-    r.swap(r_trial);
-    rnorm = free_norm(r, bc);
+    result.alphas.push_back(alpha);
+    const double step_inf = (trial.u - u).lpNorm<Eigen::Infinity>();
+    const double rprev = rnorm;
+    u.swap(trial.u);
+    r.swap(trial.r);
+    rnorm = trial.rnorm;
+    const bool was_pending = constraints_pending;
     du_c.setZero();
     constraints_pending = false;
     result.iterations = k + 1;
     result.history.push_back(rnorm);
+    // Round-off stagnation: the residual stalled while the step is at the round-off of u.
+    if (!was_pending && k >= 1 && rnorm > 0.5 * rprev &&
+        step_inf <= options.stagnation_tol * std::max(u.lpNorm<Eigen::Infinity>(), 1e-300)) {
+      // Within three orders of the target: the round-off floor of this residual, converged. Far
+      // above it: stalled, and further iterations cannot help (the caller cuts back or fails).
+      result.stalled = true;
+      result.converged = rnorm <= 1e3 * result.target;
+      result.at_roundoff = result.converged && rnorm > result.target;
+      break;
+    }
   }
-  if (!result.converged && rnorm <= options.rtol * scale + options.atol && !constraints_pending)
-    result.converged = true;
+  result.target = options.rtol * scale + options.atol;
+  if (!result.converged && rnorm <= result.target && !constraints_pending) result.converged = true;
   result.residual_final = rnorm;
   return result;
 }

@@ -1,5 +1,23 @@
-// Newton's method with backtracking line search for R(u) = 0 under Dirichlet constraints, shared
+// Newton's method with a backtracking line search for R(u) = 0 under Dirichlet constraints, shared
 // by the static solver and the implicit time integrators.
+//
+// Line search (docs/theory/newton.md). Where the system has a potential Pi with R = dPi/du
+// (hyperelastic models under dead loads, and the incremental potential of an implicit step), the
+// step length alpha is chosen by Armijo backtracking on Pi:
+//   Pi(u + alpha du) <= Pi(u) + c1 alpha R(u).du + 16 eps (|Pi(u)| + |Pi(u + alpha du)|),
+// or |R(u + alpha du)| <= (1 - c1 alpha) |R(u)| (near the solution the decrease of Pi is below its
+// round-off, while |R| still falls quadratically), with quadratic interpolation of Pi for the next
+// trial, clamped to [0.1, 0.5] alpha. The residual norm is
+// not a merit function for large rotations: a good first Newton step of a bending beam raises |R|
+// by orders of magnitude while lowering Pi, and backtracking on |R| rejects it. Without a potential
+// (history-dependent forces, follower loads) the full step is taken unless the residual is
+// non-finite (an element inverted), in which case the step is halved. The older residual-norm
+// search is kept as an option (merit = Residual).
+//
+// Round-off: when an iteration lowers |R| by less than a factor 2 and its step is below
+// stagnation_tol * |u|_inf, the iteration has reached the round-off floor of the residual: it stops,
+// as converged (at_roundoff = true) when |R| is within 1e3 of the target, else as not converged
+// (stalled), instead of iterating to the limit either way.
 //
 // Constraints are imposed by elimination in place: the first iteration moves the constrained DOFs
 // to their prescribed values (du_c = g(t) - u_c) and carries K_fc du_c to the right-hand side;
@@ -28,7 +46,21 @@ class NonlinearSystem {
   virtual bool symmetric() const = 0;
   /// A force scale for the relative tolerance when R(u0) happens to be ~0 (e.g. |f_ext|).
   virtual double force_scale() const = 0;
+  /// A potential Pi(u) with R = dPi/du, when one exists: sets value and returns true. The default
+  /// (no potential) makes the line search take full steps.
+  virtual bool potential(const VecX& /*u*/, double& /*value*/) { return false; }
 };
+
+/// What the line search decreases.
+enum class LineSearchMerit {
+  Energy,   ///< Armijo on the potential (full steps where there is none): the default
+  Residual  ///< sufficient decrease of |R_free| (the pre-2026-11 default; rejects good steps of large
+            ///< rotations)
+};
+
+/// "energy" / "residual"; throws tmlab::Error naming the choices otherwise.
+LineSearchMerit line_search_merit_from_string(const std::string& name);
+std::string to_string(LineSearchMerit merit);
 
 struct NewtonOptions {
   int max_iterations = 25;
@@ -36,6 +68,8 @@ struct NewtonOptions {
   double atol = 1e-14;  ///< absolute floor on |R_free|, newtons
   bool line_search = true;
   int max_backtracks = 12;
+  LineSearchMerit merit = LineSearchMerit::Energy;
+  double stagnation_tol = 1e-13;  ///< relative step size below which a stalled residual is round-off
 };
 
 struct NewtonResult {
@@ -44,7 +78,11 @@ struct NewtonResult {
   int backtracks = 0;
   double residual_initial = 0.0;
   double residual_final = 0.0;
-  std::vector<double> history;  ///< |R_free| per iteration
+  double target = 0.0;          ///< the convergence threshold rtol * scale + atol that applied
+  bool at_roundoff = false;     ///< converged by the round-off stagnation test, above target
+  bool stalled = false;         ///< stopped because a step changed nothing (converged or not)
+  std::vector<double> history;  ///< |R_free| per iteration (history[0] before the first step)
+  std::vector<double> alphas;   ///< accepted step length per iteration
 };
 
 /// Solves J du = rhs on the free DOFs with du prescribed on the constrained ones; reuses the

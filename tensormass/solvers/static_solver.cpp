@@ -7,38 +7,31 @@
 
 namespace tmlab::tm {
 
-namespace {
-/// R(u) = f_int(u) - f_ext(u, t);  J = K(u) - d f_ext/du.
-class StaticResidual final : public NonlinearSystem {
- public:
-  /// The force scale of the relative tolerance: the larger of |f_ext| and |f_int(u0)| (the latter
-  /// carries the reactions of prescribed displacements, the only forces in a displacement-driven
-  /// hold phase, where |R(u0)| itself is already at round-off).
-  StaticResidual(const MechanicalSystem& s, double t, const VecX& u0) : s_(s), t_(t) {
-    VecX f, fi;
-    s_.loads().assemble(u0, t_, f);
-    s_.model().internal_force(u0, fi);
-    scale_ = std::max(f.norm(), fi.norm());
-  }
-  void residual(const VecX& u, VecX& r) override {
-    s_.model().internal_force(u, r);
-    s_.loads().assemble(u, t_, fext_);
-    r -= fext_;
-  }
-  void jacobian(const VecX& u, SpMat& J) override {
-    s_.model().tangent(u, J);
-    s_.add_load_stiffness(u, t_, J);
-  }
-  bool symmetric() const override { return !s_.loads().has_follower(); }
-  double force_scale() const override { return scale_; }
+StaticResidual::StaticResidual(const MechanicalSystem& s, double t, const VecX& u0) : s_(s), t_(t) {
+  VecX fi;
+  s_.loads().assemble(u0, t_, fext0_);
+  s_.model().internal_force(u0, fi);
+  scale_ = std::max(fext0_.norm(), fi.norm());
+}
 
- private:
-  const MechanicalSystem& s_;
-  double t_;
-  double scale_ = 0.0;
-  VecX fext_;
-};
-}  // namespace
+void StaticResidual::residual(const VecX& u, VecX& r) {
+  s_.model().internal_force(u, r);
+  s_.loads().assemble(u, t_, fext_);
+  r -= fext_;
+}
+
+void StaticResidual::jacobian(const VecX& u, SpMat& J) {
+  s_.model().tangent(u, J);
+  s_.add_load_stiffness(u, t_, J);
+}
+
+bool StaticResidual::symmetric() const { return !s_.loads().has_follower(); }
+
+bool StaticResidual::potential(const VecX& u, double& value) {
+  if (s_.loads().has_follower() || !s_.model().energy_is_potential()) return false;
+  value = s_.model().energy(u) - fext0_.dot(u);
+  return true;
+}
 
 StaticSolver::StaticSolver(const MechanicalSystem& system, NewtonOptions options, int max_cutbacks)
     : system_(system), options_(options), max_cutbacks_(max_cutbacks) {}
@@ -72,6 +65,12 @@ StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
       u.swap(u_try);
       t_done = t_try;
       report.newton = nr;
+      report.at_roundoff = report.at_roundoff || nr.at_roundoff;
+      ++report.sub_increments;
+      if (depth > 0) {  // success after a cut-back: let the increment grow back
+        h *= 2.0;
+        --depth;
+      }
       continue;
     }
     if (depth >= max_cutbacks_) {

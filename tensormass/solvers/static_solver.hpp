@@ -1,5 +1,6 @@
 // Static equilibrium f_int(u) = f_ext(u, t) by Newton with line search, with automatic bisection of
-// the load increment when Newton fails (load stepping is driven by the time functions of the loads
+// the load increment when Newton fails, and the increment doubled again (up to the step's own)
+// after each success that followed a cut-back (load stepping is driven by the time functions of the loads
 // and prescribed displacements; t is a pseudo-time).
 #pragma once
 
@@ -8,10 +9,33 @@
 
 namespace tmlab::tm {
 
+/// R(u) = f_int(u) - f_ext(u, t);  J = K(u) - d f_ext/du;  under dead loads with a hyperelastic model
+/// the potential Pi(u) = W(u) - f_ext(t) . u (dR = dPi/du, tested by finite differences).
+class StaticResidual final : public NonlinearSystem {
+ public:
+  /// The force scale of the relative tolerance: the larger of |f_ext| and |f_int(u0)| (the latter
+  /// carries the reactions of prescribed displacements, the only forces in a displacement-driven
+  /// hold phase, where |R(u0)| itself is already at round-off).
+  StaticResidual(const MechanicalSystem& s, double t, const VecX& u0);
+  void residual(const VecX& u, VecX& r) override;
+  void jacobian(const VecX& u, SpMat& J) override;
+  bool symmetric() const override;
+  double force_scale() const override { return scale_; }
+  bool potential(const VecX& u, double& value) override;
+
+ private:
+  const MechanicalSystem& s_;
+  double t_;
+  double scale_ = 0.0;
+  VecX fext_, fext0_;
+};
+
 struct StaticStepReport {
   NewtonResult newton;        ///< of the last (successful) sub-increment
   int newton_iterations = 0;  ///< summed over sub-increments
   int cutbacks = 0;           ///< how many times the increment was halved
+  int sub_increments = 0;     ///< accepted (sub-)increments: 1 without cut-backs
+  bool at_roundoff = false;   ///< some sub-increment converged by the round-off stagnation test
 };
 
 class StaticSolver {

@@ -7,6 +7,9 @@
 //                         reference level, at the vertices both meshes have: nodal discretisation
 //                         error, its order, and the P2 reference's own error estimated from P2 on a
 //                         coarser level (Richardson with order 3)
+//   reference.elastica    the Euler elastica cantilever (issue 12): deal.II Q2 hexes on two meshes against
+//                         the exact elastica tip, the fast model's P1 tets (bending locking) on the same
+//                         box, and the Newton iteration counts of both under the default line search
 //   reference.locking     P1 (tensor-mass) against P2 (deal.II) on the same box mesh for Poisson ratios
 //                         towards 0.5 (volumetric locking of linear tets), with P2 on a refined mesh to
 //                         show that the reference itself has converged
@@ -19,6 +22,7 @@
 
 #ifdef TMLAB_HAVE_REFERENCE
 #include "verification/checks/check_support.hpp"
+#include "verification/checks/elastica.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/stopwatch.hpp"
@@ -83,15 +87,11 @@ void quiet_output(CaseConfig& c) {
   c.output.vtu = false;
   c.output.xdmf = false;
   c.output.plots = false;
-  c.effective["output"]["vtu"] = false;
-  c.effective["output"]["xdmf"] = false;
-  c.effective["output"]["plots"] = false;
 }
 
 /// The tensor-mass run of a case (model forced to tensor_mass).
 tm::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
   c.model = "tensor_mass";
-  c.effective["model"] = "tensor_mass";
   return tm::run_case(c, run_options(ctx));
 }
 
@@ -405,6 +405,124 @@ Measurements p1_vs_p2(const CheckContext& ctx) {
   return m;
 }
 
+// ------------------------------------------------------------------ reference.elastica
+/// The tip centre's displacement: the mean of the two tip probes (tip_a, tip_b: the corners on the
+/// bending axis's two faces, whose mean is the centre for a rigidly rotating section).
+Vec3 tip_displacement(const nlohmann::json& summary) {
+  const auto& p = summary.at("probes");
+  Vec3 u = Vec3::Zero();
+  for (const char* name : {"tip_a", "tip_b"}) {
+    const auto& d = p.at(name).at("displacement_m");
+    u += Vec3(d.at(0).get<double>(), d.at(1).get<double>(), d.at(2).get<double>());
+  }
+  return 0.5 * u;
+}
+
+Measurements elastica(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const BoxProblem box = BoxProblem::read(ctx, p);
+  const double k = p.positive("load_parameter");
+  const auto hex_cells = p.require<std::vector<int>>("hex_cells_along");
+  p.finish();
+  if (hex_cells.size() < 2)
+    throw p.error("hex_cells_along", "needs at least two meshes (a convergence check)");
+
+  // Geometry: bending thickness h along x, width b along y, length L along z; load in -x.
+  const double h = box.size.x(), b = box.size.y(), L = box.size.z();
+  const double E = box.templ.at("material").at("E").get<double>();
+  const double EI = E * b * h * h * h / 12.0, P = k * EI / (L * L);
+  const ElasticaTip exact = elastica_cantilever_tip(k);
+  ctx.log << "  elastica: P L^2/EI = " << k << ", tip rotation " << exact.theta0 * 180.0 / std::acos(-1.0)
+          << " deg, deflection " << exact.transverse << " L, shortening " << 1.0 - exact.axial << " L\n";
+
+  auto config = [&](const std::string& suffix) {
+    CaseConfig c = box.config(ctx, 1);
+    c.name = "elastica" + suffix;
+    for (auto& l : c.loads) l.vector = Vec3(-P, 0, 0);
+    return c;
+  };
+  // Relative tip errors against the elastica, per component, over L.
+  auto errors = [&](const Vec3& u) {
+    return std::array<double, 2>{std::abs(-u.x() / L - exact.transverse),
+                                 std::abs(-u.z() / L - (1.0 - exact.axial))};
+  };
+
+  Measurements m;
+  m.set("elastica_tip_rotation_deg", exact.theta0 * 180.0 / std::acos(-1.0));
+  m.set("elastica_deflection_over_L", exact.transverse);
+  m.set("elastica_shortening_over_L", 1.0 - exact.axial);
+
+  // The fast model: P1 tets of the box (6 per cell).
+  const auto t0 = std::chrono::steady_clock::now();
+  const tm::RunResult fast = run_tensor_mass(ctx, config("-p1"));
+  const Vec3 u1 = tip_displacement(fast.summary);
+  const auto& fs = fast.summary.at("solver");
+  const int steps = fs.at("load_steps").get<int>();
+  m.set("p1_deflection_ratio", -u1.x() / L / exact.transverse);
+  m.set("p1_newton_iterations", fs.at("newton_iterations").get<double>());
+  m.set("p1_newton_iterations_per_step", fs.at("newton_iterations").get<double>() / steps);
+  m.set("p1_max_iterations_in_a_step", fs.at("newton").at("max_iterations_in_a_step").get<double>());
+  m.set("p1_cutbacks", fs.at("cutbacks").get<double>());
+  ctx.log << "  P1 tets (" << 6 * box.cells[0] * box.cells[1] * box.cells[2] << "): deflection "
+          << fmt(-u1.x() / L) << " L (" << fmt(-u1.x() / L / exact.transverse) << " of the elastica), "
+          << fs.at("newton_iterations").get<long>() << " Newton iterations, " << fs.at("cutbacks").get<long>()
+          << " cut-backs (" << seconds_text(t0) << ")\n";
+
+  // The reference: Q2 hexes, 1 x 1 x n cells, for each n.
+  nlohmann::json rows = nlohmann::json::array();
+  std::vector<double> err;
+  Vec3 u_prev = Vec3::Zero();
+  double change = 0.0;
+  for (std::size_t i = 0; i < hex_cells.size(); ++i) {
+    const int n = hex_cells[i];
+    if (n < 1 || (i > 0 && n <= hex_cells[i - 1]))
+      throw p.error("hex_cells_along", "must increase from >= 1");
+    const auto t1 = std::chrono::steady_clock::now();
+    ref::ReferenceOptions o;
+    o.degree = 2;
+    o.cells = "hex";
+    o.hex_subdivisions = {1u, 1u, unsigned(n)};
+    o.newton_rtol = 1e-10;
+    o.serial = true;
+    o.name_suffix = "-q2-" + std::to_string(n);
+    const tm::RunResult r = ref::run_reference_case(config(""), run_options(ctx), o);
+    const Vec3 u = tip_displacement(r.summary);
+    const auto e = errors(u);
+    const auto& rs = r.summary.at("solver");
+    const double its = rs.at("newton_iterations").get<double>(), cuts = rs.at("cutbacks").get<double>();
+    err.push_back(std::max(e[0], e[1]));
+    if (i > 0) change = (u - u_prev).norm() / L;
+    u_prev = u;
+    const std::string tag = "q2_" + std::to_string(n);
+    m.set(tag + "_error", err.back());
+    m.set(tag + "_newton_iterations_per_step", its / steps);
+    m.set(tag + "_cutbacks", cuts);
+    rows.push_back({{"cells_along", n},
+                    {"deflection_over_L", -u.x() / L},
+                    {"shortening_over_L", -u.z() / L},
+                    {"error_deflection", e[0]},
+                    {"error_shortening", e[1]},
+                    {"newton_iterations", its},
+                    {"cutbacks", cuts}});
+    ctx.log << "  Q2 hexes 1 x 1 x " << n << ": deflection " << fmt(-u.x() / L) << " L, shortening "
+            << fmt(-u.z() / L) << " L, error " << fmt(err.back()) << ", " << long(its)
+            << " Newton iterations, " << long(cuts) << " cut-backs (" << seconds_text(t1) << ")\n";
+    m.notes.push_back("Q2 hexes 1 x 1 x " + std::to_string(n) + ": tip error " + fmt(err.back()) + " L, " +
+                      std::to_string(long(its)) + " Newton iterations in " + std::to_string(steps) +
+                      " steps");
+  }
+  m.set("q2_error_finest", err.back());
+  m.set("q2_refinement_change", change);
+  m.set("q2_newton_iterations_per_step", rows.back().at("newton_iterations").get<double>() / steps);
+  double q2_cuts = 0.0;
+  for (const auto& r : rows) q2_cuts += r.at("cutbacks").get<double>();
+  m.set("q2_cutbacks", q2_cuts);
+  m.data["q2_meshes"] = rows;
+  m.notes.push_back("P1 tets: the tip deflects " + fmt(-u1.x() / L / exact.transverse) +
+                    " of the elastica's (bending locking of linear tets, one element through the thickness)");
+  return m;
+}
+
 // ------------------------------------------------------------------ reference.locking
 Measurements locking(const CheckContext& ctx) {
   ConfigReader p = parameters(ctx);
@@ -485,6 +603,7 @@ void register_reference_checks([[maybe_unused]] CheckRegistry& registry) {
   registry.add("reference.same_mesh", same_mesh);
   registry.add("reference.p1_vs_p2", p1_vs_p2);
   registry.add("reference.locking", locking);
+  registry.add("reference.elastica", elastica);
 #endif
 }
 

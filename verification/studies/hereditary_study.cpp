@@ -3,6 +3,7 @@
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "tensormass/runner/case_runner.hpp"
 #include "tensormass/solvers/static_solver.hpp"
 #include "tensormass/system/external_loads.hpp"
 #include "tensormass/system/lumped_mass.hpp"
@@ -467,8 +468,7 @@ LiverStudy liver_study(const nlohmann::json& params, const std::string& where, c
                                   DirichletSet(mesh.num_points(), conditions),
                                   ExternalLoads(mesh, node_mass));
     const SolverSpec& sp = cfg0.solver;
-    StaticSolver solver(system, NewtonOptions{sp.max_iterations, sp.rtol, sp.atol, sp.line_search, 12},
-                        sp.max_cutbacks);
+    StaticSolver solver(system, newton_options(sp), sp.max_cutbacks);
     const int n = steps_of(dt);
     VecX u = VecX::Zero(system.num_dofs()), f;
     cr.t.push_back(0.0);

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -77,13 +78,58 @@ TEST_F(Cli, MeshCheckFailsOnInvertedTetAndRepairFixesIt) {
   const fs::path m =
       write("inv.msh",
             "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n4\n1 0 0 0\n2 1 0 0\n3 0 1 0\n4 0 0 1\n$EndNodes\n"
-            "$Elements\n1\n1 4 2 0 1 1 3 2 4\n$EndElements\n");
+            "$Elements\n1\n17 4 2 0 1 1 3 2 4\n$EndElements\n");
   const Result r = run("mesh check '" + m.string() + "'");
   EXPECT_EQ(r.status, 1);
-  EXPECT_NE(r.output.find("first inverted: tet 0"), std::string::npos) << r.output;
+  // Named by tmlab's index and by the element id of the file (issue 12).
+  EXPECT_NE(r.output.find("first inverted: tetrahedron 0 (Gmsh element 17)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("Gmsh element 17"), std::string::npos) << r.output;
   const fs::path fixed = dir_ / "fixed.msh";
   EXPECT_EQ(run("mesh check '" + m.string() + "' --repair '" + fixed.string() + "'").status, 0);
   EXPECT_EQ(run("mesh check '" + fixed.string() + "'").status, 0);
+}
+
+TEST_F(Cli, MeshCheckRefusesAMeshWithoutTetsOrNodes) {
+  const fs::path no_tets =
+      write("surface.msh",
+            "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+            "$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n");
+  Result r = run("mesh check '" + no_tets.string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("3 nodes and 0 tetrahedra: nothing to simulate"), std::string::npos) << r.output;
+  const fs::path empty = write("empty.msh",
+                               "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n0\n$EndNodes\n"
+                               "$Elements\n0\n$EndElements\n");
+  r = run("mesh check '" + empty.string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("0 nodes and 0 tetrahedra"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, DegreeIsRefusedForTheFastModel) {
+  const Result r =
+      run("run cantilever-static --degree 2 --no-plots --results '" + (dir_ / "res").string() + "'");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--degree applies to the deal.II reference only"), std::string::npos) << r.output;
+  const Result bad =
+      run("run cantilever-static --model reference --degree 3 --results '" + (dir_ / "res").string() + "'");
+  EXPECT_NE(bad.status, 0);
+  EXPECT_NE(bad.output.find("--degree must be 1 or 2"), std::string::npos) << bad.output;
+}
+
+TEST_F(Cli, ProbeFarOutsideTheMeshIsRefused) {
+  const fs::path c =
+      write("far.json", R"({
+    "name": "far", "mesh": {"file": ")" +
+                            (fs::path(TMLAB_SOURCE_DIR) / "meshes" / "beam_40x10x10mm.msh").string() + R"("},
+    "material": {"E": 1000, "nu": 0.3, "density": 1000},
+    "boundary": [{"name": "fixed", "nodes": {"plane": {"axis": "x", "value": 0}}}],
+    "solver": {"type": "static", "steps": 1},
+    "output": {"probes": [{"name": "tip", "point": [40, 0, 0]}]}})");
+  const Result r = run("run '" + c.string() + "' --no-plots --results '" + (dir_ / "res").string() + "'");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_NE(r.output.find("output.probes 'tip' at (40, 0, 0)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("check the point and its units"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "res" / "far" / "summary.json"));
 }
 
 TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
@@ -115,8 +161,17 @@ TEST_F(Cli, CompareWritesTheDifferences) {
     const Result r =
         run("compare cube-uniaxial --against " + against + " --results '" + (dir_ / "res").string() + "'");
     ASSERT_EQ(r.status, 0) << r.output;
-    std::ifstream in(dir_ / "res" / "cube-uniaxial" / "compare.json");
+    // A result directory of its own (issue 12): staged, summary.json listing compare.json; the
+    // tensor-mass run's own directory is left as its summary describes it.
+    const fs::path cdir = dir_ / "res" / "cube-uniaxial-compare";
+    std::ifstream in(cdir / "compare.json");
     const auto c = nlohmann::json::parse(in);
+    std::ifstream sin(cdir / "summary.json");
+    const auto summary = nlohmann::json::parse(sin);
+    const auto& files = summary.at("files");
+    EXPECT_NE(std::find(files.begin(), files.end(), "compare.json"), files.end()) << summary.dump();
+    EXPECT_FALSE(fs::exists(cdir / ".incomplete"));
+    EXPECT_FALSE(fs::exists(dir_ / "res" / "cube-uniaxial" / "compare.json"));
     EXPECT_EQ(c["against"], against);
     EXPECT_LT(c["rel_diff_displacement"].get<double>(), 1e-8) << c.dump();
     EXPECT_LT(c["rel_diff_reaction"].get<double>(), 1e-8) << c.dump();
@@ -138,6 +193,14 @@ TEST_F(Cli, PaperFig7ProducesFigureAndClosesTheEnergyBalance) {
       run("paper fig7 --params '" + pf.string() + "' --results '" + (dir_ / "res").string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   const fs::path d = dir_ / "res" / "paper" / "fig7";
+  // One result directory through the run protocol: summary.json last, the runs inside it, their
+  // paths in figure.json relative to it.
+  EXPECT_TRUE(fs::exists(d / "summary.json"));
+  EXPECT_FALSE(fs::exists(d / ".incomplete"));
+  std::ifstream fin(d / "figure.json");
+  const auto spec = nlohmann::json::parse(fin);
+  ASSERT_EQ(spec["runs"].size(), 1u);
+  EXPECT_TRUE(fs::exists(d / spec["runs"][0]["dir"].get<std::string>() / "summary.json")) << spec.dump();
   EXPECT_TRUE(fs::exists(d / "fig7.png"));
   EXPECT_TRUE(fs::exists(d / "fig7.h5"));
   std::ifstream in(d / "fig7_energy.json");

@@ -100,5 +100,34 @@ TEST_F(CaseConfigTest, JsonSyntaxErrorNamesFileAndLine) {
   }
 }
 
+TEST_F(CaseConfigTest, EffectiveConfigHasEveryDefaultAndRoundTrips) {
+  // The manifest's configuration is what the run used: defaults filled in, shorthands resolved.
+  nlohmann::json j = minimal();
+  j["material"]["viscoelastic"] = {{"scheme", "seed"},
+                                   {"prony", {{"terms", {{{"weight", 0.5}, {"tau", 1.0}}}}}}};
+  j["loads"] = {
+      {{"type", "pressure"}, {"faces", {{"plane", {{"axis", "z"}, {"value", 0}}}}}, {"pressure", 10}}};
+  const CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+  const nlohmann::json e = effective_case_json(c);
+  EXPECT_EQ(e["solver"]["newton"]["line_search"], "energy") << e.dump();
+  EXPECT_EQ(e["solver"]["newton"]["max_iterations"], 25);
+  EXPECT_EQ(e["solver"]["steps"], 10);
+  EXPECT_EQ(e["output"]["every"], 1);
+  EXPECT_EQ(e["material"]["viscoelastic"]["history"], "nodal_force");
+  EXPECT_EQ(e["material"]["viscoelastic"]["integration"], "midpoint");
+  EXPECT_EQ(e["material"]["viscoelastic"]["prony"]["convention"], "long_term");
+  EXPECT_EQ(e["loads"][0]["follower"], false);
+  EXPECT_EQ(e["boundary"][0]["components"], "xyz");
+  // parse_case(effective) is the same case.
+  const CaseConfig again = parse_case(e, "effective.json", {dir_.string()});
+  EXPECT_EQ(effective_case_json(again), e);
+  // Dynamics: dt and the damping block, no static steps.
+  j["solver"] = {{"type", "implicit"}, {"dt", 0.1}};
+  const nlohmann::json d = effective_case_json(parse_case(j, "case.json", {dir_.string()}));
+  EXPECT_EQ(d["solver"]["scheme"], "newmark");
+  EXPECT_FALSE(d["solver"].contains("steps"));
+  EXPECT_EQ(effective_case_json(parse_case(d, "effective.json", {dir_.string()})), d);
+}
+
 }  // namespace
 }  // namespace tmlab

@@ -154,6 +154,8 @@ TEST(GmshReader, Format41PhysicalTagsFromEntities) {
   ASSERT_EQ(mesh.num_tets(), 1);
   EXPECT_EQ(mesh.tets[0], (Tet{0, 1, 2, 3}));
   EXPECT_EQ(mesh.tet_physical[0], 9);
+  EXPECT_EQ(mesh.tet_file_ids, (std::vector<long>{2}));  // the element tag, for messages
+  EXPECT_EQ(mesh.tet_name(0), "tetrahedron 0 (Gmsh element 2)");
   ASSERT_EQ(mesh.triangles.size(), 1u);
   EXPECT_EQ(mesh.triangle_physical[0], 5);
   ASSERT_EQ(mesh.groups.size(), 2u);

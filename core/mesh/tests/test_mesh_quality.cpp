@@ -97,7 +97,7 @@ TEST(MeshQuality, TextAndJsonReports) {
   const MeshReport r = analyse_mesh(mesh);
   const std::string text = format_mesh_report(r);
   EXPECT_NE(text.find("tets 12"), std::string::npos) << text;
-  EXPECT_NE(text.find("inverted tets (V < 0): 1: 3"), std::string::npos) << text;
+  EXPECT_NE(text.find("inverted tets (V < 0): 1: tmlab index 3"), std::string::npos) << text;
   EXPECT_NE(text.find("\"xmin\""), std::string::npos) << text;
   const nlohmann::json j = mesh_report_json(r);
   EXPECT_EQ(j.at("num_tets").get<int>(), 12);
@@ -105,6 +105,17 @@ TEST(MeshQuality, TextAndJsonReports) {
   EXPECT_EQ(j.at("quality").at("histogram").size(), 10u);
   EXPECT_DOUBLE_EQ(j.at("bbox").at("extent")[0].get<double>(), 2.0);
   EXPECT_EQ(j.at("groups").size(), 7u);
+  EXPECT_TRUE(j.at("inverted_file_ids").empty());  // a generated mesh has no file ids
+
+  // From a file, the file's element ids are named too.
+  mesh.tet_file_ids.resize(mesh.tets.size());
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) mesh.tet_file_ids[t] = 100 + long(t);
+  const MeshReport rf = analyse_mesh(mesh);
+  EXPECT_NE(format_mesh_report(rf).find("inverted tets (V < 0): 1: tmlab index 3; Gmsh element 103"),
+            std::string::npos)
+      << format_mesh_report(rf);
+  EXPECT_EQ(mesh_report_json(rf).at("inverted_file_ids"), nlohmann::json::array({103}));
+  EXPECT_EQ(mesh.tet_name(3), "tetrahedron 3 (Gmsh element 103)");
 }
 
 TEST(MeshQuality, EmptyMesh) {

@@ -11,7 +11,7 @@ namespace tmlab::tm {
 namespace {
 
 TEST(TetGeometry, ReferenceTet) {
-  const TetRest r = tet_rest(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), 0);
+  const TetRest r = tet_rest(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), "tetrahedron 0");
   EXPECT_NEAR(r.volume, 1.0 / 6.0, 1e-16);
   EXPECT_LT((r.grad[0] - Vec3(-1, -1, -1)).norm(), 1e-15);
   EXPECT_LT((r.grad[1] - Vec3(1, 0, 0)).norm(), 1e-15);
@@ -22,7 +22,7 @@ TEST(TetGeometry, PartitionOfUnityAndLinearPrecision) {
   std::mt19937 rng(11);
   for (int trial = 0; trial < 100; ++trial) {
     const auto p = testing::random_tet_points(rng, 0.01, testing::random_vec(rng, 1.0));
-    const TetRest r = tet_rest(p[0], p[1], p[2], p[3], trial);
+    const TetRest r = tet_rest(p[0], p[1], p[2], p[3], "tetrahedron " + std::to_string(trial));
     const double V = (p[1] - p[0]).cross(p[2] - p[0]).dot(p[3] - p[0]) / 6.0;
     EXPECT_NEAR(r.volume, V, 1e-13 * V);
     Vec3 s = Vec3::Zero();

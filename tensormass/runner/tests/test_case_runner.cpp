@@ -78,6 +78,23 @@ TEST_F(CaseRunnerTest, UniaxialStretchReactionMatchesClosedForm) {
   H5File h5 = H5File::open_read((out / "timeseries.h5").string());
   EXPECT_EQ(h5.read_double("/series/time").size(), 5u);  // t = 0 and 4 load steps
   EXPECT_EQ(h5.string_attribute("/series/reaction_pull_x", "unit"), "N");
+
+  // The Newton history of every step is in the summary (issue 12), consistent with the totals.
+  const auto& nw = r.summary["solver"]["newton"];
+  EXPECT_EQ(nw["line_search"], "energy");
+  const auto& its = nw["per_step"]["iterations"];
+  ASSERT_EQ(its.size(), 4u);
+  int sum = 0;
+  for (const auto& i : its) sum += i.get<int>();
+  EXPECT_EQ(sum, r.summary["solver"]["newton_iterations"].get<int>());
+  EXPECT_EQ(nw["per_step"]["residual_history_last_solve"].size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k)
+    EXPECT_LE(nw["per_step"]["residual_final"][k].get<double>(),
+              1e3 * nw["per_step"]["residual_target"][k].get<double>());
+  // The manifest holds the effective configuration, defaults included.
+  std::ifstream min(out / "manifest.json");
+  const auto manifest = nlohmann::json::parse(min);
+  EXPECT_EQ(manifest["config"]["solver"]["newton"]["max_iterations"], 25) << manifest["config"].dump();
 }
 
 TEST_F(CaseRunnerTest, OracleAndTensorMassGiveTheSameAnswer) {

@@ -54,6 +54,8 @@ def main():
     groups = {}
     with h5py.File(os.path.join(d, f"{name}.h5"), "w") as out:
         for run in spec["runs"]:
+            # "dir" is relative to the figure directory (older figure.json files hold absolute paths).
+            run["dir"] = os.path.join(d, run["dir"])
             x = run["x_sign"] * series(run["dir"], run["x"])
             y = run["y_sign"] * series(run["dir"], run["y"])
             g = out.create_group(run["id"])
