@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/base/process.hpp"
 #include "core/results/run_output.hpp"
 #include "verification/checks/builtin_checks.hpp"
@@ -46,7 +47,7 @@ void print_list(const std::vector<verify::VerificationCase>& cases) {
 
 int cmd_verify(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p = parse(args, {"--case", "--label", "--results", "--cases-dir"},
-                         {"--full", "--list", "--no-plots", "--update-docs"});
+                         {"--full", "--list", "--no-plots", "--update-docs", "--resume"});
   if (!p.positional.empty()) throw UsageError("unexpected argument '" + p.positional.front() + "'");
   const fs::path root = tmlab_root();
   const fs::path cases_dir =
@@ -81,8 +82,25 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     std::cerr << "tmlab verify: " << cases.size() << " case(s)" << (sel.full ? " (full suite)" : "") << "\n";
 
+    // Checkpoint: each finished case's result, beside the result directory (which a new run
+    // empties), so that an interrupted suite continues with --resume (docs/robustness.md).
+    nlohmann::json suite{
+        {"cases_dir", fs::absolute(cases_dir).string()}, {"full", sel.full}, {"cases", config["cases"]}};
+    const verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint", suite,
+                                             p.has("--resume"));
+    if (p.has("--resume"))
+      std::cerr << "tmlab verify: resuming: " << checkpoint.stored() << " of " << cases.size()
+                << " case(s) finished before the interruption\n";
     verify::RunSettings settings{root, out.staging_dir() / "work"};
-    const auto results = verify::run_cases(cases, registry, settings, std::cerr);
+    std::vector<verify::CaseResult> results;
+    try {
+      results = verify::run_cases(cases, registry, settings, std::cerr, &checkpoint);
+    } catch (const Interrupted& e) {
+      throw Interrupted(e.signal(), std::string(e.what()) + "; " + std::to_string(checkpoint.stored()) +
+                                        " of " + std::to_string(cases.size()) +
+                                        " case(s) are checkpointed in " + checkpoint.dir().string() +
+                                        ": continue with the same command and --resume");
+    }
     fs::remove_all(settings.work_root);
 
     verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : python_interpreter(),
@@ -93,6 +111,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
       verify::update_doc_table(root / "docs" / "verification.md", verify::results_table(in));
     const int passed = vj["passed"], failed = vj["failed"], errors = vj["errors"];
     out.finalize({{"passed", passed}, {"failed", failed}, {"errors", errors}, {"cases", cases.size()}});
+    checkpoint.remove();  // the report is complete: nothing to resume
     std::cout << "verification: " << passed << " passed, " << failed << " failed, " << errors << " errors of "
               << cases.size() << "; report: " << (out.dir() / "report.md").string() << "\n";
     return failed == 0 && errors == 0 ? 0 : 1;

@@ -1,5 +1,7 @@
 #include "verification/harness/runner.hpp"
 
+#include "core/base/interrupt.hpp"
+
 #include "core/base/error.hpp"
 
 #include <algorithm>
@@ -50,11 +52,25 @@ std::vector<VerificationCase> select(const std::vector<VerificationCase>& catalo
 }
 
 std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, const CheckRegistry& registry,
-                                  const RunSettings& settings, std::ostream& log) {
+                                  const RunSettings& settings, std::ostream& log,
+                                  const SuiteCheckpoint* checkpoint) {
   std::vector<CaseResult> results;
   const auto n = cases.size();
   for (std::size_t i = 0; i < n; ++i) {
     const VerificationCase& c = cases[i];
+    if (checkpoint) {
+      if (std::optional<CaseResult> stored = checkpoint->find(c.name)) {
+        log << "[" << (i + 1) << "/" << n << "] " << c.name << " ... "
+            << (stored->status == Status::Pass   ? "PASS"
+                : stored->status == Status::Fail ? "FAIL"
+                                                 : "ERROR")
+            << " (from the checkpoint of the interrupted run)" << std::endl;
+        results.push_back(std::move(*stored));
+        continue;
+      }
+    }
+    check_interrupt("before verification case " + c.name + " (" + std::to_string(i + 1) + " of " +
+                    std::to_string(n) + ")");
     log << "[" << (i + 1) << "/" << n << "] " << c.name << " (" << c.kind << ") ..." << std::endl;
     const auto start = std::chrono::steady_clock::now();
     CaseResult r;
@@ -65,6 +81,8 @@ std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, co
       fs::create_directories(work);
       CheckContext ctx{c, settings.source_root, work, log};
       r = evaluate(c, fn(ctx));
+    } catch (const Interrupted&) {
+      throw;  // the suite stops here; the cases before are in the checkpoint
     } catch (const std::exception& e) {
       r = CaseResult{};
       r.name = c.name;
@@ -85,6 +103,7 @@ std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, co
     if (r.status == Status::Fail)
       for (const auto& o : r.outcomes)
         if (!o.passed) log << "    failed: " << o.describe() << std::endl;
+    if (checkpoint) checkpoint->store(r);
     results.push_back(std::move(r));
   }
   return results;

@@ -1,6 +1,7 @@
 // Selecting and running verification cases, with progress.
 #pragma once
 
+#include "verification/harness/checkpoint.hpp"
 #include "verification/harness/evaluate.hpp"
 #include "verification/harness/registry.hpp"
 
@@ -26,8 +27,11 @@ struct RunSettings {
   std::filesystem::path work_root;  ///< scratch: <work_root>/<case>/
 };
 
-/// Runs each case (exceptions become Status::Error), printing "[k/n] name ... PASS (1.2 s)" to `log`.
+/// Runs each case (exceptions become Status::Error, except tmlab::Interrupted, which stops the suite),
+/// printing "[k/n] name ... PASS (1.2 s)" to `log`. With a checkpoint, a case whose result it holds
+/// is not run again (its stored result is used), and each finished case's result is stored.
 std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, const CheckRegistry& registry,
-                                  const RunSettings& settings, std::ostream& log);
+                                  const RunSettings& settings, std::ostream& log,
+                                  const SuiteCheckpoint* checkpoint = nullptr);
 
 }  // namespace tmlab::verify

@@ -7,14 +7,22 @@
 
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <string>
+#include <thread>
 #include <vector>
+
+extern char** environ;
 
 namespace tmlab::cli_test {
 
@@ -53,6 +61,46 @@ inline Result run_argv(const std::vector<std::string>& args, const std::filesyst
     std::fclose(f);
   }
   return r;
+}
+
+/// Starts `tmlab args...` in the background (argument vector, no shell); output to `log`.
+inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  ::setenv("TMLAB_ROOT", TMLAB_SOURCE_DIR, 1);
+  std::vector<std::string> argv{TMLAB_CLI};
+  argv.insert(argv.end(), args.begin(), args.end());
+  std::vector<char*> c;
+  for (auto& a : argv) c.push_back(a.data());
+  c.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = -1;
+  EXPECT_EQ(::posix_spawn(&pid, c[0], &fa, nullptr, c.data(), environ), 0);
+  posix_spawn_file_actions_destroy(&fa);
+  return pid;
+}
+
+/// Waits (up to 5 minutes: the machine may be busy) until `p` exists.
+inline bool wait_for(const std::filesystem::path& p) {
+  for (int i = 0; i < 3000; ++i) {
+    if (std::filesystem::exists(p)) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return false;
+}
+
+/// The exit status of a spawned process (-signal when a signal ended it).
+inline int wait_exit(pid_t pid) {
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFSIGNALED(status)) return -WTERMSIG(status);
+  return WEXITSTATUS(status);
+}
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 /// A fixture whose dir_ is a fresh temporary directory named after the process and the test.

@@ -12,17 +12,15 @@
 #include <fstream>
 #include <thread>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
+using tmlab::cli_test::slurp;
+using tmlab::cli_test::spawn;
+using tmlab::cli_test::wait_exit;
+using tmlab::cli_test::wait_for;
 
 class CliRobustness : public tmlab::cli_test::TempDirTest {
  protected:
@@ -52,45 +50,6 @@ class CliRobustness : public tmlab::cli_test::TempDirTest {
   /// A run long enough to be caught while it runs (millions of explicit steps on 48 tets).
   fs::path write_long_case() const {
     return write_case("long", R"({"type": "explicit", "dt": 1e-6, "t_end": 100.0})");
-  }
-
-  /// Starts `tmlab args...` in the background; output to `log`.
-  pid_t spawn(const std::vector<std::string>& args, const fs::path& log) const {
-    ::setenv("TMLAB_ROOT", TMLAB_SOURCE_DIR, 1);
-    std::vector<std::string> argv{TMLAB_CLI};
-    argv.insert(argv.end(), args.begin(), args.end());
-    std::vector<char*> c;
-    for (auto& a : argv) c.push_back(a.data());
-    c.push_back(nullptr);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&fa, 1, 2);
-    pid_t pid = -1;
-    EXPECT_EQ(::posix_spawn(&pid, c[0], &fa, nullptr, c.data(), environ), 0);
-    posix_spawn_file_actions_destroy(&fa);
-    return pid;
-  }
-
-  /// Waits (up to 5 minutes: the machine may be busy) until `p` exists.
-  static bool wait_for(const fs::path& p) {
-    for (int i = 0; i < 3000; ++i) {
-      if (fs::exists(p)) return true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    }
-    return false;
-  }
-
-  static int wait_exit(pid_t pid) {
-    int status = 0;
-    ::waitpid(pid, &status, 0);
-    if (WIFSIGNALED(status)) return -WTERMSIG(status);
-    return WEXITSTATUS(status);
-  }
-
-  static std::string slurp(const fs::path& p) {
-    std::ifstream in(p);
-    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   }
 };
 
