@@ -4,6 +4,7 @@
 #include "cli_args.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/base/process.hpp"
 #include "core/config/case_config.hpp"
 #include "core/config/config_reader.hpp"
@@ -21,7 +22,7 @@ namespace tmlab::cli {
 namespace fs = std::filesystem;
 
 int cmd_paper(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots"});
+  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots", "--resume"});
   if (p.positional.size() != 1) throw UsageError("paper needs one figure: fig5, fig6 or fig7");
   const std::string params_file =
       p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
@@ -33,7 +34,11 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
   // figure that looks current).
   const fs::path dir =
       fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
-  RunOutput out(dir, &std::cerr);
+  // --resume: the runs an interrupted figure finished (complete result directories in its staging
+  // area) are reused; the others run again from their start.
+  const bool resume = p.has("--resume");
+  RunOutput out(dir, &std::cerr,
+                resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
@@ -55,7 +60,22 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
       opt.results_root = out.staging_dir().string();
       opt.command_line = split_words(command_line);
       opt.plots = false;
-      const tm::RunResult r = tm::run_case(cfg, opt);
+      tm::RunResult r;
+      const fs::path done = out.staging_dir() / cfg.name / RunOutput::kSummary;
+      if (resume && fs::exists(done)) {
+        std::ifstream in(done);
+        r = {done.parent_path().string(), nlohmann::json::parse(in)};
+        std::cerr << "tmlab paper " << fig.name << ": run " << run.id
+                  << " finished before the interruption: reused\n";
+      } else {
+        try {
+          r = tm::run_case(cfg, opt);
+        } catch (const Interrupted& e) {
+          throw Interrupted(e.signal(), std::string(e.what()) + " (run " + run.id + ", " +
+                                            std::to_string(k - 1) + " of " + std::to_string(fig.runs.size()) +
+                                            " runs finished): continue with the same command and --resume");
+        }
+      }
       spec["runs"].push_back({{"id", run.id},
                               {"label", run.label},
                               {"scheme", run.scheme},

@@ -1,4 +1,5 @@
 #include "core/results/result_compare.hpp"
+#include "core/results/series_names.hpp"
 
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
@@ -72,12 +73,7 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     const std::size_t n = tb.size();
     cs.step_time = tb;
     std::map<std::string, int> conditions;
-    for (const auto& name : hb.list("/series")) {
-      const std::string pre = "reaction_", suf = "_x";
-      if (name.rfind(pre, 0) == 0 && name.size() > pre.size() + suf.size() &&
-          name.compare(name.size() - suf.size(), suf.size(), suf) == 0)
-        conditions[name.substr(pre.size(), name.size() - pre.size() - suf.size())] = 1;
-    }
+    for (const auto& c : series_names::reaction_conditions(hb.list("/series"))) conditions[c] = 1;
     // All reactions are measured against one scale, the largest reaction of run b over all
     // conditions and steps: a support that carries (almost) nothing must not turn round-off into
     // a large relative difference.
@@ -85,9 +81,9 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     double scale = 0.0;
     for (const auto& [c, unused] : conditions) {
       (void)unused;
-      const char* comp[3] = {"_x", "_y", "_z"};
       for (int k = 0; k < 3; ++k) {
-        const std::string ds = "/series/reaction_" + c + comp[k];
+        const std::string ds =
+            "/series/" + series_names::component(series_names::reaction(c), series_names::kComponents[k]);
         if (!ha.exists(ds))
           throw Error((a / "timeseries.h5").string() + ": no " + ds + " (different boundary conditions?)");
         ra[c][k] = ha.read_double(ds);

@@ -177,7 +177,9 @@ void sync_tree(const fs::path& root) {
 
 }  // namespace
 
-RunOutput::RunOutput(fs::path dir, std::ostream* log)
+RunOutput::RunOutput(fs::path dir, std::ostream* log) : RunOutput(std::move(dir), log, Previous::Discard) {}
+
+RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
     : dir_(std::move(dir)),
       started_(std::chrono::system_clock::now()),
       started_steady_(std::chrono::steady_clock::now()),
@@ -223,10 +225,19 @@ RunOutput::RunOutput(fs::path dir, std::ostream* log)
              << " was left by a run whose process is gone; its partial output is discarded\n";
       }
     }
+    const bool keep_staging = previous == Previous::ResumeInterrupted;
+    if (keep_staging && (!fs::exists(dir_ / kInterrupted) || !fs::is_directory(staging_dir()))) {
+      ::close(lock_fd_);
+      lock_fd_ = -1;
+      throw Error(dir_.string() +
+                  ": --resume: nothing to resume (no INTERRUPTED marker with staged files: the " +
+                  "last run finished, failed, or never started); run without --resume");
+    }
     // The previous run no longer describes this directory: drop its completeness mark first.
     fs::remove(dir_ / kSummary, ec);
     if (ec) throw Error(dir_.string() + ": cannot remove old " + kSummary + ": " + ec.message());
     for (const auto& entry : fs::directory_iterator(dir_)) {
+      if (keep_staging && entry.path().filename() == kStaging) continue;
       fs::remove_all(entry.path(), ec);
       if (ec) throw Error(entry.path().string() + ": cannot remove previous result: " + ec.message());
     }

@@ -81,6 +81,12 @@ class RunOutput {
   /// rather than emptied, and so is a directory another live RunOutput holds (the message names
   /// its process). A stale RUNNING marker (its process is gone) is reported on `log` when given.
   explicit RunOutput(std::filesystem::path dir, std::ostream* log = nullptr);
+  /// What to do with the previous contents: discard them (the constructor above), or, to resume
+  /// an interrupted command, keep its staged files (.incomplete/) so that the finished parts can
+  /// be reused; the INTERRUPTED marker is cleared. Resuming a directory without an INTERRUPTED
+  /// marker and staged files is refused (tmlab::Error: nothing to resume).
+  enum class Previous { Discard, ResumeInterrupted };
+  RunOutput(std::filesystem::path dir, std::ostream* log, Previous previous);
   /// When neither finalize() nor fail() ran: writes FAILED (never throws). Releases the lock.
   ~RunOutput();
   RunOutput(const RunOutput&) = delete;

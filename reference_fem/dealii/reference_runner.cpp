@@ -19,6 +19,7 @@
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/series_names.hpp"
 #include "core/results/series_table.hpp"
 #include "reference_fem/dealii/ida_dae.hpp"
 #include "reference_fem/dealii/solid.hpp"
@@ -425,19 +426,12 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       table.add("newton_iterations", "1", newton_its);
       for (int k = 0; k < solid.n_conditions(); ++k) {
         const std::string& n = solid.condition_name(k);
-        table.add("reaction_" + n + "_x", "N", reac[k][0]);
-        table.add("reaction_" + n + "_y", "N", reac[k][1]);
-        table.add("reaction_" + n + "_z", "N", reac[k][2]);
-        table.add("reaction_" + n + "_norm", "N", reac[k].norm());
+        series_names::add_vector(table, series_names::reaction(n), "N", reac[k][0], reac[k][1], reac[k][2]);
       }
       for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
         const std::size_t i = 3 * static_cast<std::size_t>(probe_nodes[k]);
         const std::string& n = cfg.output.probes[k].name;
-        table.add("probe_" + n + "_x", "m", U[i]);
-        table.add("probe_" + n + "_y", "m", U[i + 1]);
-        table.add("probe_" + n + "_z", "m", U[i + 2]);
-        table.add("probe_" + n + "_norm", "m",
-                  std::sqrt(U[i] * U[i] + U[i + 1] * U[i + 1] + U[i + 2] * U[i + 2]));
+        series_names::add_vector(table, series_names::probe(n), "m", U[i], U[i + 1], U[i + 2]);
       }
       if (!write_fields) return;
       if (root) {
@@ -646,17 +640,14 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
       nlohmann::json reac = nlohmann::json::object();
       for (int k = 0; k < solid.n_conditions(); ++k) {
         const std::string& n = solid.condition_name(k);
-        reac[n] = {table.last("reaction_" + n + "_x"), table.last("reaction_" + n + "_y"),
-                   table.last("reaction_" + n + "_z")};
+        reac[n] = series_names::last_vector(table, series_names::reaction(n));
       }
       summary["final_reactions_N"] = reac;
       nlohmann::json probes = nlohmann::json::object();
       for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
         const std::string& n = cfg.output.probes[k].name;
         probes[n] = {{"node", probe_nodes[k]},
-                     {"displacement_m",
-                      {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"),
-                       table.last("probe_" + n + "_z")}}};
+                     {"displacement_m", series_names::last_vector(table, series_names::probe(n))}};
       }
       summary["probes"] = probes;
       out->finalize(summary);

@@ -11,6 +11,7 @@
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/series_names.hpp"
 #include "core/results/series_table.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
@@ -283,18 +284,13 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       table.add("newton_iterations", "1", newton_its);
       for (std::size_t k = 0; k < conditions.size(); ++k) {
         const Vec3 rk = system.bc().resultant(k, r);
-        table.add("reaction_" + conditions[k].name + "_x", "N", rk.x());
-        table.add("reaction_" + conditions[k].name + "_y", "N", rk.y());
-        table.add("reaction_" + conditions[k].name + "_z", "N", rk.z());
-        table.add("reaction_" + conditions[k].name + "_norm", "N", rk.norm());
+        series_names::add_vector(table, series_names::reaction(conditions[k].name), "N", rk.x(), rk.y(),
+                                 rk.z());
       }
       for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
         const Vec3 up = u.segment<3>(3 * probe_nodes[k]);
         const std::string& n = cfg.output.probes[k].name;
-        table.add("probe_" + n + "_x", "m", up.x());
-        table.add("probe_" + n + "_y", "m", up.y());
-        table.add("probe_" + n + "_z", "m", up.z());
-        table.add("probe_" + n + "_norm", "m", up.norm());
+        series_names::add_vector(table, series_names::probe(n), "m", up.x(), up.y(), up.z());
       }
       if (!write_fields) return;
       disp_h5.append_row("/u", std::vector<double>(u.data(), u.data() + u.size()));
@@ -459,7 +455,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                      {"xlabel", "time [s]"},
                      {"ylabel", "displacement [m]"}});
     nlohmann::json reactions = nlohmann::json::array();
-    for (const auto& c : conditions) reactions.push_back("reaction_" + c.name + "_norm");
+    for (const auto& c : conditions)
+      reactions.push_back(series_names::component(series_names::reaction(c.name), "norm"));
     if (!reactions.empty())
       plots.push_back({{"file", "reaction.png"},
                        {"x", "time"},
@@ -481,7 +478,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                      {"ylabel", "energy [J]"}});
     if (!probe_nodes.empty()) {
       nlohmann::json py = nlohmann::json::array();
-      for (const auto& p : cfg.output.probes) py.push_back("probe_" + p.name + "_norm");
+      for (const auto& p : cfg.output.probes)
+        py.push_back(series_names::component(series_names::probe(p.name), "norm"));
       plots.push_back({{"file", "probes.png"},
                        {"x", "time"},
                        {"y", py},
@@ -529,8 +527,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                               {"run_seconds", wall}};
     nlohmann::json reac = nlohmann::json::object();
     for (const auto& c : conditions)
-      reac[c.name] = {table.last("reaction_" + c.name + "_x"), table.last("reaction_" + c.name + "_y"),
-                      table.last("reaction_" + c.name + "_z")};
+      reac[c.name] = series_names::last_vector(table, series_names::reaction(c.name));
     summary["final_reactions_N"] = reac;
     {
       // Energy balance: work in = stored (+ kinetic) + dissipated.
@@ -552,9 +549,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
       const std::string& n = cfg.output.probes[k].name;
       probes[n] = {{"node", probe_nodes[k]},
-                   {"displacement_m",
-                    {table.last("probe_" + n + "_x"), table.last("probe_" + n + "_y"),
-                     table.last("probe_" + n + "_z")}}};
+                   {"displacement_m", series_names::last_vector(table, series_names::probe(n))}};
     }
     summary["probes"] = probes;
     out.finalize(summary);

@@ -31,6 +31,7 @@
 #ifdef TMLAB_HAVE_REFERENCE
 #include "core/config/case_config.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "core/results/series_names.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
 #include "tensormass/runner/case_runner.hpp"
 #endif
@@ -326,11 +327,14 @@ Measurements simple_shear_neohookean(const CheckContext& ctx) {
   const H5File ts = H5File::open_read(result.dir + "/timeseries.h5");
   auto series = [&](const std::string& name) { return ts.read_double("/series/" + name); };
   const auto time = series("time");
-  const auto top_x = series("reaction_top_x"), top_y = series("reaction_top_y"),
-             top_z = series("reaction_top_z");
+  namespace sn = series_names;
+  const auto top_x = series(sn::component(sn::reaction("top"), "x")),
+             top_y = series(sn::component(sn::reaction("top"), "y")),
+             top_z = series(sn::component(sn::reaction("top"), "z"));
   std::vector<double> right_x(time.size(), 0.0), right_y(time.size(), 0.0);
   for (const auto& name : xmax_layers) {
-    const auto rx = series("reaction_" + name + "_x"), ry = series("reaction_" + name + "_y");
+    const auto rx = series(sn::component(sn::reaction(name), "x")),
+               ry = series(sn::component(sn::reaction(name), "y"));
     for (std::size_t s = 0; s < time.size(); ++s) {
       right_x[s] += rx[s];
       right_y[s] += ry[s];

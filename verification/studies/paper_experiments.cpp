@@ -1,5 +1,7 @@
 #include "verification/studies/paper_experiments.hpp"
 
+#include "core/results/series_names.hpp"
+
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
 
@@ -82,7 +84,7 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
               {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
           run.case_doc["output"]["probes"] = nlohmann::json::array({{{"name", "node"}, {"point", node}}});
           run.x = "time";
-          run.y = "probe_node_z";
+          run.y = series_names::component(series_names::probe("node"), "z");
           run.y_sign = -1e3;
           fig.runs.push_back(run);
         }
@@ -111,7 +113,7 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
         run.case_doc["solver"] = {
             {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
         run.x = "time";
-        run.y = "reaction_push_z";
+        run.y = series_names::component(series_names::reaction("push"), "z");
         run.y_sign = -1.0;
         fig.runs.push_back(run);
       }
@@ -141,9 +143,9 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
              {"function", {{"type", "table"}, {"points", {{0.0, 0.0}, {P / 2, 1.0}, {P, 0.0}}}}}});
         run.case_doc["solver"] = {{"type", "static"}, {"t_end", P}, {"steps", steps}};
         run.case_doc["output"]["probes"] = nlohmann::json::array({{{"name", "node"}, {"point", node}}});
-        run.x = "probe_node_z";
+        run.x = series_names::component(series_names::probe("node"), "z");
         run.x_sign = -1e3;
-        run.y = "reaction_push_z";
+        run.y = series_names::component(series_names::reaction("push"), "z");
         run.y_sign = -1.0;
         fig.runs.push_back(run);
       }

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include <csignal>
+#include <fstream>
 #include <random>
 
 namespace {
@@ -134,6 +135,55 @@ TEST_F(CliResume, ResumeWithoutCheckpointOrWithAnotherSuiteIsRefused) {
                dir_ / "3.log");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("is of a different suite"), std::string::npos) << r.output;
+}
+
+TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
+  // fig7 reduced to two short runs (two schemes, one cycle of 40 steps).
+  auto params =
+      nlohmann::json::parse(slurp(fs::path(TMLAB_SOURCE_DIR) / "cases" / "paper" / "xu2011_liver.json"),
+                            nullptr, true, /*ignore_comments=*/true);
+  params["schemes"] = {"objective", "seed"};
+  params["fig7"]["periods"] = {1.0};
+  params["fig7"]["steps_per_cycle"] = 40;
+  const fs::path pf = dir_ / "params.json";
+  std::ofstream(pf) << params.dump();
+  auto cmd = [&](const fs::path& res) {
+    return std::vector<std::string>{"paper", "fig7", "--params", pf.string(), "--results", res.string()};
+  };
+  const auto full = run_argv(cmd(dir_ / "full"), dir_ / "full.log");
+  ASSERT_EQ(full.status, 0) << full.output;
+  const auto expected = nlohmann::json::parse(slurp(dir_ / "full" / "paper" / "fig7" / "fig7_energy.json"));
+  ASSERT_EQ(expected.size(), 2u);
+
+  const fs::path res = dir_ / "cut", fig = res / "paper" / "fig7";
+  const pid_t pid = spawn(cmd(res), dir_ / "cut.log");
+  // Wait for the first run to finish inside the figure's staging area, then interrupt the second.
+  bool first_done = false;
+  for (int i = 0; i < 3000 && !first_done; ++i) {
+    if (fs::exists(fig / ".incomplete"))
+      for (const auto& e : fs::directory_iterator(fig / ".incomplete"))
+        if (e.is_directory() && fs::exists(e.path() / "summary.json")) first_done = true;
+    if (!first_done) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_TRUE(first_done) << slurp(dir_ / "cut.log");
+  ::kill(pid, SIGINT);
+  const int rc = wait_exit(pid);
+  if (rc == 0) GTEST_SKIP() << "the figure finished before the signal";
+  ASSERT_EQ(rc, 128 + SIGINT) << slurp(dir_ / "cut.log");
+  EXPECT_NE(slurp(fig / "INTERRUPTED").find("--resume"), std::string::npos) << slurp(fig / "INTERRUPTED");
+  EXPECT_FALSE(fs::exists(fig / "fig7.png"));
+
+  std::vector<std::string> args = cmd(res);
+  args.push_back("--resume");
+  const auto resumed = run_argv(args, dir_ / "resumed.log");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("finished before the interruption: reused"), std::string::npos)
+      << resumed.output;
+  EXPECT_EQ(nlohmann::json::parse(slurp(fig / "fig7_energy.json")), expected);
+  EXPECT_TRUE(fs::exists(fig / "summary.json"));
+
+  // Nothing to resume now: refused.
+  EXPECT_EQ(run_argv(args, dir_ / "again.log").status, 1);
 }
 
 }  // namespace

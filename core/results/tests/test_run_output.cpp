@@ -234,6 +234,34 @@ TEST_F(RunOutputTest, InterruptLeavesInterruptedNotFailed) {
   next.finalize();
 }
 
+TEST_F(RunOutputTest, ResumeKeepsTheStagedFilesOfAnInterruptedRun) {
+  const fs::path dir = root_ / "resumable";
+  using Previous = tmlab::RunOutput::Previous;
+  // Nothing to resume: refused, and the directory is not locked afterwards.
+  EXPECT_THROW(tmlab::RunOutput(dir, nullptr, Previous::ResumeInterrupted), tmlab::Error);
+  try {
+    tmlab::RunOutput out(dir);
+    spit(out.file("part-1/summary.json"), "{}");
+    out.abandon(tmlab::Interrupted(2, "SIGINT received"));
+  } catch (const tmlab::Interrupted&) {
+  }
+  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED"));
+  {
+    tmlab::RunOutput resumed(dir, nullptr, Previous::ResumeInterrupted);
+    EXPECT_FALSE(fs::exists(dir / "INTERRUPTED"));
+    EXPECT_TRUE(fs::exists(resumed.file("part-1/summary.json")));  // kept for reuse
+    spit(resumed.file("part-2/summary.json"), "{}");
+    resumed.finalize();
+  }
+  EXPECT_TRUE(fs::exists(dir / "part-1" / "summary.json"));
+  EXPECT_TRUE(fs::exists(dir / "part-2" / "summary.json"));
+  // A finished directory has nothing to resume; a normal run discards everything.
+  EXPECT_THROW(tmlab::RunOutput(dir, nullptr, Previous::ResumeInterrupted), tmlab::Error);
+  tmlab::RunOutput fresh(dir);
+  EXPECT_FALSE(fs::exists(fresh.file("part-1/summary.json")));
+  fresh.finalize();
+}
+
 TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
   const fs::path dir = root_ / "swap";
   {

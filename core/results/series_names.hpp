@@ -1,0 +1,59 @@
+// The result protocol's series names, in one place: every writer (the tensor-mass runner, the
+// deal.II reference) and every reader (tmlab compare, the plots, the studies) builds them here.
+//
+//   time, elastic_energy, max_displacement, min_volume_ratio, newton_iterations, ...  scalars
+//   reaction_<condition>_{x,y,z,norm}   the reaction of a Dirichlet condition, N
+//   probe_<probe>_{x,y,z,norm}          the displacement of a probe's node, m
+//
+// A vector quantity is four series named <base>_x, <base>_y, <base>_z and <base>_norm.
+#pragma once
+
+#include "core/results/series_table.hpp"
+
+#include <array>
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace tmlab::series_names {
+
+/// The component suffixes of a vector quantity, in order.
+inline constexpr std::array<const char*, 4> kComponents{"x", "y", "z", "norm"};
+
+/// The base name of the reaction of Dirichlet condition `condition`: "reaction_<condition>".
+inline std::string reaction(const std::string& condition) { return "reaction_" + condition; }
+/// The base name of the displacement of probe `probe`: "probe_<probe>".
+inline std::string probe(const std::string& probe) { return "probe_" + probe; }
+/// One component of a vector quantity: component(reaction("base"), "z") = "reaction_base_z".
+inline std::string component(const std::string& base, const std::string& suffix) {
+  return base + "_" + suffix;
+}
+
+/// The conditions whose reactions a list of series names holds (those with a reaction_<c>_x series),
+/// in the order given.
+inline std::vector<std::string> reaction_conditions(const std::vector<std::string>& names) {
+  const std::string pre = "reaction_", suf = "_x";
+  std::vector<std::string> out;
+  for (const auto& name : names)
+    if (name.rfind(pre, 0) == 0 && name.size() > pre.size() + suf.size() &&
+        name.compare(name.size() - suf.size(), suf.size(), suf) == 0)
+      out.push_back(name.substr(pre.size(), name.size() - pre.size() - suf.size()));
+  return out;
+}
+
+/// Appends the four series of a vector quantity (x, y, z and its norm) to the table.
+inline void add_vector(SeriesTable& table, const std::string& base, const std::string& unit, double x,
+                       double y, double z) {
+  table.add(component(base, "x"), unit, x);
+  table.add(component(base, "y"), unit, y);
+  table.add(component(base, "z"), unit, z);
+  table.add(component(base, "norm"), unit, std::sqrt(x * x + y * y + z * z));
+}
+
+/// The last (x, y, z) of a vector quantity.
+inline std::array<double, 3> last_vector(const SeriesTable& table, const std::string& base) {
+  return {table.last(component(base, "x")), table.last(component(base, "y")),
+          table.last(component(base, "z"))};
+}
+
+}  // namespace tmlab::series_names
