@@ -34,7 +34,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   if (time_integration == "ida" && against != "reference")
     throw UsageError("--time-integration ida needs --against reference");
 
-  tm::RunOptions opt;
+  tmlab::RunOptions opt;
   opt.tmlab_root = tmlab_root();
   opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
   opt.command_line = split_words(command_line);
@@ -43,8 +43,8 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   CaseConfig tm_cfg = cfg;
   tm_cfg.model = "tensor_mass";
   std::cerr << "tmlab compare: tensor-mass run\n";
-  const tm::RunResult a = tm::run_case(tm_cfg, opt);
-  tm::RunResult b;
+  const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
+  tmlab::RunResult b;
   if (against == "reference") {
     std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
     b = run_model(cfg, opt, "reference", degree, time_integration);

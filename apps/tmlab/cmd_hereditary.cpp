@@ -4,7 +4,9 @@
 // Writes <results>/hereditary/: hereditary.h5, hereditary.md (tables), PNG plots, manifest.json and
 // summary.json last (RunOutput protocol).
 #include "cli_args.hpp"
+
 #include "commands.hpp"
+#include "core/base/format.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
@@ -34,17 +36,10 @@ constexpr Integ kSchemes[] = {Integ::Midpoint, Integ::ExactLinear, Integ::Backwa
 std::string sci(double v, int digits = 2) {
   if (std::isnan(v)) return "-";
   if (std::isinf(v)) return v > 0 ? "never" : "-inf";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*e", digits, v);
-  return b;
+  return scientific(v, digits);
 }
 
-std::string fixed(double v, int digits = 2) {
-  if (std::isnan(v)) return "-";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.*f", digits, v);
-  return b;
-}
+std::string fixed(double v, int digits = 2) { return std::isnan(v) ? "-" : fixed_point(v, digits); }
 
 /// JSON cannot hold inf/NaN: null instead.
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }

@@ -55,12 +55,12 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
                 << "\n";
       const CaseConfig cfg =
           parse_case(run.case_doc, params_file + " (" + fig.name + "/" + run.id + ")", {tmlab_root()});
-      tm::RunOptions opt;
+      tmlab::RunOptions opt;
       opt.tmlab_root = tmlab_root();
       opt.results_root = out.staging_dir().string();
       opt.command_line = split_words(command_line);
       opt.plots = false;
-      tm::RunResult r;
+      tmlab::RunResult r;
       const fs::path done = out.staging_dir() / cfg.name / RunOutput::kSummary;
       if (resume && fs::exists(done)) {
         std::ifstream in(done);

@@ -20,8 +20,8 @@ namespace tmlab::cli {
 
 namespace fs = std::filesystem;
 
-tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model,
-                        int degree, const std::string& time_integration) {
+tmlab::RunResult run_model(const CaseConfig& cfg, const tmlab::RunOptions& opt, const std::string& model,
+                           int degree, const std::string& time_integration) {
   if (model == "reference") {
 #ifdef TMLAB_HAVE_REFERENCE
     ref::ReferenceOptions ro;
@@ -41,7 +41,7 @@ tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const 
 
 namespace {
 
-void print_summary(const tm::RunResult& r, bool plots) {
+void print_summary(const tmlab::RunResult& r, bool plots) {
   const auto& s = r.summary;
   std::cout << "case        " << s.value("case", "") << " (" << s.value("model", "") << ")\n"
             << "mesh        " << s["mesh"]["points"] << " nodes, " << s["mesh"]["tets"] << " tets, volume "
@@ -65,7 +65,7 @@ void print_summary(const tm::RunResult& r, bool plots) {
 }
 
 int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& command_line) {
-  tm::RunOptions opt;
+  tmlab::RunOptions opt;
   opt.tmlab_root = tmlab_root();
   opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
   opt.command_line = split_words(command_line);
@@ -87,7 +87,7 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   if (time_integration == "ida" && model != "reference")
     throw UsageError("--time-integration ida needs --model reference");
   std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
-  const tm::RunResult r = run_model(cfg, opt, model, degree, time_integration);
+  const tmlab::RunResult r = run_model(cfg, opt, model, degree, time_integration);
   print_summary(r, opt.plots);
   return 0;
 }

@@ -21,8 +21,8 @@ std::string tmlab_root();
 std::string resolve_case(const std::string& arg);
 /// Runs `cfg` with `model` (tensor_mass, tl_oracle or reference; degree and time integration for
 /// the reference).
-tm::RunResult run_model(const CaseConfig& cfg, const tm::RunOptions& opt, const std::string& model,
-                        int degree, const std::string& time_integration = "fixed_step");
+tmlab::RunResult run_model(const CaseConfig& cfg, const tmlab::RunOptions& opt, const std::string& model,
+                           int degree, const std::string& time_integration = "fixed_step");
 
 int cmd_demo(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line);

@@ -29,7 +29,7 @@ int main(int argc, char** argv) {
   tmlab::ref::MpiSession mpi(argc, argv);
   std::string case_file;
   tmlab::ref::ReferenceOptions ro;
-  tmlab::tm::RunOptions opt;
+  tmlab::RunOptions opt;
   opt.results_root = "results";
   opt.tmlab_root = TMLAB_SOURCE_DIR;
   opt.command_line = tmlab::command_line(argc, argv);

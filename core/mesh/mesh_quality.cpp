@@ -1,6 +1,8 @@
 // Mesh geometry and quality report.
 #include "core/mesh/mesh_quality.hpp"
 
+#include "core/base/format.hpp"
+
 #include "core/mesh/mesh_ops.hpp"
 
 #include <Eigen/Geometry>
@@ -124,11 +126,7 @@ MeshReport analyse_mesh(const Mesh& mesh) {
 
 namespace {
 
-std::string fmt(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string fmt(double v) { return significant(v, 6); }
 
 std::string vec(const Vec3& v) { return "(" + fmt(v.x()) + ", " + fmt(v.y()) + ", " + fmt(v.z()) + ")"; }
 

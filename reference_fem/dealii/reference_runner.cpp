@@ -14,6 +14,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
+#include "core/config/dirichlet_conditions.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
@@ -99,8 +100,7 @@ std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions&
   return s;
 }
 
-tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& opt,
-                                 const ReferenceOptions& ro) {
+RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const ReferenceOptions& ro) {
   {
     int initialised = 0;
     MPI_Initialized(&initialised);
@@ -208,30 +208,21 @@ tm::RunResult run_reference_case(const CaseConfig& cfg, const tm::RunOptions& op
   const unsigned n_local = fe.n_dofs_per_cell();
   std::vector<global_dof_index> dofs(n_local);
 
-  // ---- Dirichlet conditions: node-level ownership and conflicts exactly as tmlab::tm::DirichletSet. ----
-  std::vector<int> owner(3 * static_cast<std::size_t>(n_nodes), -1);
+  // ---- Dirichlet conditions: node-level ownership and conflicts by the rule both models share
+  // (core/config/dirichlet_conditions.hpp); DoFs on edges and faces (P2, Q2) follow the condition
+  // that selects all of their entity's vertices. ----
+  std::vector<DirichletCondition> conditions;
   std::vector<std::vector<char>> selected(cfg.boundary.size(), std::vector<char>(n_nodes, 0));
   for (std::size_t k = 0; k < cfg.boundary.size(); ++k) {
     const auto& b = cfg.boundary[k];
-    const auto sel = select_nodes(nodes, b.nodes);
-    if (sel.empty())
+    DirichletCondition c{b.name, select_nodes(nodes, b.nodes), b.components, b.value, b.function};
+    if (c.nodes.empty())
       throw Error(cfg.file + ": boundary[" + std::to_string(k) + "] '" + b.name + "' selects no nodes");
-    for (Index n : sel) {
-      selected[k][n] = 1;
-      for (int c = 0; c < 3; ++c) {
-        if (!b.components[c]) continue;
-        int& o = owner[3 * n + c];
-        if (o >= 0 && o != static_cast<int>(k)) {
-          if (cfg.boundary[o].value[c] == 0.0 && b.value[c] == 0.0) continue;
-          throw Error("boundary conditions '" + cfg.boundary[o].name + "' and '" + b.name +
-                      "' both prescribe component " + std::to_string(c) + " of node " + std::to_string(n) +
-                      " with different values");
-        }
-        o = static_cast<int>(k);
-      }
-    }
+    for (Index n : c.nodes) selected[k][n] = 1;
+    conditions.push_back(std::move(c));
     solid.add_condition(b.name, b.function);
   }
+  const std::vector<int> owner = dirichlet_dof_owners(n_nodes, conditions);
   // Per local DoF: component and the cell vertices of its entity (the same for every cell).
   std::vector<unsigned> comp(n_local);
   for (unsigned i = 0; i < n_local; ++i) comp[i] = fe.system_to_component_index(i).first;

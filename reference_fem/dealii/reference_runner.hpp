@@ -7,7 +7,7 @@
 #pragma once
 
 #include "core/config/case_config.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "core/results/run_options.hpp"
 
 #include <array>
 #include <memory>
@@ -50,8 +50,8 @@ struct ReferenceOptions {
 /// files and every rank returns the same summary. Input errors throw tmlab::Error.
 /// MPI must be initialised by the caller: create an MpiSession in main() (tmlab_reference, the
 /// tmlab CLI and the reference tests do); otherwise a tmlab::Error says so.
-tmlab::tm::RunResult run_reference_case(const tmlab::CaseConfig& config, const tmlab::tm::RunOptions& options,
-                                        const ReferenceOptions& reference = {});
+tmlab::RunResult run_reference_case(const tmlab::CaseConfig& config, const tmlab::RunOptions& options,
+                                    const ReferenceOptions& reference = {});
 
 /// The result directory name run_reference_case() uses.
 std::string reference_result_name(const tmlab::CaseConfig& config, const ReferenceOptions& reference);

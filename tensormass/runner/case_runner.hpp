@@ -4,6 +4,7 @@
 #pragma once
 
 #include "core/config/case_config.hpp"
+#include "core/results/run_options.hpp"
 #include "tensormass/solvers/newton.hpp"
 
 #include <nlohmann/json.hpp>
@@ -14,18 +15,8 @@
 
 namespace tmlab::tm {
 
-struct RunOptions {
-  std::string results_root = "results";  ///< results go to <results_root>/<case name>
-  std::string tmlab_root = ".";          ///< for the plotting script
-  std::vector<std::string> command_line;
-  bool plots = true;
-  std::ostream* log = nullptr;  ///< progress and a short report (nullptr: silent)
-};
-
-struct RunResult {
-  std::string dir;
-  nlohmann::json summary;
-};
+using tmlab::RunOptions;  // core/results/run_options.hpp: shared with the deal.II reference
+using tmlab::RunResult;
 
 /// Runs the case. Bad input (mesh, parameters, empty selections), an inverted element, an unstable
 /// explicit step or a failed Newton solve throw tmlab::Error; the result directory then holds a

@@ -5,6 +5,7 @@
 // conditions with different values is an error naming both.
 #pragma once
 
+#include "core/config/dirichlet_conditions.hpp"
 #include "core/config/time_function.hpp"
 #include "core/mesh/mesh.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
@@ -15,13 +16,7 @@
 
 namespace tmlab::tm {
 
-struct DirichletCondition {
-  std::string name;                                  ///< for messages and output ("fixed", "probe", ...)
-  std::vector<Index> nodes;                          ///< 0-based node indices
-  std::array<bool, 3> components{true, true, true};  ///< which of x, y, z are prescribed
-  Vec3 value = Vec3::Zero();                         ///< displacement at f(t) = 1, metres
-  TimeFunction function = TimeFunction::constant(1.0);
-};
+using tmlab::DirichletCondition;  // core/config/dirichlet_conditions.hpp (shared with the reference)
 
 class DirichletSet {
  public:

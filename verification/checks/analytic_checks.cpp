@@ -12,6 +12,8 @@
 // cases' verify.json (verification/cases/analytic-*/).
 #include "verification/checks/check_support.hpp"
 
+#include "core/base/format.hpp"
+
 #include "core/base/error.hpp"
 #include "core/base/stopwatch.hpp"
 #include "core/mesh/mesh_generator.hpp"
@@ -58,11 +60,7 @@ using tm::VecX;
 
 constexpr double kPi = 3.14159265358979323846;
 
-std::string fmt(double v, int digits = 3) {
-  std::ostringstream s;
-  s << std::scientific << std::setprecision(digits) << v;
-  return s.str();
-}
+std::string fmt(double v, int digits = 3) { return scientific(v, digits); }
 
 /// Reads a list of numbers (non-empty, each finite and > 0 unless allow_nonpositive).
 std::vector<double> positive_list(ConfigReader& p, const std::string& key) {
@@ -314,7 +312,7 @@ Measurements simple_shear_neohookean(const CheckContext& ctx) {
       {"solver", {{"type", "static"}, {"steps", steps}, {"newton", {{"rtol", rtol}}}}},
       {"output", {{"vtu", false}, {"xdmf", false}, {"plots", false}}}};
   const CaseConfig config = parse_case(doc, ctx.vcase.spec_file().string(), {ctx.work_dir.string()});
-  tm::RunOptions ro;
+  tmlab::RunOptions ro;
   ro.results_root = (ctx.work_dir / "results").string();
   ro.tmlab_root = ctx.source_root.string();
   ro.plots = false;

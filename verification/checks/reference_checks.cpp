@@ -20,6 +20,8 @@
 // written into ctx.work_dir. Measurements only; the tolerances are in the cases' verify.json.
 #include "verification/checks/builtin_checks.hpp"
 
+#include "core/base/format.hpp"
+
 #ifdef TMLAB_HAVE_REFERENCE
 #include "verification/checks/check_support.hpp"
 #include "verification/checks/elastica.hpp"
@@ -53,11 +55,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string fmt(double v, int digits = 3) {
-  std::ostringstream s;
-  s << std::scientific << std::setprecision(digits) << v;
-  return s.str();
-}
+std::string fmt(double v, int digits = 3) { return scientific(v, digits); }
 
 /// A number with up to 6 significant digits and no trailing zeros ("0.499", "0.3"), for names.
 std::string short_number(double v) {
@@ -74,8 +72,8 @@ std::string seconds_text(double seconds) {
 }
 std::string seconds_text(std::chrono::steady_clock::time_point t0) { return seconds_text(seconds_since(t0)); }
 
-tm::RunOptions run_options(const CheckContext& ctx) {
-  tm::RunOptions o;
+tmlab::RunOptions run_options(const CheckContext& ctx) {
+  tmlab::RunOptions o;
   o.results_root = (ctx.work_dir / "runs").string();
   o.tmlab_root = ctx.source_root.string();
   o.plots = false;
@@ -90,15 +88,15 @@ void quiet_output(CaseConfig& c) {
 }
 
 /// The tensor-mass run of a case (model forced to tensor_mass).
-tm::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
+tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
   c.model = "tensor_mass";
   return tm::run_case(c, run_options(ctx));
 }
 
 /// The deal.II run of a case: serial (the harness may run under mpirun; the comparisons are serial
 /// runs), Newton tolerance of the case, result directory <case><suffix>.
-tm::RunResult run_reference(const CheckContext& ctx, const CaseConfig& c, int degree,
-                            const std::string& solver, const std::string& suffix) {
+tmlab::RunResult run_reference(const CheckContext& ctx, const CaseConfig& c, int degree,
+                               const std::string& solver, const std::string& suffix) {
   ref::ReferenceOptions o;
   o.degree = degree;
   o.linear_solver = solver;
@@ -142,10 +140,10 @@ Measurements same_mesh(const CheckContext& ctx) {
     CaseConfig c = tmlab::load_case(file.string(), ctx.source_root.string());
     quiet_output(c);
     const auto t0 = std::chrono::steady_clock::now();
-    const tm::RunResult a = run_tensor_mass(ctx, c);
+    const tmlab::RunResult a = run_tensor_mass(ctx, c);
     const double t_tm = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    const tm::RunResult b = run_reference(ctx, c, 1, "direct", "-reference");
+    const tmlab::RunResult b = run_reference(ctx, c, 1, "direct", "-reference");
     const double t_ref = seconds_since(t1);
     const nlohmann::json cmp = compare_results(a.dir, b.dir);
     const double du = cmp.at("rel_diff_displacement").get<double>();
@@ -454,7 +452,7 @@ Measurements elastica(const CheckContext& ctx) {
 
   // The fast model: P1 tets of the box (6 per cell).
   const auto t0 = std::chrono::steady_clock::now();
-  const tm::RunResult fast = run_tensor_mass(ctx, config("-p1"));
+  const tmlab::RunResult fast = run_tensor_mass(ctx, config("-p1"));
   const Vec3 u1 = tip_displacement(fast.summary);
   const auto& fs = fast.summary.at("solver");
   const int steps = fs.at("load_steps").get<int>();
@@ -485,7 +483,7 @@ Measurements elastica(const CheckContext& ctx) {
     o.newton_rtol = 1e-10;
     o.serial = true;
     o.name_suffix = "-q2-" + std::to_string(n);
-    const tm::RunResult r = ref::run_reference_case(config(""), run_options(ctx), o);
+    const tmlab::RunResult r = ref::run_reference_case(config(""), run_options(ctx), o);
     const Vec3 u = tip_displacement(r.summary);
     const auto e = errors(u);
     const auto& rs = r.summary.at("solver");

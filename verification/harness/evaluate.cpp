@@ -1,5 +1,7 @@
 #include "verification/harness/evaluate.hpp"
 
+#include "core/base/format.hpp"
+
 #include "verification/harness/convergence.hpp"
 
 #include "core/base/error.hpp"
@@ -25,11 +27,7 @@ const char* to_string(Status s) {
 
 namespace {
 
-std::string num(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string num(double v) { return significant(v, 3); }
 
 }  // namespace
 

@@ -1,5 +1,7 @@
 #include "verification/harness/report.hpp"
 
+#include "core/base/format.hpp"
+
 #include "verification/harness/convergence.hpp"
 
 #include "core/base/error.hpp"
@@ -22,26 +24,12 @@ namespace tmlab::verify {
 
 namespace {
 
-std::string num(double v) {
-  if (std::isnan(v)) return "n/a";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.3g", v);
-  return buf;
-}
+std::string num(double v) { return std::isnan(v) ? "n/a" : significant(v, 3); }
 
 /// Orders with two decimals (2.00, 1.97): a significant-digit format would print 2.0 as "2".
-std::string order_text(double v) {
-  if (std::isnan(v)) return "n/a";
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.2f", v);
-  return buf;
-}
+std::string order_text(double v) { return std::isnan(v) ? "n/a" : fixed_point(v, 2); }
 
-std::string seconds_text(double s) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, s < 10 ? "%.2f s" : "%.0f s", s);
-  return buf;
-}
+std::string seconds_text(double s) { return fixed_point(s, s < 10 ? 2 : 0) + " s"; }
 
 nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 

@@ -1,5 +1,7 @@
 #include "verification/studies/hereditary_study.hpp"
 
+#include "core/base/format.hpp"
+
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
 #include "core/mesh/mesh_ops.hpp"
@@ -26,11 +28,7 @@ namespace {
 using Integ = ViscoelasticOptions::Integration;
 constexpr double kPi = 3.14159265358979323846;
 
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
+std::string fmt(double v) { return significant(v, 6); }
 
 /// p(eps) = (1 + eps)(eps + eps^2/2): 1-D St VK nominal stress / E_inf, and its derivative.
 double stvk_stress(double e) { return (1.0 + e) * (e + 0.5 * e * e); }

@@ -1,6 +1,8 @@
 // Work-precision study (work_precision.hpp).
 #include "verification/studies/work_precision.hpp"
 
+#include "core/base/format.hpp"
+
 #include "core/base/error.hpp"
 #include "core/base/stopwatch.hpp"
 #include "core/config/config_reader.hpp"
@@ -256,19 +258,15 @@ double error_against(const std::vector<VecX>& us, const std::vector<VecX>& ref, 
   return e / scale;
 }
 
-std::string fmt(double v, const char* f = "%.3g") {
-  char b[64];
-  std::snprintf(b, sizeof b, f, v);
-  return b;
-}
+std::string fmt(double v) { return significant(v, 3); }
 
 void log_point(std::ostream* log, const std::string& problem, const WorkPrecisionPoint& p) {
   if (!log) return;
   *log << "[workprecision] " << problem << ": " << p.method << ", " << p.parameter << " "
-       << fmt(p.value, "%.3e") << ": ";
+       << scientific(p.value, 3) << ": ";
   if (p.failure.empty())
-    *log << "error " << fmt(p.error, "%.2e") << ", cpu " << fmt(p.cpu_seconds, "%.3g") << " s, " << p.steps
-         << " steps\n";
+    *log << "error " << scientific(p.error, 2) << ", cpu " << significant(p.cpu_seconds, 3) << " s, "
+         << p.steps << " steps\n";
   else
     *log << "FAILED (" << p.failure << ")\n";
   log->flush();
@@ -317,7 +315,7 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
     }
     if (opt.log)
       *opt.log << "[workprecision] " << name << ": " << s.description << "; ODE size " << P.ode_size
-               << ", explicit critical step " << fmt(P.dt_critical, "%.3e") << " s\n";
+               << ", explicit critical step " << scientific(P.dt_critical, 3) << " s\n";
 
     // Reference: CVODE BDF + preconditioned SPGMR at reference_rtol.
     std::vector<VecX> ref, us;
@@ -330,7 +328,7 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
     if (opt.log)
       *opt.log << "[workprecision] " << name << ": reference " << P.reference.method << " rtol "
                << fmt(ref_rtol) << ": " << P.reference.steps << " steps, cpu "
-               << fmt(P.reference.cpu_seconds, "%.2f") << " s, max |u| " << fmt(P.max_displacement * 1e3)
+               << fixed_point(P.reference.cpu_seconds, 2) << " s, max |u| " << fmt(P.max_displacement * 1e3)
                << " mm\n";
 
     auto record = [&](const std::function<WorkPrecisionPoint()>& run, const std::string& method,
@@ -466,21 +464,21 @@ std::string work_precision_table(const std::vector<WorkPrecisionProblem>& proble
   for (const WorkPrecisionProblem& P : problems) {
     os << "### " << P.name << "\n\n"
        << P.description << ". ODE size " << P.ode_size << ", explicit critical step "
-       << fmt(P.dt_critical, "%.3e") << " s, max |u_ref| " << fmt(P.max_displacement * 1e3)
+       << scientific(P.dt_critical, 3) << " s, max |u_ref| " << fmt(P.max_displacement * 1e3)
        << " mm. Reference: " << P.reference.method << " at rtol " << fmt(P.reference.value) << " ("
        << P.reference.steps << " steps, " << P.reference.newton_iterations << " Newton, "
-       << P.reference.linear_iterations << " linear iterations, " << fmt(P.reference.cpu_seconds, "%.2f")
+       << P.reference.linear_iterations << " linear iterations, " << fixed_point(P.reference.cpu_seconds, 2)
        << " s CPU).\n\n"
        << "| method | dt [s] / rtol | error | CPU [s] | steps | f evals | Newton | linear | prec setups |\n"
        << "|---|---|---|---|---|---|---|---|---|\n";
     for (const WorkPrecisionPoint& p : P.points) {
-      os << "| " << p.method << " | " << (p.parameter == "dt" ? fmt(p.value, "%.3e") : fmt(p.value, "%.0e"))
-         << " | ";
+      os << "| " << p.method << " | "
+         << (p.parameter == "dt" ? scientific(p.value, 3) : scientific(p.value, 0)) << " | ";
       if (!p.failure.empty()) {
-        os << "failed | " << fmt(p.cpu_seconds, "%.3g") << " | | | | | |\n";
+        os << "failed | " << significant(p.cpu_seconds, 3) << " | | | | | |\n";
         continue;
       }
-      os << fmt(p.error, "%.2e") << " | " << fmt(p.cpu_seconds, "%.3g") << " | " << p.steps << " | "
+      os << scientific(p.error, 2) << " | " << significant(p.cpu_seconds, 3) << " | " << p.steps << " | "
          << p.rhs_evals << " | " << p.newton_iterations << " | " << p.linear_iterations << " | "
          << p.preconditioner_setups << " |\n";
     }

@@ -79,8 +79,8 @@ class ReferenceIdaTest : public ::testing::Test {
   CaseConfig config(const nlohmann::json& j) const {
     return parse_case(j, (dir_ / "case.json").string(), {dir_.string(), TMLAB_SOURCE_DIR});
   }
-  tm::RunResult run(const nlohmann::json& j, const ReferenceOptions& ro) const {
-    tm::RunOptions o;
+  tmlab::RunResult run(const nlohmann::json& j, const ReferenceOptions& ro) const {
+    tmlab::RunOptions o;
     o.results_root = (dir_ / "results").string();
     o.plots = false;
     return run_reference_case(config(j), o, ro);
@@ -316,7 +316,7 @@ TEST_F(ReferenceIdaTest, SlowLiverFixedStepAgainstIda) {
       load_case(std::string(TMLAB_SOURCE_DIR) + "/cases/liver-quasistatic-visco.json", TMLAB_SOURCE_DIR);
   c.output.every = 1;
   c.output.vtu = false;
-  tm::RunOptions o;
+  tmlab::RunOptions o;
   o.results_root = (dir_ / "results").string();
   o.plots = false;
   auto run_liver = [&](const ReferenceOptions& ro, const std::string& suffix) {
@@ -329,7 +329,7 @@ TEST_F(ReferenceIdaTest, SlowLiverFixedStepAgainstIda) {
   const auto fine = run_liver(ida(1e-8), "-ida8");
   const auto ref = frames(fine.dir);
   const double e_fixed = max_rel_diff(frames(fixed.dir), ref), e_ida = max_rel_diff(frames(coarse.dir), ref);
-  auto probe = [](const tm::RunResult& r) {
+  auto probe = [](const tmlab::RunResult& r) {
     return H5File::open_read(r.dir + "/timeseries.h5").read_double("/series/reaction_push_z");
   };
   const auto pf = probe(fixed), pc = probe(coarse), pr = probe(fine);

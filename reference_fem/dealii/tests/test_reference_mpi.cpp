@@ -55,7 +55,7 @@ double parallel_vs_serial(const CaseConfig& cfg, ReferenceOptions parallel, Refe
                           const std::string& test) {
   EXPECT_EQ(MpiSession::size(), 2) << "run under mpirun -np 2";
   const fs::path dir = shared_dir(test);
-  tm::RunOptions o;
+  tmlab::RunOptions o;
   o.results_root = (dir / "results").string();
   o.plots = false;
   parallel.name_suffix = "-np" + std::to_string(MpiSession::size());
@@ -118,7 +118,7 @@ TEST(ReferenceMpi, ViscoelasticCubeReproducesSerial) {
 
 TEST(ReferenceMpi, IdaTimeIntegrationRefusesTwoRanksAndRunsWithTheSerialOption) {
   const fs::path dir = shared_dir("ida");
-  tm::RunOptions o;
+  tmlab::RunOptions o;
   o.results_root = (dir / "results").string();
   o.plots = false;
   ReferenceOptions ida;

@@ -37,14 +37,14 @@ class ReferenceRunnerTest : public ::testing::Test {
   CaseConfig config(const nlohmann::json& j) const {
     return parse_case(j, (dir_ / "case.json").string(), {dir_.string(), TMLAB_SOURCE_DIR});
   }
-  tm::RunOptions options() const {
-    tm::RunOptions o;
+  tmlab::RunOptions options() const {
+    tmlab::RunOptions o;
     o.results_root = (dir_ / "results").string();
     o.plots = false;
     return o;
   }
-  tm::RunResult run_tm(const nlohmann::json& j) const { return tm::run_case(config(j), options()); }
-  tm::RunResult run_ref(const nlohmann::json& j, const ReferenceOptions& ro = {}) const {
+  tmlab::RunResult run_tm(const nlohmann::json& j) const { return tm::run_case(config(j), options()); }
+  tmlab::RunResult run_ref(const nlohmann::json& j, const ReferenceOptions& ro = {}) const {
     return run_reference_case(config(j), options(), ro);
   }
   static std::vector<double> displacements(const std::string& dir, H5File::Dims* dims = nullptr) {

@@ -1,0 +1,15 @@
+// Number formatting for messages, logs and reports: one implementation of each style.
+#pragma once
+
+#include <string>
+
+namespace tmlab {
+
+/// printf "%.<digits>g": significant digits, no trailing zeros ("0.499", "1e-09").
+std::string significant(double v, int digits = 3);
+/// printf "%.<digits>e": scientific ("3.200e-09").
+std::string scientific(double v, int digits = 3);
+/// printf "%.<digits>f": fixed decimals ("1.97").
+std::string fixed_point(double v, int digits = 2);
+
+}  // namespace tmlab
