@@ -23,6 +23,27 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
   }
   for (Index d : bc.dofs()) b[d] = du_c[d];
 
+  last_iterations_ = 0;
+  if (kind_ == Kind::ConjugateGradient) {
+    if (!symmetric)
+      throw Error(
+          "the conjugate-gradient linear solver needs a symmetric tangent (follower pressure is not): "
+          "use the direct solver");
+    // The constrained rows and columns are identity rows: A stays symmetric positive definite.
+    Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg;
+    cg.setTolerance(cg_rtol_);
+    cg.setMaxIterations(static_cast<Eigen::Index>(std::max<Eigen::Index>(1000, 4 * A_.rows())));
+    cg.compute(A_);
+    if (cg.info() != Eigen::Success)
+      throw Error("incomplete Cholesky preconditioner failed (tangent not positive definite?)");
+    du = cg.solve(b);
+    last_iterations_ = static_cast<int>(cg.iterations());
+    if (cg.info() != Eigen::Success)
+      throw Error("conjugate gradients did not reach |r| <= " + std::to_string(cg_rtol_) + " |b| in " +
+                  std::to_string(cg.iterations()) + " iterations (error " + std::to_string(cg.error()) + ")");
+    if (!du.allFinite()) throw Error("conjugate gradients produced non-finite values");
+    return;
+  }
   const bool reanalyse = analysed_nnz_ != A_.nonZeros() || analysed_symmetric_ != symmetric;
   if (symmetric) {
     if (reanalyse) ldlt_.analyzePattern(A_);

@@ -28,6 +28,7 @@
 #include "tensormass/kernels/elastic_model.hpp"
 #include "tensormass/system/dirichlet.hpp"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 
@@ -85,15 +86,28 @@ struct NewtonResult {
   std::vector<double> alphas;   ///< accepted step length per iteration
 };
 
-/// Solves J du = rhs on the free DOFs with du prescribed on the constrained ones; reuses the
-/// symbolic factorisation while the sparsity pattern is unchanged.
+/// Solves J du = rhs on the free DOFs with du prescribed on the constrained ones. Direct (the
+/// default): sparse LDL^T (LU for non-symmetric tangents), reusing the symbolic factorisation while
+/// the sparsity pattern is unchanged. Conjugate gradients: incomplete-Cholesky preconditioned CG to
+/// |r| <= cg_rtol |b|, for symmetric tangents too large to factorise (LDL^T fill-in grows fast in
+/// 3-D beyond ~2e4 DOFs); inexact Newton: Newton's own test decides convergence.
 class ConstrainedLinearSolver {
  public:
-  /// Throws tmlab::Error when the factorisation fails (singular: e.g. an unconstrained body).
+  enum class Kind { Direct, ConjugateGradient };
+  ConstrainedLinearSolver() = default;
+  explicit ConstrainedLinearSolver(Kind kind, double cg_rtol = 1e-12) : kind_(kind), cg_rtol_(cg_rtol) {}
+
+  /// Throws tmlab::Error when the factorisation fails (singular: e.g. an unconstrained body), when
+  /// CG does not converge, or when CG is asked to solve a non-symmetric system.
   void solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c, bool symmetric,
              VecX& du);
+  /// CG iterations of the last solve (0 for the direct solver).
+  int last_iterations() const { return last_iterations_; }
 
  private:
+  Kind kind_ = Kind::Direct;
+  double cg_rtol_ = 1e-12;
+  int last_iterations_ = 0;
   SpMat A_;
   Eigen::SimplicialLDLT<SpMat> ldlt_;
   Eigen::SparseLU<SpMat> lu_;

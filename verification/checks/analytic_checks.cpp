@@ -859,51 +859,46 @@ ProfileErrors profile_errors(const HertzResult& h, double a, double c) {
   return e;
 }
 
-/// Static equilibrium f_int(u) = f_ext of an elastic model with homogeneous Dirichlet DOFs, by Newton
-/// with the model's tangent and an incomplete-Cholesky preconditioned conjugate gradient on the free
-/// DOFs (the StaticSolver's sparse LDL^T fills in too much beyond ~2e4 DOFs in 3D). Returns the
-/// relative free residual reached.
-double newton_cg(const tm::ElasticModel& model, const std::vector<char>& constrained, const VecX& f_ext,
-                 double rtol, VecX& u, std::ostream& log) {
-  const Index ndof = model.num_dofs();
-  std::vector<Index> free_of(ndof, -1), dof_of;
-  for (Index d = 0; d < ndof; ++d)
-    if (!constrained[d]) {
-      free_of[d] = static_cast<Index>(dof_of.size());
-      dof_of.push_back(d);
-    }
-  const Index nf = static_cast<Index>(dof_of.size());
-  const double scale = f_ext.norm();
-  VecX fi, r(nf);
-  tm::SpMat K;
-  double rel = 0.0;
-  for (int it = 0; it < 20; ++it) {
-    model.internal_force(u, fi);
-    for (Index i = 0; i < nf; ++i) r[i] = f_ext[dof_of[i]] - fi[dof_of[i]];
-    rel = r.norm() / scale;
-    if (rel <= rtol) return rel;
-    model.tangent(u, K);
-    std::vector<Eigen::Triplet<double>> trip;
-    trip.reserve(static_cast<std::size_t>(K.nonZeros()));
-    for (Eigen::Index c = 0; c < K.outerSize(); ++c) {
-      if (free_of[c] < 0) continue;
-      for (tm::SpMat::InnerIterator itk(K, c); itk; ++itk)
-        if (free_of[itk.row()] >= 0) trip.emplace_back(free_of[itk.row()], free_of[c], itk.value());
-    }
-    tm::SpMat Kff(nf, nf);
-    Kff.setFromTriplets(trip.begin(), trip.end());
-    Eigen::ConjugateGradient<tm::SpMat, Eigen::Lower | Eigen::Upper, Eigen::IncompleteCholesky<double>> cg;
-    cg.setTolerance(0.1 * rtol);
-    cg.setMaxIterations(20000);
-    cg.compute(Kff);
-    if (cg.info() != Eigen::Success) throw Error("hertz: incomplete Cholesky preconditioner failed");
-    const VecX du = cg.solve(r);
-    log << "    Newton " << it << ": |R|/|f| = " << fmt(rel, 2) << ", CG " << cg.iterations()
-        << " iterations\n";
-    for (Index i = 0; i < nf; ++i) u[dof_of[i]] += du[i];
+/// f_int(u) - f_ext for fixed nodal forces: the Hertz block's nonlinear system (potential W - f.u).
+class DeadLoadResidual final : public tm::NonlinearSystem {
+ public:
+  DeadLoadResidual(const tm::ElasticModel& model, const VecX& f_ext) : model_(model), f_ext_(f_ext) {}
+  void residual(const VecX& u, VecX& r) override {
+    model_.internal_force(u, r);
+    r -= f_ext_;
   }
-  throw Error("hertz: Newton did not reach the relative residual " + fmt(rtol, 1) +
-              " in 20 iterations (last " + fmt(rel, 2) + ")");
+  void jacobian(const VecX& u, tm::SpMat& J) override { model_.tangent(u, J); }
+  bool symmetric() const override { return true; }
+  double force_scale() const override { return f_ext_.norm(); }
+  bool potential(const VecX& u, double& value) override {
+    value = model_.energy(u) - f_ext_.dot(u);
+    return true;
+  }
+
+ private:
+  const tm::ElasticModel& model_;
+  const VecX& f_ext_;
+};
+
+/// Static equilibrium by the fast model's Newton (tmlab::tm::newton_solve: line search, round-off
+/// test) with incomplete-Cholesky preconditioned CG as the linear solver (sparse LDL^T fills in too
+/// much beyond ~2e4 DOFs in 3D). Returns the relative free residual |R_free| / |f_ext| reached.
+double newton_cg(const tm::ElasticModel& model, const tm::DirichletSet& bc, const VecX& f_ext, double rtol,
+                 VecX& u, std::ostream& log) {
+  DeadLoadResidual system(model, f_ext);
+  tm::ConstrainedLinearSolver cg(tm::ConstrainedLinearSolver::Kind::ConjugateGradient, 0.1 * rtol);
+  tm::NewtonOptions o;
+  o.rtol = rtol;
+  o.atol = 0.0;
+  o.max_iterations = 20;
+  const tm::NewtonResult nr = tm::newton_solve(system, bc, 0.0, u, o, cg);
+  const double scale = f_ext.norm();
+  for (std::size_t k = 0; k < nr.history.size(); ++k)
+    log << "    Newton " << k << ": |R|/|f| = " << fmt(nr.history[k] / scale, 2) << "\n";
+  if (!nr.converged)
+    throw Error("hertz: Newton did not reach the relative residual " + fmt(rtol, 1) +
+                " in 20 iterations (last " + fmt(nr.residual_final / scale, 2) + ")");
+  return nr.residual_final / scale;
 }
 
 HertzResult hertz_solve(const Mesh& mesh, const tm::StVenantKirchhoff& mat, double a, double p0, int depth,
@@ -912,14 +907,16 @@ HertzResult hertz_solve(const Mesh& mesh, const tm::StVenantKirchhoff& mat, doub
   double zmin = 0.0;
   for (const Vec3& x : mesh.points) zmin = std::min(zmin, x.z());
   // Symmetry planes x = 0 (u_x = 0), y = 0 (u_y = 0); bottom clamped.
-  std::vector<char> constrained(3 * mesh.points.size(), 0);
+  DirichletCondition sym_x{"symmetry_x", {}, {true, false, false}, Vec3::Zero(), TimeFunction::constant()};
+  DirichletCondition sym_y{"symmetry_y", {}, {false, true, false}, Vec3::Zero(), TimeFunction::constant()};
+  DirichletCondition bottom{"bottom", {}, {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
   for (Index i = 0; i < mesh.num_points(); ++i) {
     const Vec3& x = mesh.points[i];
-    if (std::abs(x.x()) < tol) constrained[3 * i] = 1;
-    if (std::abs(x.y()) < tol) constrained[3 * i + 1] = 1;
-    if (std::abs(x.z() - zmin) < tol)
-      constrained[3 * i] = constrained[3 * i + 1] = constrained[3 * i + 2] = 1;
+    if (std::abs(x.x()) < tol) sym_x.nodes.push_back(i);
+    if (std::abs(x.y()) < tol) sym_y.nodes.push_back(i);
+    if (std::abs(x.z() - zmin) < tol) bottom.nodes.push_back(i);
   }
+  const tm::DirichletSet bc(mesh.num_points(), {sym_x, sym_y, bottom});
   const auto top = select_faces(mesh, NodeSelector::from_json({{"group", "zmax"}}));
   const HertzLoad load = hertz_nodal_forces(mesh, top, a, p0, depth);
   VecX f_ext = VecX::Zero(3 * mesh.num_points());
@@ -927,7 +924,7 @@ HertzResult hertz_solve(const Mesh& mesh, const tm::StVenantKirchhoff& mat, doub
   tm::TensorMassStVK model(mesh, mat);
   VecX u = VecX::Zero(3 * mesh.num_points());
   HertzResult r;
-  r.residual = newton_cg(model, constrained, f_ext, rtol, u, log);
+  r.residual = newton_cg(model, bc, f_ext, rtol, u, log);
   auto uz = [&](const Vec3& p) {
     const Index i = nearest_node(mesh, p);
     if ((mesh.points[i] - p).norm() > tol)

@@ -235,5 +235,25 @@ TEST(StaticSolver, CutBackIncrementGrowsBackAfterSuccess) {
   EXPECT_LT(rep.sub_increments, without_growth) << rep.cutbacks << " cut-backs";
 }
 
+TEST(Newton, ConjugateGradientLinearSolverGivesTheDirectAnswer) {
+  // The first two elastica load steps with preconditioned CG inside Newton, against the direct solver.
+  Elastica e;
+  const MechanicalSystem sys = e.system();
+  VecX u_direct = VecX::Zero(sys.model().num_dofs()), u_cg = u_direct;
+  ConstrainedLinearSolver direct, cg(ConstrainedLinearSolver::Kind::ConjugateGradient, 1e-12);
+  for (double t : {0.025, 0.05}) {
+    StaticResidual r1(sys, t, u_direct), r2(sys, t, u_cg);
+    ASSERT_TRUE(newton_solve(r1, sys.bc(), t, u_direct, NewtonOptions{}, direct).converged);
+    ASSERT_TRUE(newton_solve(r2, sys.bc(), t, u_cg, NewtonOptions{}, cg).converged);
+    EXPECT_GT(cg.last_iterations(), 0);
+  }
+  EXPECT_LT((u_cg - u_direct).lpNorm<Eigen::Infinity>(), 1e-6 * u_direct.lpNorm<Eigen::Infinity>());
+  // A non-symmetric tangent is refused by CG with a clear message.
+  SpMat J = SpMat(3, 3);
+  J.setIdentity();
+  VecX du;
+  EXPECT_THROW(cg.solve(J, VecX::Ones(3), DirichletSet(1, {}), VecX::Zero(3), false, du), Error);
+}
+
 }  // namespace
 }  // namespace tmlab::tm
