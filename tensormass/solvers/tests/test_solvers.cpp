@@ -1,4 +1,5 @@
-// Solver tests: static Newton, explicit central difference, implicit backward Euler / Newmark.
+// Solver tests: static Newton, explicit central difference, implicit backward Euler / Newmark (loads,
+// constraints and time functions have their own tests beside their sources).
 // The cantilever under gravity must reach the same rest state with all three (issue test 5), each
 // time integrator shows its observed order, and the explicit stability estimate is meaningful.
 #include "core/base/error.hpp"
@@ -226,50 +227,6 @@ TEST(Newton, PrescribedDisplacementIsReachedAndReactionBalancesLoad) {
   EXPECT_NEAR(r_tip.z() + r_clamp.z(), 0.0, 1e-9 * std::abs(r_tip.z()));
 }
 
-TEST(ExternalLoads, DeadPressureAndTractionResultantsAndFollowerStiffnessByFiniteDifference) {
-  Mesh mesh = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), 2, 2, 2);
-  NodeSelector top;
-  top.kind = NodeSelector::Kind::Plane;
-  top.axis = 2;
-  top.value = 1.0;
-  SurfacePressure p{"top", select_faces(mesh, top), 100.0, false, TimeFunction::constant()};
-  ExternalLoads dead(mesh, VecX::Ones(mesh.num_points()));
-  dead.add(p);
-  VecX f;
-  dead.assemble(VecX::Zero(3 * mesh.num_points()), 0.0, f);
-  Vec3 total = Vec3::Zero();
-  for (Index i = 0; i < mesh.num_points(); ++i) total += f.segment<3>(3 * i);
-  EXPECT_NEAR(total.z(), -100.0, 1e-12);  // p * area, pushing into the body
-  EXPECT_NEAR(total.x(), 0.0, 1e-12);
-
-  // A dead traction vector: its resultant is traction * reference area.
-  ExternalLoads trac(mesh, VecX::Ones(mesh.num_points()));
-  trac.add(
-      SurfaceTraction{"top", select_faces(mesh, top), Vec3(10.0, -20.0, 5.0), TimeFunction::ramp(0.0, 2.0)});
-  trac.assemble(VecX::Zero(3 * mesh.num_points()), 1.0, f);
-  Vec3 ttotal = Vec3::Zero();
-  for (Index i = 0; i < mesh.num_points(); ++i) ttotal += f.segment<3>(3 * i);
-  EXPECT_LT((ttotal - Vec3(5.0, -10.0, 2.5)).norm(), 1e-12);
-
-  p.follower = true;
-  ExternalLoads fol(mesh, VecX::Ones(mesh.num_points()));
-  fol.add(p);
-  VecX u(3 * mesh.num_points());
-  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = 0.05 * std::sin(1.3 * static_cast<double>(i));
-  std::vector<Eigen::Triplet<double>> trip;
-  fol.add_load_stiffness(u, 0.0, trip);
-  SpMat K(u.size(), u.size());
-  K.setFromTriplets(trip.begin(), trip.end());
-  VecX dir(u.size());
-  for (Eigen::Index i = 0; i < u.size(); ++i) dir[i] = std::cos(0.9 * static_cast<double>(i));
-  const double h = 1e-6;
-  VecX fp, fm;
-  fol.assemble(u + h * dir, 0.0, fp);
-  fol.assemble(u - h * dir, 0.0, fm);
-  const VecX fd = -(fp - fm) / (2 * h);
-  EXPECT_LT((K * dir - fd).norm() / fd.norm(), 1e-7);
-}
-
 /// Follower pressure in a static solve: the non-symmetric load stiffness (sparse LU path) gives
 /// Newton convergence, and the answer differs from the dead-load one by an amount second order in
 /// the load.
@@ -313,33 +270,6 @@ TEST(StaticSolver, FollowerPressureConvergesAndDiffersFromDeadLoad) {
   const VecX uf1 = solve(10.0, true, nullptr), ud1 = solve(10.0, false, nullptr);
   const double rel_small = (uf1 - ud1).norm() / ud1.norm();
   EXPECT_LT(rel_small, 0.03 * rel_large) << rel_small << " vs " << rel_large;
-}
-
-TEST(Dirichlet, ConflictingConditionsAreRejected) {
-  DirichletCondition a{"a", {0, 1}, {true, true, true}, Vec3(0, 0, 0.1), TimeFunction::constant()};
-  DirichletCondition b{"b", {1, 2}, {true, true, true}, Vec3(0, 0, 0.2), TimeFunction::constant()};
-  try {
-    DirichletSet s(3, {a, b});
-    FAIL() << "expected an error";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("'a' and 'b'"), std::string::npos) << e.what();
-  }
-  DirichletCondition z1{"z1", {0, 1}, {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
-  DirichletCondition z2{"z2", {1, 2}, {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
-  EXPECT_NO_THROW(DirichletSet(3, {z1, z2}));
-}
-
-TEST(TimeFunction, ValuesAndErrors) {
-  EXPECT_DOUBLE_EQ(TimeFunction::ramp(1, 3)(2.0), 0.5);
-  EXPECT_DOUBLE_EQ(TimeFunction::ramp(1, 3)(5.0), 1.0);
-  EXPECT_DOUBLE_EQ(TimeFunction::smooth_ramp(0, 1)(0.5), 0.5);
-  EXPECT_DOUBLE_EQ(TimeFunction::table({{0, 0}, {1, 2}, {2, 0}})(1.5), 1.0);
-  EXPECT_THROW(TimeFunction::ramp(1, 1), Error);
-  EXPECT_THROW(TimeFunction::from_json(nlohmann::json{{"type", "ramp"}, {"t1", 1.0}, {"bogus", 1}}, "f"),
-               Error);
-  EXPECT_THROW(TimeFunction::from_json(nlohmann::json{{"type", "nope"}}, "f"), Error);
-  const auto f = TimeFunction::from_json(nlohmann::json{{"type", "sine"}, {"frequency", 2.0}}, "f");
-  EXPECT_NEAR(f(0.125), 1.0, 1e-15);
 }
 
 }  // namespace
