@@ -41,12 +41,26 @@ tmlab::RunResult run_model(const CaseConfig& cfg, const tmlab::RunOptions& opt, 
 
 namespace {
 
+/// One line about the solver: its type and the numbers that say how hard it worked (the per-step
+/// history stays in summary.json).
+std::string solver_line(const nlohmann::json& solver) {
+  nlohmann::json brief = nlohmann::json::object();
+  for (auto it = solver.begin(); it != solver.end(); ++it)
+    if (!it.value().is_object() && !it.value().is_array()) brief[it.key()] = it.value();
+  if (solver.contains("newton")) {
+    const auto& n = solver["newton"];
+    for (const char* k : {"line_search", "max_iterations_in_a_step", "steps_at_roundoff"})
+      if (n.contains(k)) brief[std::string("newton_") + k] = n[k];
+  }
+  return brief.dump();
+}
+
 void print_summary(const tmlab::RunResult& r, bool plots) {
   const auto& s = r.summary;
   std::cout << "case        " << s.value("case", "") << " (" << s.value("model", "") << ")\n"
             << "mesh        " << s["mesh"]["points"] << " nodes, " << s["mesh"]["tets"] << " tets, volume "
             << std::setprecision(4) << s["mesh"]["volume_m3"].get<double>() * 1e6 << " cm^3\n"
-            << "solver      " << s["solver"].dump() << "\n"
+            << "solver      " << solver_line(s["solver"]) << "\n"
             << "final time  " << s["final_time"].get<double>() << " s\n"
             << "max |u|     " << s["max_displacement_m"].get<double>() * 1e3 << " mm\n"
             << "energy      " << s["elastic_energy_J"].get<double>() << " J\n";

@@ -136,6 +136,12 @@ TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
   const Result r = run("demo --no-plots --results '" + (dir_ / "res").string() + "'");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_NE(r.output.find("reaction    probe"), std::string::npos) << r.output;
+  // The solver line is brief (the per-step Newton history is in summary.json only), and with
+  // --no-plots no PNG is announced.
+  EXPECT_NE(r.output.find("\"newton_line_search\":\"energy\""), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("per_step"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find(".png"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("t = 0 included"), std::string::npos) << r.output;
   const fs::path out = dir_ / "res" / "liver-probe";
   EXPECT_TRUE(fs::exists(out / "summary.json"));
   std::ifstream in(out / "summary.json");
@@ -144,6 +150,8 @@ TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
   EXPECT_GT(s["min_volume_ratio"].get<double>(), 0.0);
   // The probe is pushed down 15 mm: the support pushes the body down (negative z reaction).
   EXPECT_LT(s["final_reactions_N"]["probe"][2].get<double>(), 0.0);
+  EXPECT_EQ(s["solver"]["newton"]["per_step"]["iterations"].size(),
+            s["solver"]["load_steps"].get<std::size_t>());
 }
 
 /// `tmlab compare`: the shipped uniaxial case with the tensor-mass model and the deal.II P1 reference
