@@ -84,9 +84,8 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
 
     // Checkpoint: each finished case's result, beside the result directory (which a new run
     // empties), so that an interrupted suite continues with --resume (docs/robustness.md).
-    nlohmann::json suite{
-        {"cases_dir", fs::absolute(cases_dir).string()}, {"full", sel.full}, {"cases", config["cases"]}};
-    const verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint", suite,
+    // The suite's identity is its configuration: the cases dir, --full and the cases in order.
+    const verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint", config,
                                              p.has("--resume"));
     if (p.has("--resume"))
       std::cerr << "tmlab verify: resuming: " << checkpoint.stored() << " of " << cases.size()

@@ -240,15 +240,11 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
       if (n.has("line_search")) {
         // "energy" | "residual" | "none"; true and false are kept for older case files (true = energy).
         const nlohmann::json& ls = n.raw("line_search");
+        const auto named = ls.is_string() ? line_search_from_string(ls.get<std::string>()) : std::nullopt;
         if (ls.is_boolean()) {
-          c.solver.line_search =
-              ls.get<bool>() ? SolverSpec::LineSearch::Energy : SolverSpec::LineSearch::None;
-        } else if (ls.is_string() && ls.get<std::string>() == "energy") {
-          c.solver.line_search = SolverSpec::LineSearch::Energy;
-        } else if (ls.is_string() && ls.get<std::string>() == "residual") {
-          c.solver.line_search = SolverSpec::LineSearch::Residual;
-        } else if (ls.is_string() && ls.get<std::string>() == "none") {
-          c.solver.line_search = SolverSpec::LineSearch::None;
+          c.solver.line_search = ls.get<bool>() ? LineSearch::Energy : LineSearch::None;
+        } else if (named) {
+          c.solver.line_search = *named;
         } else {
           throw n.error("line_search",
                         "must be \"energy\", \"residual\" or \"none\" (got " + ls.dump() + ")");
@@ -358,13 +354,10 @@ nlohmann::json effective_case_json(const CaseConfig& c) {
     solver["damping"] = {{"alpha", sv.damping_alpha}, {"beta", sv.damping_beta}};
   }
   if (sv.type != SolverSpec::Type::Explicit) {
-    const char* ls = sv.line_search == SolverSpec::LineSearch::Energy     ? "energy"
-                     : sv.line_search == SolverSpec::LineSearch::Residual ? "residual"
-                                                                          : "none";
     solver["newton"] = {{"max_iterations", sv.max_iterations},
                         {"rtol", sv.rtol},
                         {"atol", sv.atol},
-                        {"line_search", ls},
+                        {"line_search", to_string(sv.line_search)},
                         {"max_cutbacks", sv.max_cutbacks}};
   }
   doc["solver"] = solver;

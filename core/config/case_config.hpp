@@ -3,6 +3,7 @@
 // and the deal.II reference both build their problem from it. docs/case-files.md is the reference.
 #pragma once
 
+#include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
@@ -71,10 +72,7 @@ struct SolverSpec {
   int max_iterations = 25;
   double rtol = 1e-10;
   double atol = 1e-14;
-  /// Newton line search: energy (Armijo on the potential where one exists, else full steps; the
-  /// default), residual (sufficient decrease of |R|), none (full Newton steps).
-  enum class LineSearch { Energy, Residual, None };
-  LineSearch line_search = LineSearch::Energy;
+  LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_cutbacks = 8;
   bool check_stability = true;
 };

@@ -198,8 +198,7 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
   np.max_iterations = cfg.solver.max_iterations;
   np.rtol = ro.newton_rtol;
   np.atol = cfg.solver.atol;
-  np.line_search = cfg.solver.line_search != SolverSpec::LineSearch::None;
-  np.energy_merit = cfg.solver.line_search == SolverSpec::LineSearch::Energy;
+  np.line_search = cfg.solver.line_search;
   np.max_cutbacks = cfg.solver.max_cutbacks;
   np.linear_solver = ro.linear_solver;
   Solid solid(comm, coarse, Discretisation{!hex, static_cast<unsigned>(ro.degree)}, material, prony, np, log);

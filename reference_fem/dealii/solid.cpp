@@ -576,28 +576,25 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     TrilinosWrappers::MPI::Vector du_free(du);
     hom_constraints_.set_zero(du_free);
 
+    // u_ref: the constrained DoFs moved in full; the search scales the free part of the step.
+    TrilinosWrappers::MPI::Vector u_ref(u);
+    u_ref += du_c;
     double rref = rnorm;
-    u_trial = u;
-    u_trial += du_c;  // u_ref: the constrained DoFs moved in full
     if (pending) {
-      rref = residual(u_trial, r_trial);
+      rref = residual(u_ref, r_trial);
       scale = std::max(scale, rref);
-    } else {
-      r_trial = r;
     }
     // Energy merit (see tmlab::tm::newton_solve): slope = R(u_ref) . du_free must be a descent.
     double pi_ref = 0.0, slope = 0.0;
-    bool energy = newton_.line_search && newton_.energy_merit && has_potential && std::isfinite(rref);
+    bool energy = newton_.line_search == LineSearch::Energy && has_potential && std::isfinite(rref);
     if (energy) {
-      slope = r_trial * du_free;
-      const TrilinosWrappers::MPI::Vector u_ref(u_trial);
+      slope = (pending ? r_trial : r) * du_free;
       pi_ref = potential(u_ref);
       energy = slope < 0.0 && std::isfinite(pi_ref);
     }
     double alpha = 1.0;
     int backtracks = 0;
     double rt = 0.0;
-    const TrilinosWrappers::MPI::Vector u_ref(u_trial);
     while (true) {
       u_trial = u_ref;
       u_trial.add(alpha, du_free);
@@ -606,14 +603,14 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
       bool ok;
       if (!std::isfinite(rt)) {
         ok = false;  // an element inverted: always shorten the step
-      } else if (!newton_.line_search) {
+      } else if (newton_.line_search == LineSearch::None) {
         ok = true;
       } else if (energy) {
         pi = potential(u_trial);
         ok = (std::isfinite(pi) &&
               pi <= pi_ref + 1e-4 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(pi))) ||
              rt <= (1.0 - 1e-4 * alpha) * rref;
-      } else if (!newton_.energy_merit) {
+      } else if (newton_.line_search == LineSearch::Residual) {
         ok = rt <= (1.0 - 1e-4 * alpha) * rref || !std::isfinite(rref);
       } else {
         ok = true;  // energy merit but no potential (Prony history): the full step, as the fast model
@@ -743,6 +740,12 @@ SymTensor2 committed_stress(const Material& m, const std::optional<PronySeries>&
 }  // namespace
 
 double Solid::hyperelastic_energy(const TrilinosWrappers::MPI::Vector& u_ghost) const {
+  return stored_energy(u_ghost, false);
+}
+
+double Solid::elastic_energy() const { return stored_energy(u_ghost_, true); }
+
+double Solid::stored_energy(const TrilinosWrappers::MPI::Vector& u_ghost, bool with_history) const {
   FEValues<3> fev(*mapping_, *fe_, qcell_, update_gradients | update_JxW_values);
   const FEValuesExtractors::Vector disp(0);
   std::vector<Tensor<2, 3>> grad_u(qcell_.size());
@@ -755,27 +758,9 @@ double Solid::hyperelastic_energy(const TrilinosWrappers::MPI::Vector& u_ghost) 
       const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
       const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
       w += material_.energy(E) * fev.JxW(q);
-    }
-  }
-  return Utilities::MPI::sum(w, comm_);
-}
-
-double Solid::elastic_energy() const {
-  FEValues<3> fev(*mapping_, *fe_, qcell_, update_gradients | update_JxW_values);
-  const FEValuesExtractors::Vector disp(0);
-  std::vector<Tensor<2, 3>> grad_u(qcell_.size());
-  double w = 0.0;
-  for (const auto& cell : dof_handler_.active_cell_iterators()) {
-    if (!cell->is_locally_owned()) continue;
-    fev.reinit(cell);
-    fev[disp].get_function_gradients(u_ghost_, grad_u);
-    for (unsigned q = 0; q < qcell_.size(); ++q) {
-      const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-      const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
-      w += material_.energy(E) * fev.JxW(q);
       // Stored energy of the Maxwell branches, Psi_j = alpha_j/2 h_j : C0^-1 : h_j with C0 the
       // small-strain (Lame) elasticity (deviatoric: h_j : h_j / (2 mu)), as the tensor-mass model.
-      if (prony_) {
+      if (with_history && prony_) {
         const auto& st = qp_data_.get_data(cell)[q]->prony;
         for (std::size_t j = 0; j < prony_->size(); ++j) {
           const SymTensor2& h = st.h[j];

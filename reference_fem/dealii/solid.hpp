@@ -14,6 +14,7 @@
 // (material plus geometric stiffness); the external loads are dead loads (independent of u).
 #pragma once
 
+#include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
 #include "reference_fem/dealii/materials.hpp"
 
@@ -51,11 +52,10 @@ struct NewtonParameters {
   int max_iterations = 25;
   double rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|, |R after moving the constraints|) + atol
   double atol = 1e-14;  ///< newtons
-  bool line_search = true;
-  /// Merit of the line search: true (default) Armijo on the potential Pi = int W dV - f_ext . u
-  /// where one exists (no Prony history; the loads here are dead), accepting also a falling |R|;
-  /// false: sufficient decrease of |R_free| only (rejects good steps of large rotations).
-  bool energy_merit = true;
+  /// Energy (default): Armijo on the potential Pi = int W dV - f_ext . u where one exists (no Prony
+  /// history; the loads here are dead), a falling |R| accepted too, else full steps; Residual:
+  /// sufficient decrease of |R_free| only; None: full steps (core/config/line_search.hpp).
+  LineSearch line_search = LineSearch::Energy;
   int max_backtracks = 12;
   double stagnation_tol = 1e-13;         ///< relative step below which a stalled |R| is round-off
   int max_cutbacks = 8;                  ///< halvings of a load increment whose Newton solve fails
@@ -189,6 +189,9 @@ class Solid {
   struct QPData {
     PronyState prony;
   };
+  /// int W(E(u)) dV over all ranks, plus the Maxwell-branch energies of the committed history when
+  /// with_history (elastic_energy() and hyperelastic_energy() are this one loop).
+  double stored_energy(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, bool with_history) const;
   enum class Mode { Residual, ResidualAndTangent, External };
 
   /// Assembles r = f_int(u) - f_ext(t) and, in ResidualAndTangent mode, the tangent into K_ with

@@ -66,18 +66,6 @@ std::vector<Vec3> as_vec3(const VecX& u) {
   return out;
 }
 
-std::string to_string(SolverSpec::LineSearch ls) {
-  switch (ls) {
-    case SolverSpec::LineSearch::Energy:
-      return "energy";
-    case SolverSpec::LineSearch::Residual:
-      return "residual";
-    case SolverSpec::LineSearch::None:
-      break;
-  }
-  return "none";
-}
-
 /// The iteration history of a run, one entry per step, for summary.json ("solver.newton"):
 /// iterations, cut-backs, sub-increments, backtracks, the final |R| and its target, whether the
 /// step stopped at round-off, and the residual history of the last (sub-)increment.
@@ -127,9 +115,7 @@ NewtonOptions newton_options(const SolverSpec& s) {
   o.max_iterations = s.max_iterations;
   o.rtol = s.rtol;
   o.atol = s.atol;
-  o.line_search = s.line_search != SolverSpec::LineSearch::None;
-  o.merit =
-      s.line_search == SolverSpec::LineSearch::Residual ? LineSearchMerit::Residual : LineSearchMerit::Energy;
+  o.line_search = s.line_search;
   return o;
 }
 

@@ -76,16 +76,6 @@ double free_norm(const VecX& r, const DirichletSet& bc) {
 }
 }  // namespace
 
-LineSearchMerit line_search_merit_from_string(const std::string& name) {
-  if (name == "energy") return LineSearchMerit::Energy;
-  if (name == "residual") return LineSearchMerit::Residual;
-  throw Error("unknown line-search merit '" + name + "' (expected energy or residual)");
-}
-
-std::string to_string(LineSearchMerit merit) {
-  return merit == LineSearchMerit::Energy ? "energy" : "residual";
-}
-
 namespace {
 std::string where(int k, double t) {
   return "Newton iteration " + std::to_string(k + 1) + " at t = " + std::to_string(t);
@@ -151,7 +141,7 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
       r_ref = r;
     }
     double pi_ref = 0.0, slope = 0.0;
-    bool energy = options.line_search && options.merit == LineSearchMerit::Energy && std::isfinite(rref) &&
+    bool energy = options.line_search == LineSearch::Energy && std::isfinite(rref) &&
                   system.potential(u_ref, pi_ref) && std::isfinite(pi_ref);
     if (energy) {
       // Directional derivative of Pi along the free step: R(u_ref) . (du - du_c) over the free DOFs.
@@ -168,7 +158,7 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
       bool ok;
       if (!std::isfinite(trial.rnorm)) {
         ok = false;  // an element inverted or the model broke down: always shorten the step
-      } else if (!options.line_search) {
+      } else if (options.line_search == LineSearch::None) {
         ok = true;
       } else if (energy) {
         // Armijo on Pi; near the solution the decrease of Pi drowns in its round-off (Pi is a
@@ -177,7 +167,7 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
               trial.pi <=
                   pi_ref + c1 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(trial.pi))) ||
              trial.rnorm <= (1.0 - c1 * alpha) * rref;
-      } else if (options.merit == LineSearchMerit::Residual) {
+      } else if (options.line_search == LineSearch::Residual) {
         ok = trial.rnorm <= (1.0 - c1 * alpha) * rref || !std::isfinite(rref);
       } else {
         ok = true;  // energy merit requested but no potential: full step

@@ -12,7 +12,7 @@
 // by orders of magnitude while lowering Pi, and backtracking on |R| rejects it. Without a potential
 // (history-dependent forces, follower loads) the full step is taken unless the residual is
 // non-finite (an element inverted), in which case the step is halved. The older residual-norm
-// search is kept as an option (merit = Residual).
+// search is kept as an option (LineSearch::Residual).
 //
 // Round-off: when an iteration lowers |R| by less than a factor 2 and its step is below
 // stagnation_tol * |u|_inf, the iteration has reached the round-off floor of the residual: it stops,
@@ -25,6 +25,7 @@
 // sparse LDL^T factorisation applies (sparse LU for non-symmetric tangents, e.g. follower pressure).
 #pragma once
 
+#include "core/config/line_search.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
 #include "tensormass/system/dirichlet.hpp"
 
@@ -52,24 +53,12 @@ class NonlinearSystem {
   virtual bool potential(const VecX& /*u*/, double& /*value*/) { return false; }
 };
 
-/// What the line search decreases.
-enum class LineSearchMerit {
-  Energy,   ///< Armijo on the potential (full steps where there is none): the default
-  Residual  ///< sufficient decrease of |R_free| (the pre-2026-11 default; rejects good steps of large
-            ///< rotations)
-};
-
-/// "energy" / "residual"; throws tmlab::Error naming the choices otherwise.
-LineSearchMerit line_search_merit_from_string(const std::string& name);
-std::string to_string(LineSearchMerit merit);
-
 struct NewtonOptions {
   int max_iterations = 25;
-  double rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, force scale)
-  double atol = 1e-14;  ///< absolute floor on |R_free|, newtons
-  bool line_search = true;
+  double rtol = 1e-10;                          ///< |R_free| <= rtol * max(|R_0|, force scale)
+  double atol = 1e-14;                          ///< absolute floor on |R_free|, newtons
+  LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_backtracks = 12;
-  LineSearchMerit merit = LineSearchMerit::Energy;
   double stagnation_tol = 1e-13;  ///< relative step size below which a stalled residual is round-off
 };
 

@@ -9,8 +9,7 @@ namespace tmlab::tm {
 DirichletSet::DirichletSet(Index num_nodes, std::vector<DirichletCondition> conditions)
     : conditions_(std::move(conditions)),
       constrained_(3 * static_cast<std::size_t>(num_nodes), 0),
-      owner_(3 * static_cast<std::size_t>(num_nodes), -1) {
-  owner_ = dirichlet_dof_owners(num_nodes, conditions_);
+      owner_(dirichlet_dof_owners(num_nodes, conditions_)) {
   for (std::size_t d = 0; d < owner_.size(); ++d) constrained_[d] = owner_[d] >= 0 ? 1 : 0;
   for (Index d = 0; d < static_cast<Index>(constrained_.size()); ++d)
     if (constrained_[d]) dofs_.push_back(d);

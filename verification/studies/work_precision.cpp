@@ -231,7 +231,7 @@ WorkPrecisionPoint run_implicit(const Setup& s, Integ integ, double dt, std::vec
   const Stopwatch timer;
   Instance in(s, integ);
   // Newton to 1e-10 of the force scale: far below every error measured here.
-  ImplicitDynamics im(in.system, ImplicitScheme::Newmark, NewtonOptions{40, 1e-10, 1e-15, true, 12});
+  ImplicitDynamics im(in.system, ImplicitScheme::Newmark, NewtonOptions{40, 1e-10, 1e-15});
   const Index n = in.system.num_dofs();
   im.initialize(0.0, VecX::Zero(n), VecX::Zero(n));
   const long per = std::lround(s.t_out / dt);

@@ -261,7 +261,7 @@ TEST(OdeReferences, FixedStepTensorMassConvergesToCvodeReference) {
       opt.integration = c.integ;
       ViscoelasticStVK model(b.mesh, b.mat, b.prony, opt);
       MechanicalSystem sys(model, lumped_dof_mass(b.node_mass), b.bc(), ExternalLoads(b.mesh, b.node_mass));
-      ImplicitDynamics im(sys, c.scheme, NewtonOptions{40, 1e-11, 1e-15, true, 12});
+      ImplicitDynamics im(sys, c.scheme, NewtonOptions{40, 1e-11, 1e-15});
       im.initialize(0.0, VecX::Zero(b.v0.size()), b.v0);
       const int n = static_cast<int>(std::lround(t_end / dt));
       for (int k = 0; k < n; ++k) ASSERT_TRUE(im.step(k * dt, dt).converged);
@@ -326,7 +326,7 @@ TEST(OdeReferences, StaticSolverConvergesToIdaQuasiStaticReference) {
       ViscoelasticStVK model(c.mesh, c.mat, c.prony, opt);
       MechanicalSystem sys(model, lumped_dof_mass(c.node_mass), DirichletSet(c.mesh.num_points(), c.bc),
                            c.loads);
-      StaticSolver solver(sys, NewtonOptions{40, 1e-11, 1e-15, true, 12});
+      StaticSolver solver(sys, NewtonOptions{40, 1e-11, 1e-15});
       VecX u = VecX::Zero(sys.num_dofs());
       double e = 0.0;
       for (int k = 1; k <= 20 * per; ++k) {

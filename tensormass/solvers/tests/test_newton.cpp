@@ -153,7 +153,7 @@ TEST(Newton, ElasticaConvergesWithoutCutbacksUnderTheEnergyLineSearch) {
 
   // Without any line search the same answer (the full Newton step is good here).
   NewtonOptions none;
-  none.line_search = false;
+  none.line_search = LineSearch::None;
   const ElasticaRun full = run_elastica(none);
   ASSERT_FALSE(full.failed);
   EXPECT_NEAR(full.tip_x, energy.tip_x, 1e-6 * std::abs(energy.tip_x));
@@ -164,7 +164,7 @@ TEST(Newton, ResidualNormLineSearchFightsTheLargeRotation) {
   // cut back (and did not recover before this fix). It must cost clearly more than the energy search.
   // The first two of the 40 load steps show it (the old default failed in the first).
   NewtonOptions residual;
-  residual.merit = LineSearchMerit::Residual;
+  residual.line_search = LineSearch::Residual;
   const ElasticaRun r = run_elastica(residual, 40, 2);
   const ElasticaRun e = run_elastica(NewtonOptions{}, 40, 2);
   ASSERT_FALSE(e.failed);

@@ -169,7 +169,7 @@ TEST(TimeIntegrators, ObservedOrders) {
   VecX zero = VecX::Zero(sys.num_dofs());
   auto implicit_run = [&](ImplicitScheme s) {
     return [&, s](double dt) {
-      ImplicitDynamics integ(sys, s, NewtonOptions{40, 1e-11, 1e-16, true, 12});
+      ImplicitDynamics integ(sys, s, NewtonOptions{40, 1e-11, 1e-16});
       integ.initialize(0.0, zero, zero);
       const int n = static_cast<int>(std::lround(T / dt));
       double t = 0.0;

@@ -140,7 +140,7 @@ struct Uniaxial {
       bc.push_back(pull);
     }
     MechanicalSystem sys(model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), bc), loads);
-    StaticSolver solver(sys, NewtonOptions{40, 1e-11, 1e-13, true, 12});
+    StaticSolver solver(sys, NewtonOptions{40, 1e-11, 1e-13});
     VecX u = VecX::Zero(sys.num_dofs()), f;
     Series s;
     const int n = static_cast<int>(std::lround(t_end / dt));
@@ -428,7 +428,7 @@ TEST(ViscoelasticStVK, VolumeCreepsWithFullRelaxationOnlyUnderPressure) {
         loads.add(SurfacePressure{"p", plane_faces(mesh, a, L), 200.0, false, TimeFunction::ramp(0.0, dt)});
       MechanicalSystem sys(model, lumped_dof_mass(node_mass),
                            DirichletSet(mesh.num_points(), symmetry_planes(mesh)), loads);
-      StaticSolver solver(sys, NewtonOptions{40, 1e-12, 1e-14, true, 12});
+      StaticSolver solver(sys, NewtonOptions{40, 1e-12, 1e-14});
       VecX u = VecX::Zero(sys.num_dofs());
       const double V0 = L * L * L;
       double dv_first = 0.0, dv = 0.0;
