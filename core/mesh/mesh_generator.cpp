@@ -7,6 +7,7 @@
 #include <array>
 #include <cassert>
 #include <charconv>
+#include <cmath>
 #include <fstream>
 #include <limits>
 #include <utility>
@@ -21,6 +22,35 @@ Mesh make_box_mesh(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz) {
   if (!lo.allFinite() || !hi.allFinite() || !(hi.array() > lo.array()).all()) {
     throw Error("make_box_mesh: need finite corners with hi > lo on every axis");
   }
+  const std::array<int, 3> n{nx, ny, nz};
+  BoxGrid grid;
+  for (int a = 0; a < 3; ++a) {
+    const int na = n[static_cast<std::size_t>(a)];
+    std::vector<double>& c = grid[static_cast<std::size_t>(a)];
+    c.resize(static_cast<std::size_t>(na) + 1);
+    // Exact end values, linear in between.
+    for (int i = 0; i <= na; ++i) {
+      const double t = static_cast<double>(i) / na;
+      c[static_cast<std::size_t>(i)] = i == na ? hi[a] : lo[a] + t * (hi[a] - lo[a]);
+    }
+  }
+  return make_box_mesh(grid);
+}
+
+Mesh make_box_mesh(const BoxGrid& grid) {
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double>& c = grid[static_cast<std::size_t>(a)];
+    if (c.size() < 2) throw Error("make_box_mesh: each axis needs at least two grid coordinates");
+    for (std::size_t i = 0; i < c.size(); ++i) {
+      if (!std::isfinite(c[i]) || (i > 0 && !(c[i] > c[i - 1]))) {
+        throw Error("make_box_mesh: grid coordinates of axis " + std::to_string(a) +
+                    " must be finite and strictly increasing (at index " + std::to_string(i) + ")");
+      }
+    }
+  }
+  const int nx = static_cast<int>(grid[0].size()) - 1;
+  const int ny = static_cast<int>(grid[1].size()) - 1;
+  const int nz = static_cast<int>(grid[2].size()) - 1;
   const long long npts = static_cast<long long>(nx + 1) * (ny + 1) * (nz + 1);
   if (npts > std::numeric_limits<Index>::max() / 2 ||
       6LL * nx * ny * nz > std::numeric_limits<Index>::max() / 2) {
@@ -34,17 +64,8 @@ Mesh make_box_mesh(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz) {
   for (int k = 0; k <= nz; ++k) {
     for (int j = 0; j <= ny; ++j) {
       for (int i = 0; i <= nx; ++i) {
-        Vec3 p;
-        const std::array<int, 3> ijk{i, j, k};
-        for (int a = 0; a < 3; ++a) {
-          const double t =
-              static_cast<double>(ijk[static_cast<std::size_t>(a)]) / n[static_cast<std::size_t>(a)];
-          // Exact end values, linear in between.
-          p[a] = ijk[static_cast<std::size_t>(a)] == n[static_cast<std::size_t>(a)]
-                     ? hi[a]
-                     : lo[a] + t * (hi[a] - lo[a]);
-        }
-        mesh.points.push_back(p);
+        mesh.points.emplace_back(grid[0][static_cast<std::size_t>(i)], grid[1][static_cast<std::size_t>(j)],
+                                 grid[2][static_cast<std::size_t>(k)]);
         mesh.point_file_ids.push_back(static_cast<long>(mesh.points.size()));
       }
     }

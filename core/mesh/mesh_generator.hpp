@@ -4,7 +4,9 @@
 
 #include "core/mesh/mesh.hpp"
 
+#include <array>
 #include <string>
+#include <vector>
 
 namespace tmlab {
 
@@ -26,6 +28,13 @@ enum BoxMeshTag : int {
 /// named xmin, xmax, ymin, ymax, zmin, zmax; tets carry tag 7 named "body". Deterministic.
 /// Throws tmlab::Error if a count is < 1 or hi is not strictly above lo on every axis.
 Mesh make_box_mesh(const Vec3& lo, const Vec3& hi, int nx, int ny, int nz);
+
+/// The grid coordinates of a box mesh along x, y and z (each strictly increasing, >= 2 values).
+using BoxGrid = std::array<std::vector<double>, 3>;
+/// The same Kuhn-split box on a tensor-product grid of given coordinates (graded meshes: see
+/// core/mesh/sample_meshes.hpp). make_box_mesh(lo, hi, n...) is this grid with uniform spacing.
+/// Throws tmlab::Error unless every axis has >= 2 finite, strictly increasing coordinates.
+Mesh make_box_mesh(const BoxGrid& grid);
 
 /// Writes the mesh as Gmsh 2.2 ASCII: $PhysicalNames for named groups, nodes numbered 1..N in
 /// point order, then point elements (type 15), triangles (2) and tets (4), each with tags
