@@ -2,6 +2,8 @@
 find_package(Eigen3 3.4 REQUIRED NO_MODULE)
 find_package(nlohmann_json 3.10 REQUIRED)
 find_package(Threads REQUIRED)
+# GSL 2.7 (libgsl-dev): special functions, simulated annealing and nonlinear least squares (calibration/).
+find_package(GSL 2.7 REQUIRED)
 
 # HDF5: deal.II (reference_fem) links the OpenMPI flavour, so every tmlab program uses that same
 # flavour (libhdf5-openmpi-dev) and never the serial one. The C API needs mpi.h on the include path.
