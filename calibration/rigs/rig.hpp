@@ -1,0 +1,98 @@
+// The test rigs: a mechanical test (indentation, unconfined or confined compression, uniaxial
+// tension) described by its sample, fixture and displacement history, turned into an ordinary case
+// file and its generated mesh, so that either model (`tmlab run`, `tmlab compare`) simulates it and
+// any measured data set can be simulated without hand work (docs/rigs.md).
+//
+// Conventions (as the measured-data format): z is the loading axis, the sample's bottom face lies
+// at z = 0 and the loaded face at z = height; the platen or indenter displacement d(t) is positive
+// into the sample (compression, indentation) and negative for tension.
+//
+// How each fixture becomes boundary conditions of the case file:
+// - bottom (indentation) or lower platen: "bonded" fixes x, y, z of the bottom face; "frictionless"
+//   fixes z only, plus the in-plane rigid motions through the two mirror planes of a sample centred
+//   under the load (u_y = 0 on the bottom nodes with y = 0, u_x = 0 on those with x = 0 (block) or
+//   at the centre node (cylinder)): exact for a centred, symmetric test;
+// - the upper platen (compression, tension) is a prescribed displacement of the top face: z only
+//   (frictionless) or x, y, z with zero lateral motion (bonded). A flat face that stays in full
+//   contact with a rigid platen is exactly that, so compression needs no contact search;
+// - confined compression keeps the lateral displacement of the side zero (the homogeneous uniaxial
+//   strain state satisfies both frictionless and bonded walls);
+// - indentation: a rigid sphere or flat punch (a `contact` body, docs/contact.md) touching the top
+//   face at t = 0 above (cx, cy) and moving down by d(t).
+#pragma once
+
+#include "core/mesh/mesh.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace tmlab::rigs {
+
+enum class RigTest { Indentation, UnconfinedCompression, ConfinedCompression, UniaxialTension };
+enum class SampleShape { Block, Cylinder };
+enum class Support { Bonded, Frictionless };
+enum class IndenterShape { Sphere, FlatPunch };
+
+/// The test names of the measured-data format: "indentation", "unconfined_compression",
+/// "confined_compression", "uniaxial_tension". parse_* throw tmlab::Error naming `where` and the
+/// accepted values.
+RigTest parse_rig_test(const std::string& name, const std::string& where);
+std::string rig_test_name(RigTest test);
+SampleShape parse_sample_shape(const std::string& name, const std::string& where);
+Support parse_support(const std::string& name, const std::string& where);
+IndenterShape parse_indenter_shape(const std::string& name, const std::string& where);
+
+/// A displacement history d(t) of the platen or indenter, m, linear between samples.
+struct DisplacementHistory {
+  std::vector<double> t, d;
+  /// Ramp from 0 to `depth` over `ramp` s, then hold for `hold` s (hold may be 0).
+  static DisplacementHistory ramp_hold(double depth, double ramp, double hold);
+  /// `cycles` triangle cycles 0 -> depth -> 0, each taking 2 `ramp` s.
+  static DisplacementHistory cycles(double depth, double ramp, int cycles);
+  double peak() const;  ///< the largest |d|
+};
+
+struct RigSpec {
+  std::string name = "rig";
+  RigTest test = RigTest::Indentation;
+  // Sample (m). A block is size_x x size_y x height; a cylinder has `radius` and `height`.
+  SampleShape shape = SampleShape::Block;
+  double size_x = 0.04, size_y = 0.04, height = 0.02, radius = 0.025;
+  // Fixture.
+  Support bottom = Support::Bonded;         ///< indentation: how the sample sits on its support
+  Support platens = Support::Frictionless;  ///< compression / tension: both platens
+  IndenterShape indenter = IndenterShape::Sphere;
+  double indenter_radius = 0.005;  ///< m
+  double cx = 0.0, cy = 0.0;       ///< where the indenter touches the top face (block only)
+  // Mesh: cells across the smallest lateral size and through the height; grading >= 1 refines
+  // towards the indenter (graded_coordinates' power).
+  int cells = 16;
+  int layers = 8;
+  double grading = 2.0;
+  // Loading.
+  DisplacementHistory history = DisplacementHistory::ramp_hold(0.002, 1.0, 0.0);
+  int steps_per_sample = 10;  ///< quasi-static load steps across the shortest history segment
+  // The case file's `material` section as given (law, moduli, density, viscoelastic).
+  nlohmann::json material = {{"E", 3000.0}, {"nu", 0.45}, {"density", 1000.0}};
+  std::string model = "tensor_mass";
+};
+
+/// Throws tmlab::Error naming the offending field (a depth beyond the sample, an indenter wider
+/// than the sample, a tension test with frictionless platens, a history that is not increasing in
+/// time, a cylinder for an off-centre indentation ...).
+void validate(const RigSpec& spec);
+
+/// The sample mesh of the rig (core/mesh/sample_meshes.hpp), in metres.
+Mesh rig_mesh(const RigSpec& spec);
+
+/// The case file of the rig; `mesh_file` is the path the case names (relative to the case file).
+nlohmann::json rig_case(const RigSpec& spec, const std::string& mesh_file);
+
+/// Writes DIR/NAME.msh and DIR/NAME.json (each written atomically; DIR is created). Returns the
+/// case file's path.
+std::filesystem::path write_rig(const RigSpec& spec, const std::filesystem::path& dir);
+
+}  // namespace tmlab::rigs
