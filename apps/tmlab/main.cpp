@@ -60,6 +60,15 @@ void print_usage(std::ostream& os) {
         "                            in results/verification/ (docs/verification.md); finished cases\n"
         "                            are checkpointed in results/verification.checkpoint/ until the\n"
         "                            report is complete: --resume continues an interrupted suite\n"
+        "  rig indentation|unconfined|confined|tension --out DIR [--name N]\n"
+        "      [--shape block|cylinder] [--size X,Y,Z] [--radius R] [--height H]\n"
+        "      [--indenter sphere|flat_punch] [--indenter-radius R] [--at CX,CY]\n"
+        "      [--bottom bonded|frictionless] [--platens bonded|frictionless]\n"
+        "      [--cells N] [--layers N] [--grading P] [--depth D] [--ramp T] [--hold T]\n"
+        "      [--cycles N] [--material JSON] [--E PA] [--nu V] [--density RHO]\n"
+        "      [--steps-per-segment N] [--model M]\n"
+        "                            a test rig as DIR/NAME.msh + DIR/NAME.json, an ordinary case\n"
+        "                            file for tmlab run / compare (docs/rigs.md)\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -99,6 +108,7 @@ int main(int argc, char** argv) {
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
+    if (cmd == "rig") return tmlab::cli::cmd_rig(args);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

@@ -1,0 +1,153 @@
+// tmlab rig: a mechanical test as a generated mesh and an ordinary case file (calibration/rigs).
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "calibration/rigs/rig.hpp"
+#include "core/base/error.hpp"
+
+#include <iostream>
+#include <sstream>
+
+namespace tmlab::cli {
+
+namespace {
+
+// "a,b,c" as numbers; UsageError naming the option otherwise.
+std::vector<double> parse_list(const std::string& key, const std::string& s, std::size_t n) {
+  std::vector<double> v;
+  std::stringstream in(s);
+  std::string item;
+  while (std::getline(in, item, ',')) v.push_back(parse_double(key, item));
+  if (v.size() != n) throw UsageError(key + " needs " + std::to_string(n) + " comma-separated numbers");
+  return v;
+}
+
+rigs::RigTest rig_test(const std::string& name) {
+  if (name == "unconfined") return rigs::RigTest::UnconfinedCompression;
+  if (name == "confined") return rigs::RigTest::ConfinedCompression;
+  if (name == "tension") return rigs::RigTest::UniaxialTension;
+  try {
+    return rigs::parse_rig_test(name, "rig test");
+  } catch (const Error& e) {
+    throw UsageError(std::string(e.what()) + "; short forms: unconfined, confined, tension");
+  }
+}
+
+// The sample, fixture and mesh options.
+void apply_geometry(const Parsed& p, rigs::RigSpec& s) {
+  if (p.has("--shape")) s.shape = rigs::parse_sample_shape(p.get("--shape"), "--shape");
+  if (p.has("--size")) {
+    const auto v = parse_list("--size", p.get("--size"), 3);
+    s.size_x = v[0];
+    s.size_y = v[1];
+    s.height = v[2];
+  }
+  if (p.has("--radius")) s.radius = parse_double("--radius", p.get("--radius"));
+  if (p.has("--height")) s.height = parse_double("--height", p.get("--height"));
+  if (p.has("--indenter")) s.indenter = rigs::parse_indenter_shape(p.get("--indenter"), "--indenter");
+  if (p.has("--indenter-radius"))
+    s.indenter_radius = parse_double("--indenter-radius", p.get("--indenter-radius"));
+  if (p.has("--at")) {
+    const auto v = parse_list("--at", p.get("--at"), 2);
+    s.cx = v[0];
+    s.cy = v[1];
+  }
+  if (p.has("--bottom")) s.bottom = rigs::parse_support(p.get("--bottom"), "--bottom");
+  if (p.has("--platens")) s.platens = rigs::parse_support(p.get("--platens"), "--platens");
+  const auto whole = [&](const char* key, int& out) {
+    if (!p.has(key)) return;
+    const double v = parse_double(key, p.get(key));
+    if (v != static_cast<int>(v)) throw UsageError(std::string(key) + " needs a whole number");
+    out = static_cast<int>(v);
+  };
+  whole("--cells", s.cells);
+  whole("--layers", s.layers);
+  whole("--steps-per-segment", s.steps_per_sample);
+  if (p.has("--grading")) s.grading = parse_double("--grading", p.get("--grading"));
+}
+
+// The displacement history and the material.
+void apply_loading(const Parsed& p, rigs::RigSpec& s) {
+  const bool tension = s.test == rigs::RigTest::UniaxialTension;
+  const double depth = p.has("--depth") ? parse_double("--depth", p.get("--depth")) : 0.1 * s.height;
+  const double signed_depth = tension ? -std::abs(depth) : depth;
+  const double ramp = p.has("--ramp") ? parse_double("--ramp", p.get("--ramp")) : 1.0;
+  if (p.has("--cycles")) {
+    const double n = parse_double("--cycles", p.get("--cycles"));
+    if (n != static_cast<int>(n)) throw UsageError("--cycles needs a whole number");
+    s.history = rigs::DisplacementHistory::cycles(signed_depth, ramp, static_cast<int>(n));
+  } else {
+    const double hold = p.has("--hold") ? parse_double("--hold", p.get("--hold")) : 0.0;
+    s.history = rigs::DisplacementHistory::ramp_hold(signed_depth, ramp, hold);
+  }
+  if (p.has("--material")) {
+    try {
+      s.material = nlohmann::json::parse(p.get("--material"));
+    } catch (const nlohmann::json::exception& e) {
+      throw UsageError(std::string("--material is not valid JSON: ") + e.what());
+    }
+    if (!s.material.is_object())
+      throw UsageError("--material must be a JSON object (the case file's material section)");
+  }
+  for (const char* key : {"E", "nu", "density"}) {
+    const std::string opt = std::string("--") + key;
+    if (p.has(opt)) s.material[key] = parse_double(opt, p.get(opt));
+  }
+}
+
+}  // namespace
+
+int cmd_rig(const std::vector<std::string>& args) {
+  const Parsed p = parse(args,
+                         {"--out",
+                          "--name",
+                          "--shape",
+                          "--size",
+                          "--radius",
+                          "--height",
+                          "--indenter",
+                          "--indenter-radius",
+                          "--at",
+                          "--bottom",
+                          "--platens",
+                          "--cells",
+                          "--layers",
+                          "--grading",
+                          "--depth",
+                          "--ramp",
+                          "--hold",
+                          "--cycles",
+                          "--material",
+                          "--E",
+                          "--nu",
+                          "--density",
+                          "--steps-per-segment",
+                          "--model"},
+                         {});
+  if (p.positional.size() != 1) {
+    throw UsageError("rig needs one test: indentation | unconfined | confined | tension (see tmlab help)");
+  }
+  if (!p.has("--out")) throw UsageError("rig needs --out DIR (where NAME.json and NAME.msh go)");
+  rigs::RigSpec s;
+  s.test = rig_test(p.positional[0]);
+  s.name = p.get("--name", rigs::rig_test_name(s.test));
+  if (s.test != rigs::RigTest::Indentation) {
+    // Platen tests default to the phantom geometry (a 50 mm x 30 mm cylinder); tension is gripped.
+    s.shape = rigs::SampleShape::Cylinder;
+    s.height = 0.03;
+    s.cells = 8;
+    s.layers = 10;
+    if (s.test == rigs::RigTest::UniaxialTension) s.platens = rigs::Support::Bonded;
+  }
+  if (p.has("--model")) s.model = p.get("--model");
+  apply_geometry(p, s);
+  apply_loading(p, s);
+  const auto case_file = rigs::write_rig(s, p.get("--out"));
+  std::cout << "rig: " << rigs::rig_test_name(s.test) << " written to " << case_file.string() << " (mesh "
+            << (case_file.parent_path() / (s.name + ".msh")).string() << ")\nrun it with: tmlab run "
+            << case_file.string() << "\n";
+  return 0;
+}
+
+}  // namespace tmlab::cli
