@@ -105,6 +105,33 @@ TEST(ContactSolver, FrictionlessPlatenGivesTheHomogeneousUniaxialSolution) {
   EXPECT_NEAR(st.moment.y(), -c * F, 1e-8 * F * L);
 }
 
+TEST(ContactSolver, TwoPlatensCarryEqualAndOppositeForces) {
+  // The block is held in z only by the two frictionless platens (rollers on x = 0 and y = 0 fix
+  // x and y): the bottom platen is fixed, the top one moves down. Both carry the uniaxial force.
+  const double L = 0.01, delta = 0.08 * L;
+  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(L), 3, 3, 3);
+  std::vector<DirichletCondition> bc = {roller(mesh, 0, 0.0, "x0"), roller(mesh, 1, 0.0, "y0")};
+  Sample s(std::move(mesh), std::move(bc));
+  RigidBody top = RigidBody::plane("top", Vec3(0, 0, L), -Vec3::UnitZ());
+  top.displacement = Vec3(0, 0, -delta);
+  top.function = TimeFunction::ramp(0.0, 1.0);
+  const RigidBody bottom = RigidBody::plane("bottom", Vec3(0, 0, 0), Vec3::UnitZ());
+  ContactOptions opt;
+  opt.gap_tol = 1e-14 * L;
+  VecX u = VecX::Zero(s.system->num_dofs());
+  ContactStaticSolver solver(*s.system, s.mesh, {top, bottom}, opt, NewtonOptions{}, 0.0, u);
+  ContactStepReport rep;
+  for (int k = 1; k <= 2; ++k) rep = solver.advance(0.5 * (k - 1), 0.5 * k, u);
+  ASSERT_EQ(rep.bodies.size(), 2u);
+  const double F = uniaxial_force(L, delta);
+  EXPECT_NEAR(rep.bodies[0].force.z(), F, 1e-9 * F);
+  EXPECT_NEAR(rep.bodies[1].force.z(), -F, 1e-9 * F);
+  EXPECT_EQ(rep.bodies[0].active_nodes, 16);
+  EXPECT_EQ(rep.bodies[1].active_nodes, 16);
+  EXPECT_EQ(rep.bodies[0].name, "top");
+  EXPECT_EQ(rep.bodies[1].name, "bottom");
+}
+
 TEST(ContactSolver, BondedPlatenHoldsTheTopFace) {
   const double L = 0.01, delta = 0.1 * L;
   Sample s = roller_block(L, 3);
