@@ -1,0 +1,393 @@
+#include "tensormass/contact/contact_solver.hpp"
+
+#include "core/base/error.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace tmlab::tm {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+/// The static residual plus the contact terms of the current outer iteration (multipliers fixed):
+/// R = f_int - f_ext + dPhi/du, J = K - df_ext/du + d^2Phi/du^2, Pi = W - f_ext.u + Phi.
+class ContactResidual final : public NonlinearSystem {
+ public:
+  ContactResidual(const MechanicalSystem& s, const ContactStaticSolver& contact, double t, const VecX& u0)
+      : inner_(s, t, u0), contact_(contact), t_(t) {
+    VecX r = VecX::Zero(u0.size());
+    contact_.add_contact_terms(u0, t_, &r, nullptr, nullptr);
+    // The contact forces at u0 set the scale when the body's own motion is the only load.
+    scale_ = std::max(inner_.force_scale(), r.norm());
+  }
+  void residual(const VecX& u, VecX& r) override {
+    inner_.residual(u, r);
+    contact_.add_contact_terms(u, t_, &r, nullptr, nullptr);
+  }
+  void jacobian(const VecX& u, SpMat& J) override {
+    inner_.jacobian(u, J);
+    contact_.add_contact_terms(u, t_, nullptr, &J, nullptr);
+  }
+  bool symmetric() const override { return inner_.symmetric(); }
+  double force_scale() const override { return scale_; }
+  bool potential(const VecX& u, double& value) override {
+    if (!inner_.potential(u, value)) return false;
+    double phi = 0.0;
+    contact_.add_contact_terms(u, t_, nullptr, nullptr, &phi);
+    value += phi;
+    return true;
+  }
+
+ private:
+  StaticResidual inner_;
+  const ContactStaticSolver& contact_;
+  double t_;
+  double scale_ = 0.0;
+};
+
+void add_block(SpMat& J, Eigen::Index dof, const Eigen::Matrix3d& M) {
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) J.coeffRef(dof + a, dof + b) += M(a, b);
+}
+
+std::vector<Index> sorted_union(const std::vector<Index>& a, const std::vector<Index>& b) {
+  std::vector<Index> out;
+  out.reserve(a.size() + b.size());
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(out));
+  return out;
+}
+
+std::string node_label(const Mesh& mesh, Index node) {
+  std::string s = "node " + std::to_string(node);
+  if (static_cast<std::size_t>(node) < mesh.point_file_ids.size())
+    s += " (file id " + std::to_string(mesh.point_file_ids[static_cast<std::size_t>(node)]) + ")";
+  return s;
+}
+
+}  // namespace
+
+ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh,
+                                         std::vector<RigidBody> bodies, ContactOptions options,
+                                         NewtonOptions newton, double t0, const VecX& u0, int max_cutbacks)
+    : system_(system),
+      mesh_(mesh),
+      bodies_(std::move(bodies)),
+      options_(options),
+      newton_(newton),
+      max_cutbacks_(max_cutbacks) {
+  if (mesh_.num_points() != system_.model().num_nodes())
+    throw Error("contact: the mesh and the mechanical system have different node counts");
+  if (u0.size() != system_.num_dofs()) throw Error("contact: initial displacement has the wrong size");
+  if (bodies_.empty()) throw Error("contact: no contact body given");
+  for (RigidBody& b : bodies_) b.validate();
+  if (!(options_.max_outer_iterations >= 1)) throw Error("contact: max_outer_iterations must be >= 1");
+  if (!(options_.stiffness_factor > 0.0) || !std::isfinite(options_.stiffness_factor))
+    throw Error("contact: stiffness_factor must be > 0");
+  if (!(options_.stiffness >= 0.0) || !std::isfinite(options_.stiffness))
+    throw Error("contact: stiffness must be >= 0 (0: from stiffness_factor)");
+  if (!(options_.gap_tol >= 0.0) || !(options_.initial_gap_tol >= 0.0) || !(options_.search_margin >= 0.0))
+    throw Error("contact: gap_tol, initial_gap_tol and search_margin must be >= 0");
+
+  surface_ = ContactSurface::extract(mesh_);
+  grid_ = SurfaceGrid(mesh_, surface_, u0);
+  gap_tol_ = options_.gap_tol > 0.0 ? options_.gap_tol : 1e-8 * surface_.mean_edge;
+
+  if (options_.stiffness > 0.0) {
+    eps_ = options_.stiffness;
+  } else {
+    // A nodal stiffness scale of the sample: the mean diagonal of K_0 over the boundary DOFs.
+    const VecX diag = system_.reference_tangent().diagonal();
+    double sum = 0.0;
+    for (Index n : surface_.nodes)
+      for (int c = 0; c < 3; ++c) sum += diag[3 * static_cast<Eigen::Index>(n) + c];
+    eps_ = options_.stiffness_factor * sum / (3.0 * static_cast<double>(surface_.size()));
+    if (!(eps_ > 0.0) || !std::isfinite(eps_))
+      throw Error("contact: the reference tangent gives no positive stiffness scale; give contact.stiffness");
+  }
+
+  const std::size_t nb = static_cast<std::size_t>(surface_.size());
+  committed_.resize(bodies_.size());
+  for (BodyData& d : committed_) {
+    d.lambda.assign(nb, 0.0);
+    d.lambda_b.assign(nb, Vec3::Zero());
+    d.bonded.assign(nb, 0);
+    d.anchor.assign(nb, Vec3::Zero());
+  }
+  check_initial(t0, u0);
+  trial_ = committed_;
+  state_ = evaluate_state(t0, u0);
+}
+
+Vec3 ContactStaticSolver::position(const VecX& u, Index k) const {
+  const Index n = surface_.nodes[static_cast<std::size_t>(k)];
+  return mesh_.points[static_cast<std::size_t>(n)] + u.segment<3>(3 * static_cast<Eigen::Index>(n));
+}
+
+void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
+  const double tol = options_.initial_gap_tol > 0.0 ? options_.initial_gap_tol : gap_tol_;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const RigidBody& body = bodies_[b];
+    Vec3 lo, hi;
+    body.bounding_box(t0, gap_tol_, lo, hi);
+    double worst = 0.0;
+    Index worst_node = -1;
+    for (Index k : grid_.query(lo, hi)) {
+      const GapPoint gp = body.gap(position(u0, k), t0);
+      if (-gp.g > worst) {
+        worst = -gp.g;
+        worst_node = surface_.nodes[static_cast<std::size_t>(k)];
+      }
+      // Nodes touching a bonded body at t0 are glued where they touch.
+      if (body.mode == ContactMode::Bonded && gp.g <= gap_tol_) {
+        BodyData& d = committed_[b];
+        d.bonded[static_cast<std::size_t>(k)] = 1;
+        d.anchor[static_cast<std::size_t>(k)] = gp.closest - body.position(t0);
+        d.candidates.push_back(k);
+      }
+    }
+    if (worst > tol) {
+      std::ostringstream msg;
+      msg << "contact body '" << body.name << "' (" << body.shape_name()
+          << ") penetrates the sample at t = " << t0 << " by " << worst << " m at "
+          << node_label(mesh_, worst_node) << " (tolerance " << tol
+          << " m): place the body clear of, or touching, the surface at the start";
+      throw Error(msg.str());
+    }
+  }
+}
+
+void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, SpMat* J,
+                                            double* energy) const {
+  const bool penalty = options_.method == ContactMethod::Penalty;
+  const Eigen::Matrix3d I = Eigen::Matrix3d::Identity();
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const RigidBody& body = bodies_[b];
+    const BodyData& d = trial_[b];
+    const Vec3 c = body.position(t);
+    for (Index k : d.candidates) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const Eigen::Index dof = 3 * static_cast<Eigen::Index>(surface_.nodes[kk]);
+      const Vec3 x = position(u, k);
+      if (d.bonded[kk]) {
+        // Phi = lambda . c + eps/2 |c|^2 with c = x - (anchor + c(t)).
+        const Vec3 gap = x - (d.anchor[kk] + c);
+        if (r) r->segment<3>(dof) += d.lambda_b[kk] + eps_ * gap;
+        if (J) add_block(*J, dof, eps_ * I);
+        if (energy) *energy += d.lambda_b[kk].dot(gap) + 0.5 * eps_ * gap.squaredNorm();
+        continue;
+      }
+      // Phi = (<lambda - eps g>_+^2 - lambda^2) / (2 eps); dPhi/du = -p n; d2Phi = eps n n^T - p H.
+      const GapPoint gp = body.gap(x, t);
+      const double lam = penalty ? 0.0 : d.lambda[kk];
+      const double p = lam - eps_ * gp.g;
+      const double pp = std::max(p, 0.0);
+      if (energy) *energy += (pp * pp - lam * lam) / (2.0 * eps_);
+      if (p <= 0.0) continue;
+      if (r) r->segment<3>(dof) -= p * gp.normal;
+      if (J) add_block(*J, dof, eps_ * gp.normal * gp.normal.transpose() - p * gp.hessian);
+    }
+  }
+}
+
+void ContactStaticSolver::find_candidates(double t, double margin, const VecX& u) {
+  grid_.refit(mesh_, surface_, u);
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const RigidBody& body = bodies_[b];
+    BodyData& d = trial_[b];
+    Vec3 lo, hi;
+    body.bounding_box(t, margin, lo, hi);
+    std::vector<Index> near;
+    for (Index k : grid_.query(lo, hi))
+      if (body.gap(position(u, k), t).g <= margin) near.push_back(k);
+    // Keep every node that carries a multiplier or is glued (their force must stay in the residual).
+    std::vector<Index> keep;
+    for (Index k : d.candidates) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      if (d.bonded[kk] || d.lambda[kk] > 0.0) keep.push_back(k);
+    }
+    d.candidates = sorted_union(near, keep);
+  }
+}
+
+bool ContactStaticSolver::solve_at(double t, double t_from, VecX& u, ContactStepReport& report) {
+  trial_ = committed_;
+  const bool penalty = options_.method == ContactMethod::Penalty;
+  double margin = options_.search_margin;
+  if (!(margin > 0.0)) {
+    double travel = 0.0;
+    for (const RigidBody& b : bodies_) travel = std::max(travel, (b.position(t) - b.position(t_from)).norm());
+    margin = std::max(2.0 * travel, 2.0 * surface_.mean_edge);
+  }
+  report.outer_iterations = 0;
+  report.active_changes.clear();
+  report.active_counts.clear();
+  find_candidates(t, margin, u);
+  for (int outer = 0; outer < options_.max_outer_iterations; ++outer) {
+    ContactResidual residual(system_, *this, t, u);
+    const NewtonResult nr = newton_solve(residual, system_.bc(), t, u, newton_, *linear_);
+    report.solver.newton_iterations += nr.iterations;
+    report.solver.newton = nr;
+    report.solver.at_roundoff = report.solver.at_roundoff || nr.at_roundoff;
+    ++report.outer_iterations;
+    ++report.outer_iterations_total;
+    if (!nr.converged) return false;
+
+    // Multiplier update, natural residual and active-set changes.
+    double natural = 0.0;
+    int changes = 0, active = 0;
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      const RigidBody& body = bodies_[b];
+      BodyData& d = trial_[b];
+      const Vec3 c = body.position(t);
+      for (Index k : d.candidates) {
+        const std::size_t kk = static_cast<std::size_t>(k);
+        const Vec3 x = position(u, k);
+        if (d.bonded[kk]) {
+          const Vec3 gap = x - (d.anchor[kk] + c);
+          d.lambda_b[kk] += eps_ * gap;
+          natural = std::max(natural, gap.lpNorm<Eigen::Infinity>());
+          ++active;
+          continue;
+        }
+        const double g = body.gap(x, t).g;
+        const double old = penalty ? 0.0 : d.lambda[kk];
+        const double next = std::max(0.0, old - eps_ * g);
+        d.lambda[kk] = next;  // penalty: the force eps <-g>_+, kept for the output only
+        if (next > 0.0) ++active;
+        if (penalty) continue;
+        natural = std::max(natural, std::abs(next - old) / eps_);
+        if ((old > 0.0) != (next > 0.0) && std::max(old, next) > eps_ * gap_tol_) ++changes;
+      }
+    }
+    // Detection check: no boundary node outside the candidate sets may penetrate.
+    int missed = 0;
+    grid_.refit(mesh_, surface_, u);
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      const RigidBody& body = bodies_[b];
+      BodyData& d = trial_[b];
+      Vec3 lo, hi;
+      body.bounding_box(t, 0.0, lo, hi);
+      std::vector<Index> add;
+      for (Index k : grid_.query(lo, hi))
+        if (body.gap(position(u, k), t).g < -gap_tol_ &&
+            !std::binary_search(d.candidates.begin(), d.candidates.end(), k))
+          add.push_back(k);
+      missed += static_cast<int>(add.size());
+      d.candidates = sorted_union(d.candidates, add);
+    }
+    report.active_changes.push_back(changes + missed);
+    report.active_counts.push_back(active);
+    report.natural_residual = natural;
+    if (missed == 0 && (penalty || (natural <= gap_tol_ && changes == 0))) return true;
+    find_candidates(t, margin, u);
+  }
+  return false;
+}
+
+ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, VecX& u) {
+  ContactStepReport report;
+  double t_done = t_prev;
+  double h = t_next - t_prev;
+  int depth = 0;
+  while (t_done < t_next) {
+    const double t_try = (t_next - t_done <= h * (1.0 + 1e-12)) ? t_next : t_done + h;
+    VecX u_try = u;
+    bool ok = false;
+    system_.model().begin_step(t_try - t_done);
+    try {
+      ok = solve_at(t_try, t_done, u_try, report);
+    } catch (const Error&) {
+      ok = false;  // a non-finite residual in a too-large increment: cut back
+      if (depth >= max_cutbacks_) throw;
+    }
+    if (ok) {
+      system_.model().commit_step(u_try);
+      u.swap(u_try);
+      state_ = evaluate_state(t_try, u);
+      committed_ = trial_;
+      // Bonded bodies: nodes that came into contact during the increment are glued where they are.
+      for (std::size_t b = 0; b < bodies_.size(); ++b) {
+        if (bodies_[b].mode != ContactMode::Bonded) continue;
+        BodyData& d = committed_[b];
+        for (Index k : d.candidates) {
+          const std::size_t kk = static_cast<std::size_t>(k);
+          if (d.bonded[kk] || !(d.lambda[kk] > 0.0)) continue;
+          const GapPoint gp = bodies_[b].gap(position(u, k), t_try);
+          d.bonded[kk] = 1;
+          d.anchor[kk] = gp.closest - bodies_[b].position(t_try);
+          d.lambda_b[kk] = -d.lambda[kk] * gp.normal;  // the same force on the sample
+          d.lambda[kk] = 0.0;
+        }
+      }
+      t_done = t_try;
+      ++report.solver.sub_increments;
+      if (depth > 0) {
+        h *= 2.0;
+        --depth;
+      }
+      continue;
+    }
+    if (depth >= max_cutbacks_) {
+      std::ostringstream msg;
+      msg << "static solve with contact did not converge at t = " << t_try << " after " << max_cutbacks_
+          << " cut-backs (outer iterations " << report.outer_iterations
+          << ", natural complementarity residual " << report.natural_residual << " m against gap_tol "
+          << gap_tol_ << " m, last Newton residual " << report.solver.newton.residual_final
+          << "); a node held by a Dirichlet condition inside a body, or "
+          << "a body driven too far for the model, prevents a solution";
+      throw Error(msg.str());
+    }
+    h *= 0.5;
+    ++depth;
+    ++report.solver.cutbacks;
+  }
+  report.bodies = state_;
+  return report;
+}
+
+std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, const VecX& u) const {
+  std::vector<ContactBodyState> out;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const RigidBody& body = bodies_[b];
+    const BodyData& d = trial_[b];
+    ContactBodyState st;
+    st.name = body.name;
+    st.position = body.position(t);
+    double min_lambda = std::numeric_limits<double>::infinity();
+    for (Index k : d.candidates) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const GapPoint gp = body.gap(position(u, k), t);
+      Vec3 f;  // force of the body on the sample at this node
+      if (d.bonded[kk]) {
+        f = -d.lambda_b[kk];
+      } else {
+        const double lam = d.lambda[kk];
+        min_lambda = std::min(min_lambda, lam);
+        st.complementarity = std::max(st.complementarity, lam * std::abs(gp.g));
+        if (!(lam > 0.0)) continue;
+        f = lam * gp.normal;
+      }
+      const double area = surface_.contact_area(k, gp.normal);
+      st.nodes.push_back(surface_.nodes[kk]);
+      st.nodal_force.push_back(f);
+      st.gap.push_back(gp.g);
+      st.pressure.push_back(area > 0.0 ? f.dot(gp.normal) / area : 0.0);
+      st.area += area;
+      st.force -= f;
+      st.moment += (gp.closest - st.position).cross(-f);
+      st.max_penetration = std::max(st.max_penetration, -gp.g);
+      st.radius_max = std::max(st.radius_max, body.radial_distance(gp.closest, t));
+    }
+    st.active_nodes = static_cast<int>(st.nodes.size());
+    st.min_multiplier = std::isfinite(min_lambda) ? min_lambda : 0.0;
+    st.radius_equivalent = body.axisymmetric() ? std::sqrt(st.area / kPi) : 0.0;
+    out.push_back(std::move(st));
+  }
+  return out;
+}
+
+}  // namespace tmlab::tm

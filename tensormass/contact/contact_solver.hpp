@@ -1,0 +1,154 @@
+// Static equilibrium with node-to-rigid contact (docs/contact.md).
+//
+// The constraints are imposed on the boundary nodes of the mesh against rigid analytic bodies
+// (rigid_body.hpp) by the augmented Lagrangian method with Uzawa multiplier updates, around the
+// unchanged static Newton solver (newton_solve with its energy line search):
+//
+//   frictionless node i, body b:   g_i(u) >= 0,  lambda_i >= 0,  lambda_i g_i = 0,
+//       Pi_k(u) = Pi(u) + sum_i 1/(2 eps) ( <lambda_i^k - eps g_i(u)>_+^2 - (lambda_i^k)^2 ),
+//       force on the sample at i:  <lambda_i^k - eps g_i>_+ n_i,
+//       update:  lambda_i^{k+1} = <lambda_i^k - eps g_i(u_k)>_+       (u_k minimises Pi_k)
+//   bonded node i (glued):          c_i(u) = x_i - (a_i + c(t)) = 0 (a_i its anchor in the body frame),
+//       Pi_k(u) = Pi(u) + sum_i ( lambda_i^k . c_i + eps/2 |c_i|^2 ),  update lambda += eps c_i(u_k).
+//
+// For fixed multipliers Pi_k is a potential (C1, piecewise C2), so the Newton solver's Armijo line
+// search applies unchanged; its tangent adds eps n n^T - <.>_+ d^2 g/dx^2 (eps I when bonded) to
+// the nodal 3x3 diagonal blocks, which the mesh-graph pattern already holds. The multipliers at the
+// end are the nodal contact forces: the equilibrium of u_k holds with lambda^{k+1} exactly.
+//
+// Stopping test of the outer (Uzawa) loop, all of:
+//   (1) the natural complementarity residual  max_i |lambda_i^{k+1} - lambda_i^k| / eps
+//       = max_i |min(lambda_i^k / eps, g_i)|  (|c_i|_inf when bonded) is <= gap_tol, metres;
+//   (2) the active set {lambda^{k+1} > 0} equals the previous one, ignoring nodes whose multiplier
+//       stays below eps gap_tol in both (weakly active: force and gap both within tolerance);
+//   (3) a search over all boundary nodes (grid, margin 0) finds no node outside the candidate set
+//       with g < -gap_tol.
+// Then lambda >= 0 exactly, g >= -gap_tol, and lambda |g| <= lambda_max gap_tol on every node.
+//
+// Penalty (option): the multipliers stay 0, one outer iteration; the force is eps <-g>_+, the
+// penetration O(force/eps) is reported, and so is eps.
+//
+// Bonded bodies: a node that touches (g <= gap_tol at the start, or active at the end of an
+// accepted increment) is glued from then on to the body point it touched; it is never released.
+#pragma once
+
+#include "tensormass/contact/rigid_body.hpp"
+#include "tensormass/contact/surface_grid.hpp"
+#include "tensormass/solvers/static_solver.hpp"
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace tmlab::tm {
+
+enum class ContactMethod {
+  AugmentedLagrangian,  ///< exact to gap_tol (Uzawa updates until the stopping test holds)
+  Penalty,              ///< one solve with lambda = 0; penetration O(force / eps)
+};
+
+struct ContactOptions {
+  ContactMethod method = ContactMethod::AugmentedLagrangian;
+  /// eps = stiffness_factor * (mean diagonal entry of the reference tangent K_0 over the boundary
+  /// DOFs), a nodal stiffness scale of the sample itself: the Uzawa loop then shrinks the
+  /// constraint error by roughly that factor per outer iteration.
+  double stiffness_factor = 100.0;
+  double stiffness = 0.0;        ///< > 0: eps in N/m, overriding stiffness_factor
+  double gap_tol = 0.0;          ///< metres; 0: 1e-8 * mean boundary edge length
+  double initial_gap_tol = 0.0;  ///< penetration refused at t0, metres; 0: gap_tol
+  int max_outer_iterations = 30;
+  double search_margin = 0.0;  ///< metres; 0: max(2 * body travel in the increment, 2 * mean edge)
+};
+
+/// The contact outputs of one body at one time.
+struct ContactBodyState {
+  std::string name;
+  Vec3 position = Vec3::Zero();  ///< reference point c(t)
+  Vec3 force = Vec3::Zero();     ///< total force the sample exerts on the body, N
+  Vec3 moment = Vec3::Zero();    ///< moment of that force about c(t), N m
+  int active_nodes = 0;
+  double area = 0.0;  ///< sum over active nodes of the reference tributary area projected on n, m^2
+  double radius_equivalent = 0.0;  ///< sqrt(area / pi) (axisymmetric bodies; 0 for the plane)
+  double radius_max = 0.0;         ///< largest radial distance of an active contact point from the axis
+  double max_penetration = 0.0;    ///< max(0, -g) over the active nodes, m
+  double complementarity = 0.0;    ///< max over nodes of lambda |g|, N m
+  double min_multiplier = 0.0;     ///< smallest normal multiplier (>= 0 for frictionless contact)
+  std::vector<Index> nodes;        ///< active nodes (mesh indices), increasing
+  std::vector<Vec3> nodal_force;   ///< force on the sample at each active node, N
+  std::vector<double> gap;         ///< gap at each active node, m
+  std::vector<double> pressure;    ///< (f . n) / projected tributary area (0 where that is 0), Pa
+};
+
+struct ContactStepReport {
+  StaticStepReport solver;          ///< Newton iterations summed over outer iterations, cut-backs
+  int outer_iterations = 0;         ///< of the last sub-increment
+  int outer_iterations_total = 0;   ///< summed over sub-increments
+  std::vector<int> active_changes;  ///< per outer iteration of the last sub-increment
+  std::vector<int> active_counts;   ///< active nodes (all bodies) per outer iteration, same
+  double natural_residual = 0.0;    ///< final value of stopping test (1), metres
+  std::vector<ContactBodyState> bodies;
+};
+
+class ContactStaticSolver {
+ public:
+  /// Builds the contact surface and its grid, sets eps, and checks the bodies against the
+  /// configuration u0 at t0: a body that penetrates a boundary node by more than initial_gap_tol
+  /// is refused (tmlab::Error naming the body, the node and the depth). Nodes touching a bonded
+  /// body at t0 are glued. The mesh and system must outlive the solver.
+  ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh, std::vector<RigidBody> bodies,
+                      ContactOptions options, NewtonOptions newton, double t0, const VecX& u0,
+                      int max_cutbacks = 8);
+
+  /// Equilibrium with contact at t_next from the accepted state at t_prev (u overwritten); the
+  /// increment is halved up to max_cutbacks times when Newton or the outer loop fails, then
+  /// tmlab::Error names the time reached.
+  ContactStepReport advance(double t_prev, double t_next, VecX& u);
+
+  /// The linear solver of the Newton iterations (direct LDL^T by default).
+  void set_linear_solver(ConstrainedLinearSolver::Kind kind, double cg_rtol = 1e-12) {
+    linear_ = std::make_unique<ConstrainedLinearSolver>(kind, cg_rtol);
+  }
+  double stiffness() const { return eps_; }  ///< eps, N/m
+  double gap_tol() const { return gap_tol_; }
+  const ContactOptions& options() const { return options_; }
+  const std::vector<RigidBody>& bodies() const { return bodies_; }
+  const ContactSurface& surface() const { return surface_; }
+  const SurfaceGrid& grid() const { return grid_; }
+  /// The outputs at the last accepted time (t0 before the first step: zero forces).
+  const std::vector<ContactBodyState>& state() const { return state_; }
+
+  /// Adds the contact terms at (u, t) with the trial multipliers: r += dPhi/du, J += d^2Phi/du^2,
+  /// energy += Phi (each skipped when null). Used by the Newton residual; public for the tests.
+  void add_contact_terms(const VecX& u, double t, VecX* r, SpMat* J, double* energy) const;
+
+ private:
+  struct BodyData {
+    std::vector<double> lambda;     ///< normal multiplier per surface node (>= 0)
+    std::vector<Vec3> lambda_b;     ///< bonded multiplier per surface node
+    std::vector<char> bonded;       ///< glued nodes
+    std::vector<Vec3> anchor;       ///< glued point in the body frame (relative to c(t))
+    std::vector<Index> candidates;  ///< surface-local nodes evaluated this outer iteration
+  };
+
+  bool solve_at(double t, double t_from, VecX& u, ContactStepReport& report);
+  void find_candidates(double t, double margin, const VecX& u);
+  Vec3 position(const VecX& u, Index surface_local) const;
+  std::vector<ContactBodyState> evaluate_state(double t, const VecX& u) const;
+  void check_initial(double t0, const VecX& u0);
+
+  const MechanicalSystem& system_;
+  const Mesh& mesh_;
+  std::vector<RigidBody> bodies_;
+  ContactOptions options_;
+  NewtonOptions newton_;
+  int max_cutbacks_;
+  ContactSurface surface_;
+  SurfaceGrid grid_;
+  double eps_ = 0.0;
+  double gap_tol_ = 0.0;
+  std::vector<BodyData> committed_, trial_;
+  std::vector<ContactBodyState> state_;
+  std::unique_ptr<ConstrainedLinearSolver> linear_ = std::make_unique<ConstrainedLinearSolver>();
+};
+
+}  // namespace tmlab::tm
