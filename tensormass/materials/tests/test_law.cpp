@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 namespace tmlab::tm {
 namespace {
 
@@ -52,6 +55,31 @@ TEST(Law, ForwardsEveryLawUnchanged) {
         },
         law.variant());
   }
+}
+
+TEST(Law, ConfinedCompressionStVKSoftensNeoHookeanDoesNot) {
+  // F = diag(s, 1, 1). St VK: P_11 = s S_11 = (lambda + 2 mu) s (s^2 - 1)/2 has its largest
+  // magnitude at s = 1/sqrt(3) and returns to 0 as s -> 0: a push beyond that load has no
+  // equilibrium (what caps indentation depth). Neo-Hookean: |P_11| grows without bound as s -> 0.
+  const double E = 3000.0, nu = 0.45;
+  const Law stvk = StVenantKirchhoff::from_young_poisson(E, nu), nh = NeoHookean::from_young_poisson(E, nu);
+  auto p11 = [](const Law& law, double s) {
+    const Mat3 F = Eigen::Vector3d(s, 1, 1).asDiagonal().toDenseMatrix();
+    return (F * law.pk2_stress(green_strain(F)))(0, 0);
+  };
+  const double s_peak = 1.0 / std::sqrt(3.0), lm = stvk.small_strain().lambda + 2 * stvk.small_strain().mu;
+  EXPECT_NEAR(p11(stvk, s_peak), lm * s_peak * (s_peak * s_peak - 1) / 2, 1e-12 * lm);
+  EXPECT_GT(p11(stvk, 0.3), p11(stvk, s_peak));  // softening: less compressive stress at s = 0.3
+  EXPECT_GT(p11(stvk, 0.8), p11(stvk, s_peak));
+  double prev = 0.0;
+  for (double s = 0.95; s > 0.02; s -= 0.05) {
+    EXPECT_LT(p11(nh, s), prev) << s;  // monotone
+    prev = p11(nh, s);
+  }
+  std::printf(
+      "confined compression, E = %g, nu = %g: St VK max |P11| = %.1f Pa at s = 0.577; neo-Hookean "
+      "|P11| at s = 0.577, 0.3, 0.05: %.1f, %.1f, %.1f Pa\n",
+      E, nu, -p11(stvk, s_peak), -p11(nh, s_peak), -p11(nh, 0.3), -p11(nh, 0.05));
 }
 
 }  // namespace
