@@ -231,4 +231,214 @@ inline void prony_update(const Material& m, const PronySeries& p, const SymTenso
   if (D && dfac != 0.0) *D += dfac * p.relaxing_tangent(m, E);
 }
 
+// ---------------------------------------------------------------------------------------------
+// Further laws of the fast model (tensormass/materials/, docs/theory/hyperelastic-laws.md), with
+// the same energies so that the two models agree to round-off pointwise and on the same mesh
+// (tests/test_reference_materials.cpp). Not yet selectable through Material::make (a closed set
+// wired by the case file's `material.law`); each has the energy / stress / tangent triad of the
+// laws above. Decoupled: isochoric invariants I1b = J^{-2/3} I1, I2b = J^{-4/3} I2, volumetric
+// kappa/2 (ln J)^2 as YeohLaw.
+// ---------------------------------------------------------------------------------------------
+
+/// d I2b / dC = J^{-4/3} (I1 I - C - 2/3 I2 C^-1) and its derivative
+/// J^{-4/3} [ I (x) I - II - 2/3 ((I1 I - C) (x) C^-1 + C^-1 (x) (I1 I - C)) + 4/9 I2 C^-1 (x) C^-1
+///            + 2/3 I2 C^-1 (.) C^-1 ],  II the symmetric fourth-order identity.
+struct IsochoricSecondInvariant {
+  SymTensor2 G;
+  SymTensor4 dG;
+  double value = 3.0;  ///< I2b
+  IsochoricSecondInvariant(const SymTensor2& C, const SymTensor2& Ci, double detC, bool with_tangent) {
+    const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+    const double I1 = dealii::trace(C), I2 = 0.5 * (I1 * I1 - C * C), Jm43 = std::pow(detC, -2.0 / 3.0);
+    value = Jm43 * I2;
+    const SymTensor2 A = I1 * I - C;
+    G = Jm43 * (A - (2.0 / 3.0) * I2 * Ci);
+    if (with_tangent)
+      dG = Jm43 * (dealii::outer_product(I, I) - dealii::identity_tensor<3>() -
+                   (2.0 / 3.0) * (dealii::outer_product(A, Ci) + dealii::outer_product(Ci, A)) +
+                   (4.0 / 9.0) * I2 * dealii::outer_product(Ci, Ci) + (2.0 / 3.0) * I2 * box_product(Ci, Ci));
+  }
+};
+
+/// d I1b / dC = J^{-2/3} (I - I1/3 C^-1) and its derivative (as in YeohLaw).
+struct IsochoricFirstInvariant {
+  SymTensor2 G;
+  SymTensor4 dG;
+  double value = 3.0;  ///< I1b
+  IsochoricFirstInvariant(const SymTensor2& C, const SymTensor2& Ci, double detC, bool with_tangent) {
+    const SymTensor2 I = dealii::unit_symmetric_tensor<3>();
+    const double I1 = dealii::trace(C), Jm23 = std::pow(detC, -1.0 / 3.0);
+    value = Jm23 * I1;
+    G = Jm23 * (I - (I1 / 3.0) * Ci);
+    if (with_tangent)
+      dG = Jm23 * (-1.0 / 3.0 * (dealii::outer_product(I, Ci) + dealii::outer_product(Ci, I)) +
+                   (I1 / 9.0) * dealii::outer_product(Ci, Ci) + (I1 / 3.0) * box_product(Ci, Ci));
+  }
+};
+
+/// Mooney-Rivlin, decoupled: W = c10 (I1b - 3) + c01 (I2b - 3) + kappa/2 (ln J)^2.
+///   S = 2 (c10 G1 + c01 G2) + kappa ln J C^-1,
+///   D = 4 (c10 dG1 + c01 dG2) + kappa C^-1 (x) C^-1 - 2 kappa ln J C^-1 (.) C^-1.
+/// Small-strain mu = 2 (c10 + c01), bulk modulus kappa.
+struct MooneyRivlinLaw {
+  double c10 = 0.0, c01 = 0.0, kappa = 0.0;
+  double energy(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    return c10 * (IsochoricFirstInvariant(C, Ci, detC, false).value - 3.0) +
+           c01 * (IsochoricSecondInvariant(C, Ci, detC, false).value - 3.0) + 0.5 * kappa * lnJ * lnJ;
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    return 2.0 * (c10 * IsochoricFirstInvariant(C, Ci, detC, false).G +
+                  c01 * IsochoricSecondInvariant(C, Ci, detC, false).G) +
+           kappa * lnJ * Ci;
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    return 4.0 * (c10 * IsochoricFirstInvariant(C, Ci, detC, true).dG +
+                  c01 * IsochoricSecondInvariant(C, Ci, detC, true).dG) +
+           kappa * dealii::outer_product(Ci, Ci) - 2.0 * kappa * lnJ * box_product(Ci, Ci);
+  }
+};
+
+/// Veronda-Westmann, decoupled: W = c1 (exp(c2 (I1b - 3)) - 1) - c1 c2/2 (I2b - 3) + kappa/2 (ln J)^2.
+/// With Psi_1 = c1 c2 e^{c2 x}, Psi_11 = c2 Psi_1, Psi_2 = -c1 c2/2 (x = I1b - 3):
+///   S = 2 (Psi_1 G1 + Psi_2 G2) + kappa ln J C^-1,
+///   D = 4 (Psi_11 G1 (x) G1 + Psi_1 dG1 + Psi_2 dG2) + kappa C^-1 (x) C^-1 - 2 kappa ln J C^-1 (.) C^-1.
+/// Small-strain mu = c1 c2, bulk modulus kappa.
+struct VerondaWestmannLaw {
+  double c1 = 0.0, c2 = 0.0, kappa = 0.0;
+  double energy(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    const double x = IsochoricFirstInvariant(C, Ci, detC, false).value - 3.0;
+    const double y = IsochoricSecondInvariant(C, Ci, detC, false).value - 3.0;
+    return c1 * std::expm1(c2 * x) - 0.5 * c1 * c2 * y + 0.5 * kappa * lnJ * lnJ;
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    const IsochoricFirstInvariant i1(C, Ci, detC, false);
+    const double p1 = c1 * c2 * std::exp(c2 * (i1.value - 3.0)), p2 = -0.5 * c1 * c2;
+    return 2.0 * (p1 * i1.G + p2 * IsochoricSecondInvariant(C, Ci, detC, false).G) + kappa * lnJ * Ci;
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E, Ci = dealii::invert(C);
+    const double detC = dealii::determinant(C), lnJ = 0.5 * std::log(detC);
+    const IsochoricFirstInvariant i1(C, Ci, detC, true);
+    const double p1 = c1 * c2 * std::exp(c2 * (i1.value - 3.0)), p2 = -0.5 * c1 * c2;
+    return 4.0 * (c2 * p1 * dealii::outer_product(i1.G, i1.G) + p1 * i1.dG +
+                  p2 * IsochoricSecondInvariant(C, Ci, detC, true).dG) +
+           kappa * dealii::outer_product(Ci, Ci) - 2.0 * kappa * lnJ * box_product(Ci, Ci);
+  }
+};
+
+/// Ogden (N terms), decoupled: W = sum_p mu_p/alpha_p (sum_i lb_i^alpha_p - 3) + kappa/2 (ln J)^2,
+/// lb_i = J^{-1/3} lambda_i, lambda_i^2 = c_i the eigenvalues of C (eigenvectors n_i, N_i = n_i (x) n_i).
+/// As a symmetric function Phi(c_1, c_2, c_3):
+///   S = 2 sum_i Phi_i N_i,
+///   D = 4 [ sum_ij Phi_ij N_i (x) N_j + 2 sum_{i<j} Theta_ij M_ij (x) M_ij ],  M_ij = sym(n_i (x) n_j),
+///   Theta_ij = (Phi_i - Phi_j)/(c_i - c_j), evaluated by the divided difference of c^{beta-1}
+///   (power_divided_difference: exact limit at c_i = c_j, so repeated eigenvalues need no special case).
+/// Small-strain mu = 1/2 sum_p mu_p alpha_p, bulk modulus kappa.
+struct OgdenLaw {
+  std::vector<double> mu, alpha;
+  double kappa = 0.0;
+
+  /// (a^k - b^k)/(a - b) for a, b > 0, accurate to round-off; k a^{k-1} at a = b.
+  static double power_divided_difference(double k, double a, double b) {
+    if (a == b) return k * std::pow(a, k - 1.0);
+    return -std::pow(a, k) * std::expm1(k * std::log1p((b - a) / a)) / (a - b);
+  }
+
+  /// Eigenvalues c_i and projectors N_i = n_i (x) n_i of C, and the M_ij of the pairs (0,1), (0,2), (1,2).
+  struct Spectrum {
+    double c[3];
+    SymTensor2 N[3], M[3];
+    double lnJ = 0.0;
+  };
+  static Spectrum spectrum(const SymTensor2& E) {
+    const SymTensor2 C = dealii::unit_symmetric_tensor<3>() + 2.0 * E;
+    const auto eig = dealii::eigenvectors(C, dealii::SymmetricTensorEigenvectorMethod::jacobi);
+    Spectrum s;
+    for (unsigned i = 0; i < 3; ++i) {
+      s.c[i] = eig[i].first;
+      s.N[i] = dealii::symmetrize(dealii::outer_product(eig[i].second, eig[i].second));
+      s.lnJ += 0.5 * std::log(s.c[i]);
+    }
+    const unsigned pi[3] = {0, 0, 1}, pj[3] = {1, 2, 2};
+    for (unsigned q = 0; q < 3; ++q)
+      s.M[q] = dealii::symmetrize(dealii::outer_product(eig[pi[q]].second, eig[pj[q]].second));
+    return s;
+  }
+
+  double energy(const SymTensor2& E) const {
+    const Spectrum s = spectrum(E);
+    double w = 0.5 * kappa * s.lnJ * s.lnJ;
+    for (std::size_t p = 0; p < mu.size(); ++p) {
+      double sum = 0.0;
+      for (unsigned k = 0; k < 3; ++k) sum += std::pow(s.c[k], 0.5 * alpha[p]);
+      w += mu[p] / alpha[p] * (std::exp(-alpha[p] / 3.0 * s.lnJ) * sum - 3.0);
+    }
+    return w;
+  }
+
+  /// Phi_i (first partials), Phi_ij (second partials) and Theta for the pairs (0,1), (0,2), (1,2).
+  void partials(const Spectrum& s, double phi[3], double phi2[3][3], double theta[3]) const {
+    const double* c = s.c;
+    const unsigned pi[3] = {0, 0, 1}, pj[3] = {1, 2, 2};
+    for (unsigned i = 0; i < 3; ++i) {
+      phi[i] = 0.5 * kappa * s.lnJ / c[i];  // kappa ln J d(ln J)/dc_i
+      for (unsigned j = 0; j < 3; ++j)
+        phi2[i][j] = kappa / (4.0 * c[i] * c[j]) - (i == j ? 0.5 * kappa * s.lnJ / (c[i] * c[i]) : 0.0);
+    }
+    for (unsigned q = 0; q < 3; ++q) theta[q] = -0.5 * kappa * s.lnJ / (c[pi[q]] * c[pj[q]]);
+    for (std::size_t p = 0; p < mu.size(); ++p) {
+      // term mu/alpha A sum_k c_k^beta, A = J^{-alpha/3}, beta = alpha/2:
+      //   Phi_i = mu A [c_i^{beta-1}/2 - sum/(6 c_i)]
+      const double be = 0.5 * alpha[p], A = std::exp(-alpha[p] / 3.0 * s.lnJ), mA = mu[p] * A;
+      double cb[3], sum = 0.0;
+      for (unsigned k = 0; k < 3; ++k) sum += (cb[k] = std::pow(c[k], be));
+      double g[3];
+      for (unsigned i = 0; i < 3; ++i) {
+        g[i] = 0.5 * cb[i] / c[i] - sum / (6.0 * c[i]);
+        phi[i] += mA * g[i];
+      }
+      for (unsigned i = 0; i < 3; ++i)
+        for (unsigned j = 0; j < 3; ++j) {
+          // d(A g_i)/dc_j = A [ -beta/(3 c_j) g_i - beta c_j^beta/(6 c_i c_j)
+          //                     + delta_ij ((beta - 1) c_i^beta/(2 c_i^2) + sum/(6 c_i^2)) ]
+          double v = -be / (3.0 * c[j]) * g[i] - be * cb[j] / (6.0 * c[i] * c[j]);
+          if (i == j) v += (0.5 * (be - 1.0) * cb[i] + sum / 6.0) / (c[i] * c[i]);
+          phi2[i][j] += mA * v;
+        }
+      for (unsigned q = 0; q < 3; ++q) {
+        const double a = c[pi[q]], b = c[pj[q]];
+        theta[q] += mA * (0.5 * power_divided_difference(be - 1.0, a, b) + sum / (6.0 * a * b));
+      }
+    }
+  }
+
+  SymTensor2 stress(const SymTensor2& E) const {
+    const Spectrum s = spectrum(E);
+    double phi[3], phi2[3][3], theta[3];
+    partials(s, phi, phi2, theta);
+    return 2.0 * (phi[0] * s.N[0] + phi[1] * s.N[1] + phi[2] * s.N[2]);
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    const Spectrum s = spectrum(E);
+    double phi[3], phi2[3][3], theta[3];
+    partials(s, phi, phi2, theta);
+    SymTensor4 D;
+    for (unsigned i = 0; i < 3; ++i)
+      for (unsigned j = 0; j < 3; ++j)
+        D += 2.0 * (phi2[i][j] + phi2[j][i]) * dealii::outer_product(s.N[i], s.N[j]);
+    for (unsigned q = 0; q < 3; ++q) D += 8.0 * theta[q] * dealii::outer_product(s.M[q], s.M[q]);
+    return D;
+  }
+};
+
 }  // namespace tmlab::ref

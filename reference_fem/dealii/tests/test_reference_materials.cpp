@@ -1,13 +1,19 @@
 // Constitutive laws of the reference: S = dW/dE and D = dS/dE against central finite differences
 // for every law, St VK identical to the tensor-mass material, the small-strain limit of every law,
-// and the Prony update (factors, consistent tangent, instantaneous-weight conversion).
+// and the Prony update (factors, consistent tangent, instantaneous-weight conversion); the laws
+// added for issue 13 (Mooney-Rivlin, Ogden, Veronda-Westmann) by finite differences, and every law
+// of the fast model (tensormass/materials/) equal to the reference's pointwise (W, S and D).
 #include "reference_fem/dealii/materials.hpp"
 
 #include "core/base/error.hpp"
+#include "tensormass/materials/law.hpp"
 #include "tensormass/materials/stvk_material.hpp"
+
+#include <Eigen/LU>
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <random>
 
 using namespace tmlab::ref;
@@ -152,4 +158,116 @@ TEST(ReferenceMaterials, PronyTangentIsConsistent) {
         EXPECT_LE(max_abs(Sv - m.stress(0.01 * dealii::unit_symmetric_tensor<3>())), 1e-12 * max_abs(Sv));
       }
     }
+}
+
+// ---- The laws of the fast model against the reference's, pointwise (issue 13) ----
+
+namespace {
+
+SymTensor2 to_dealii(const tmlab::tm::Mat3& A) {
+  SymTensor2 T;
+  for (unsigned i = 0; i < 3; ++i)
+    for (unsigned j = i; j < 3; ++j) T[i][j] = A(i, j);
+  return T;
+}
+
+tmlab::tm::Mat6 to_voigt6(const SymTensor4& D) {
+  tmlab::tm::Mat6 M;
+  for (int a = 0; a < 6; ++a)
+    for (int b = 0; b < 6; ++b)
+      M(a, b) = D[tmlab::tm::kVoigtI[a]][tmlab::tm::kVoigtJ[a]][tmlab::tm::kVoigtI[b]][tmlab::tm::kVoigtJ[b]];
+  return M;
+}
+
+/// Deformation gradients: random (J = 1, 0.3, 1.6), simple shear 1.5, uniaxial compression to
+/// J = 0.3, pure dilation (three equal stretches), two equal stretches.
+std::vector<tmlab::tm::Mat3> test_deformations(std::mt19937& rng) {
+  using tmlab::tm::Mat3;
+  std::uniform_real_distribution<double> d(-0.4, 0.4);
+  std::vector<Mat3> out;
+  for (double J : {1.0, 0.3, 1.6})
+    for (int k = 0; k < 2; ++k) {
+      Mat3 A = Mat3::Identity();
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) A(i, j) += d(rng);
+      if (A.determinant() < 0.2) continue;
+      out.push_back(std::cbrt(J / A.determinant()) * A);
+    }
+  Mat3 shear = Mat3::Identity();
+  shear(0, 1) = 1.5;
+  out.push_back(shear);
+  out.push_back(Eigen::Vector3d(0.3, 1.0, 1.0).asDiagonal());
+  out.push_back(std::cbrt(0.3) * Mat3::Identity());
+  out.push_back(Eigen::Vector3d(0.7, 0.7, 1.4).asDiagonal());
+  return out;
+}
+
+/// The reference law `ref` and the fast model's `law` agree in W, S and D at every test deformation.
+template <class RefLaw>
+void expect_same_law(const RefLaw& ref, const tmlab::tm::Law& law, const std::string& name) {
+  std::mt19937 rng(17);
+  const double scale = law.small_strain().mu + std::abs(law.small_strain().lambda);
+  double ew = 0.0, es = 0.0, ed = 0.0;  // largest relative differences, printed for the docs
+  for (const auto& F : test_deformations(rng)) {
+    const tmlab::tm::Mat3 Em = 0.5 * (F.transpose() * F - tmlab::tm::Mat3::Identity());
+    const SymTensor2 E = to_dealii(Em);
+    double w = 0.0;
+    tmlab::tm::Mat3 S;
+    tmlab::tm::Mat6 D;
+    law.evaluate(Em, &w, &S, &D);
+    EXPECT_NEAR(ref.energy(E), w, 1e-12 * (std::abs(w) + scale)) << name;
+    const SymTensor2 Sr = ref.stress(E);
+    EXPECT_LE(max_abs(Sr - to_dealii(S)), 1e-12 * (S.cwiseAbs().maxCoeff() + scale)) << name;
+    const tmlab::tm::Mat6 Dr = to_voigt6(ref.tangent(E));
+    EXPECT_LE((Dr - D).cwiseAbs().maxCoeff(), 1e-11 * (D.cwiseAbs().maxCoeff() + scale)) << name;
+    ew = std::max(ew, std::abs(ref.energy(E) - w) / (std::abs(w) + scale));
+    es = std::max(es, max_abs(Sr - to_dealii(S)) / (S.cwiseAbs().maxCoeff() + scale));
+    ed = std::max(ed, (Dr - D).cwiseAbs().maxCoeff() / (D.cwiseAbs().maxCoeff() + scale));
+  }
+  std::printf("%-20s reference vs fast model, max relative difference: W %.1e  S %.1e  D %.1e\n",
+              name.c_str(), ew, es, ed);
+}
+
+/// S against dW/dE and D against dS/dE (central differences), for a law without Material's wrapper.
+template <class RefLaw>
+void check_law_derivatives(const RefLaw& law, double scale, const std::string& name) {
+  std::mt19937 rng(23);
+  const double h = 1e-6;
+  for (int k = 0; k < 10; ++k) {
+    const SymTensor2 E = random_strain(rng, 0.15), dE = random_strain(rng, 1.0);
+    const double fd_w = (law.energy(E + h * dE) - law.energy(E - h * dE)) / (2 * h);
+    const double an_w = law.stress(E) * dE;
+    EXPECT_NEAR(fd_w, an_w, 1e-7 * (std::abs(an_w) + scale)) << name;
+    const SymTensor2 fd_s = (law.stress(E + h * dE) - law.stress(E - h * dE)) / (2 * h);
+    const SymTensor2 an_s = law.tangent(E) * dE;
+    EXPECT_LE(max_abs(fd_s - an_s), 1e-7 * (max_abs(an_s) + scale)) << name;
+  }
+}
+
+}  // namespace
+
+TEST(ReferenceMaterials, NewLawsStressAndTangentMatchFiniteDifferences) {
+  check_law_derivatives(MooneyRivlinLaw{700.0, 300.0, 2e4}, 1000.0, "mooney_rivlin");
+  check_law_derivatives(VerondaWestmannLaw{200.0, 5.0, 2e4}, 1000.0, "veronda_westmann");
+  check_law_derivatives(OgdenLaw{{630.0, 1.2, -10.0}, {1.3, 5.0, -2.0}, 1e5}, 400.0, "ogden");
+}
+
+TEST(ReferenceMaterials, FastModelLawsEqualTheReferenceLawsPointwise) {
+  namespace tm = tmlab::tm;
+  const double young = 3000.0, nu = 0.45;
+  // St VK, neo-Hookean and Yeoh through the reference's own Material::make (the case-file path).
+  const Material stvk = Material::make("stvk", young, nu), neo = Material::make("neo_hookean", young, nu);
+  const Material yeoh = Material::make("yeoh", young, nu, 2.0, 0.5);
+  expect_same_law(stvk, tm::StVenantKirchhoff::from_young_poisson(young, nu), "stvk");
+  expect_same_law(neo, tm::NeoHookean::from_young_poisson(young, nu), "neo_hookean");
+  expect_same_law(yeoh, tm::Yeoh(yeoh.yeoh.c10, yeoh.yeoh.c20, yeoh.yeoh.c30, yeoh.yeoh.kappa), "yeoh");
+  expect_same_law(MooneyRivlinLaw{700.0, 300.0, 2e4}, tm::MooneyRivlin(700.0, 300.0, 2e4), "mooney_rivlin");
+  expect_same_law(MooneyRivlinLaw{700.0, -100.0, 2e4}, tm::MooneyRivlin(700.0, -100.0, 2e4),
+                  "mooney_rivlin c01<0");
+  expect_same_law(VerondaWestmannLaw{200.0, 5.0, 2e4}, tm::VerondaWestmann(200.0, 5.0, 2e4),
+                  "veronda_westmann");
+  expect_same_law(OgdenLaw{{630.0, 1.2, -10.0}, {1.3, 5.0, -2.0}, 1e5},
+                  tm::Ogden({630.0, 1.2, -10.0}, {1.3, 5.0, -2.0}, 1e5), "ogden");
+  expect_same_law(OgdenLaw{{2.0, -0.5}, {0.5, -3.5}, 3.0}, tm::Ogden({2.0, -0.5}, {0.5, -3.5}, 3.0),
+                  "ogden 2");
 }

@@ -1,0 +1,61 @@
+// Law: one of the hyperelastic laws of the fast model, chosen at run time, with the triad every law
+// offers (energy density, PK2 stress, tangent) as functions of the Green-Lagrange strain E.
+//
+// A closed set as a std::variant (no virtual calls, value semantics, the kernels hold one by
+// value); a new law is one more alternative here and in law_factory.cpp. St Venant-Kirchhoff keeps
+// its own historical interface (tangent(dE) without E: it is constant); Law adapts it.
+// Theory of each law: docs/theory/hyperelastic-laws.md.
+#pragma once
+
+#include "tensormass/materials/mooney_rivlin.hpp"
+#include "tensormass/materials/neo_hookean.hpp"
+#include "tensormass/materials/ogden.hpp"
+#include "tensormass/materials/stvk_material.hpp"
+#include "tensormass/materials/tensor_algebra.hpp"
+#include "tensormass/materials/veronda_westmann.hpp"
+#include "tensormass/materials/yeoh.hpp"
+
+#include <string>
+#include <variant>
+
+namespace tmlab::tm {
+
+class Law {
+ public:
+  using Variant = std::variant<StVenantKirchhoff, NeoHookean, MooneyRivlin, Yeoh, Ogden, VerondaWestmann>;
+
+  Law(StVenantKirchhoff m) : v_(m) {}  // NOLINT: implicit, a law is a Law
+  Law(NeoHookean m) : v_(m) {}         // NOLINT
+  Law(MooneyRivlin m) : v_(m) {}       // NOLINT
+  Law(Yeoh m) : v_(m) {}               // NOLINT
+  Law(Ogden m) : v_(std::move(m)) {}   // NOLINT
+  Law(VerondaWestmann m) : v_(m) {}    // NOLINT
+
+  /// "stvk", "neo_hookean", "mooney_rivlin", "yeoh", "ogden", "veronda_westmann" (law_factory names).
+  std::string name() const;
+  const Variant& variant() const { return v_; }
+  template <class T>
+  const T* get_if() const {
+    return std::get_if<T>(&v_);
+  }
+  bool is_stvk() const { return std::holds_alternative<StVenantKirchhoff>(v_); }
+
+  /// Lame constants of the small-strain limit (every law linearises to isotropic linear elasticity).
+  LameConstants small_strain() const;
+
+  /// W(E), J/m^3. E is the symmetric Green-Lagrange strain; outside det(I + 2E) > 0 the result is not finite.
+  double energy_density(const Mat3& E) const;
+  /// S = dW/dE.
+  Mat3 pk2_stress(const Mat3& E) const;
+  /// dS = D(E) : dE, D = d^2 W / dE^2.
+  Mat3 tangent(const Mat3& E, const Mat3& dE) const;
+  /// D(E) as a symmetric 6x6 Voigt matrix (tensor_algebra.hpp).
+  Mat6 tangent_matrix(const Mat3& E) const;
+  /// W, S and D in one pass (any pointer may be null): what the kernels call.
+  void evaluate(const Mat3& E, double* W, Mat3* S, Mat6* D) const;
+
+ private:
+  Variant v_;
+};
+
+}  // namespace tmlab::tm

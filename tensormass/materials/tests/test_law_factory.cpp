@@ -1,0 +1,87 @@
+// The law factory: every law from its keys, errors naming the key (missing, non-numeric, unknown,
+// refused by the law), and the name list.
+#include "core/base/error.hpp"
+#include "tensormass/materials/law_factory.hpp"
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+namespace tmlab::tm {
+namespace {
+
+using nlohmann::json;
+
+std::string error_of(const std::string& name, const json& p) {
+  try {
+    make_law(name, p, "case.json: material");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return {};
+}
+
+TEST(LawFactory, BuildsEveryLawWithItsParameters) {
+  const Law stvk = make_law("stvk", json{{"young", 3000.0}, {"poisson", 0.45}}, "m");
+  EXPECT_EQ(stvk.name(), "stvk");
+  EXPECT_NEAR(stvk.small_strain().mu, 3000.0 / 2.9, 1e-12);
+  const Law stvk2 = make_law("stvk", json{{"lambda", 2.0}, {"mu", 1.0}, {"law", "stvk"}}, "m");
+  EXPECT_EQ(stvk2.get_if<StVenantKirchhoff>()->lambda, 2.0);
+
+  const Law nh = make_law("neo_hookean", json{{"young", 3000.0}, {"poisson", 0.45}}, "m");
+  EXPECT_NEAR(nh.get_if<NeoHookean>()->lambda(), stvk.small_strain().lambda, 1e-9);
+
+  const Law mr = make_law("mooney_rivlin", json{{"c10", 1.0}, {"c01", 0.5}, {"kappa", 10.0}}, "m");
+  EXPECT_EQ(mr.get_if<MooneyRivlin>()->c01(), 0.5);
+
+  const Law y = make_law("yeoh", json{{"c10", 1.0}, {"kappa", 10.0}, {"c30", 0.2}}, "m");
+  EXPECT_EQ(y.get_if<Yeoh>()->c20(), 0.0);
+  EXPECT_EQ(y.get_if<Yeoh>()->c30(), 0.2);
+
+  const Law o = make_law("ogden", json{{"mu", {1.0, -0.1}}, {"alpha", {2.0, -1.0}}, {"kappa", 10.0}}, "m");
+  EXPECT_EQ(o.get_if<Ogden>()->num_terms(), 2u);
+  EXPECT_NEAR(o.small_strain().mu, 0.5 * (2.0 + 0.1), 1e-15);
+
+  const Law vw = make_law("veronda_westmann", json{{"c1", 0.5}, {"c2", 3.0}, {"kappa", 10.0}}, "m");
+  EXPECT_NEAR(vw.small_strain().mu, 1.5, 1e-15);
+  for (const auto& n : law_names()) EXPECT_FALSE(n.empty());
+  EXPECT_EQ(law_names().size(), 6u);
+}
+
+TEST(LawFactory, ErrorsNameTheKey) {
+  EXPECT_NE(error_of("hookean", json::object()).find("case.json: material.law 'hookean' is unknown"),
+            std::string::npos);
+  EXPECT_NE(error_of("yeoh", json::array()).find("must be a JSON object"), std::string::npos);
+  EXPECT_NE(error_of("yeoh", json{{"c10", 1.0}}).find("case.json: material.kappa is missing"),
+            std::string::npos);
+  EXPECT_NE(error_of("yeoh", json{{"c10", "1"}, {"kappa", 1.0}}).find("material.c10 must be a number"),
+            std::string::npos);
+  EXPECT_NE(error_of("yeoh", json{{"c10", 1.0}, {"kappa", 1.0}, {"c02", 1.0}})
+                .find("material.c02 is not a parameter"),
+            std::string::npos);
+  EXPECT_NE(
+      error_of("ogden", json{{"mu", 1.0}, {"alpha", {2.0}}, {"kappa", 1.0}}).find("material.mu must be a"),
+      std::string::npos);
+  EXPECT_NE(error_of("ogden", json{{"mu", {1.0, "x"}}, {"alpha", {2.0, 1.0}}, {"kappa", 1.0}})
+                .find("material.mu[1]"),
+            std::string::npos);
+  EXPECT_NE(error_of("stvk", json{{"young", 1.0}, {"mu", 1.0}}).find("not both"), std::string::npos);
+  EXPECT_NE(error_of("stvk", json{{"lambda", 1.0}, {"mu", -1.0}}).find("mu > 0"), std::string::npos);
+}
+
+TEST(LawFactory, RefusedParametersNameTheCaseKeys) {
+  // Ogden stability: the message names the location, the law, the keys and the condition.
+  const std::string e = error_of("ogden", json{{"mu", {1.0, -3.0}}, {"alpha", {2.0, 2.0}}, {"kappa", 1.0}});
+  EXPECT_NE(e.find("case.json: material (law 'ogden', keys \"mu\", \"alpha\", \"kappa\")"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("sum_p mu_p alpha_p > 0"), std::string::npos) << e;
+  const std::string k = error_of("mooney_rivlin", json{{"c10", 1.0}, {"c01", 0.0}, {"kappa", 0.0}});
+  EXPECT_NE(k.find("bulk modulus"), std::string::npos) << k;
+  EXPECT_NE(k.find("kappa = 0"), std::string::npos) << k;
+  EXPECT_NE(error_of("neo_hookean", json{{"young", 1.0}, {"poisson", 0.5}}).find("Poisson's ratio"),
+            std::string::npos);
+  EXPECT_NE(error_of("veronda_westmann", json{{"c1", 1.0}, {"c2", 0.0}, {"kappa", 1.0}}).find("c2 = 0"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace tmlab::tm
