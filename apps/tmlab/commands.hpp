@@ -35,5 +35,7 @@ int cmd_version();
 int cmd_hereditary(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_workprecision(const std::vector<std::string>& args, const std::string& command_line);
 int cmd_verify(const std::vector<std::string>& args, const std::string& command_line);
+// Measured data sets (cmd_data.cpp, docs/measured-data.md).
+int cmd_data(const std::vector<std::string>& args);
 
 }  // namespace tmlab::cli

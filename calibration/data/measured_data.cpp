@@ -751,6 +751,7 @@ DataSet read_data_set(const fs::path& csv, const fs::path& json_file) {
   DataSet d;
   // Metadata first: a data set without its description is not usable.
   std::error_code ec;
+  if (!fs::exists(csv, ec)) throw Error(csv.string() + ": no such file");
   if (!fs::exists(json_file, ec))
     throw Error(json_file.string() + ": missing (every " + csv.filename().string() +
                 " needs its metadata file beside it, with the same name and .json)");

@@ -5,7 +5,9 @@
 #include "core/base/format.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <string_view>
@@ -77,6 +79,23 @@ std::string header_value(std::string_view line, std::string_view key) {
   std::string_view v = trim(line.substr(key.size()));
   if (!v.empty() && v.back() == ';') v.remove_suffix(1);
   return std::string(trim(v));
+}
+
+/// `mm` (read from `text`) in metres, rounded once: the decimal text with its exponent lowered by 3
+/// reads as the double nearest the exact value in metres ("0.02778" mm -> 2.778e-05 m), where
+/// mm * 1e-3 would round twice (2.7779999999999998e-05).
+double metres_from_millimetres(std::string_view text, double mm) {
+  const std::size_t e = text.find_first_of("eE");
+  long exponent = 0;
+  if (e != std::string_view::npos) {
+    const char* first = text.data() + e + 1 + (text[e + 1] == '+' ? 1 : 0);
+    const auto r = std::from_chars(first, text.data() + text.size(), exponent);
+    if (r.ec != std::errc() || std::labs(exponent) > 100000) return mm * 1e-3;
+  }
+  const std::string shifted = std::string(text.substr(0, e)) + "e" + std::to_string(exponent - 3);
+  double m = 0.0;
+  std::string why;
+  return parse_decimal(shifted, m, why) ? m : mm * 1e-3;
 }
 
 std::string safe_name(const std::string& stem) {
@@ -176,7 +195,7 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
     if (!t.time_s.empty() && !(v[0] > t.time_s.back()))
       throw located(file, line, f[c_time].second, "column 'Time (s)': time does not increase");
     t.time_s.push_back(v[0]);
-    t.displacement_m.push_back(v[1] * 1e-3);  // mm -> m
+    t.displacement_m.push_back(metres_from_millimetres(f[c_comp].first, v[1]));
     t.force_N.push_back(v[2]);
     if (c_stress >= 0) stress_kPa.push_back(v[3]);
     line_of.push_back(line);

@@ -62,7 +62,9 @@ TEST(PhantomConverter, ConvertsEf10A1) {
   EXPECT_EQ(t.time_s.front(), 0.0);
   EXPECT_EQ(t.force_N.front(), -0.009120);
   EXPECT_EQ(t.time_s.back(), 120.021);
-  EXPECT_DOUBLE_EQ(t.displacement_m.back(), 20.000040e-3);
+  // mm -> m rounded once: the double nearest the decimal value in metres.
+  EXPECT_EQ(t.displacement_m.back(), 20.000040e-3);
+  EXPECT_EQ(t.displacement_m[2], 2.7470e-05);  // "0.027470" mm
   EXPECT_EQ(t.force_N.back(), 499.323150);
   EXPECT_EQ(*std::max_element(t.force_N.begin(), t.force_N.end()), 499.323150);
   EXPECT_TRUE(t.extra.empty());
@@ -98,8 +100,9 @@ const char* kHeader =
 TEST(PhantomConverter, NegativeLoadIsFlippedWithANote) {
   // 10 N on 1963.5 mm^2 is 5.093 kPa.
   const DataSet d =
-      convert_phantom_text(std::string(kHeader) + "0,0,0,0,0,0,0\n1,1,-10,-0.033,-5.093,0,0\n", "s.csv");
+      convert_phantom_text(std::string(kHeader) + "0,0,0,0,0,0,0\n1,1.5E+1,-10,-0.5,-5.093,0,0\n", "s.csv");
   EXPECT_EQ(d.tests[0].force_N.back(), 10.0);
+  EXPECT_EQ(d.tests[0].displacement_m.back(), 0.015);
   EXPECT_NE(d.meta.notes.find("was negated"), std::string::npos);
 }
 
