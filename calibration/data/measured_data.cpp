@@ -90,6 +90,13 @@ std::string read_text(const fs::path& p) {
   return ss.str();
 }
 
+/// The shortest text that reads back to the same double.
+std::string format_double(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 /// Columns count characters, not bytes: UTF-8 continuation bytes do not start one.
 bool starts_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }
 
@@ -306,6 +313,12 @@ class JsonPositions {
 // NAME.json
 // ---------------------------------------------------------------------------------------------
 
+/// A JSON value for a message, cut to 60 characters.
+std::string shown(const json& v) {
+  const std::string s = v.dump();
+  return s.size() <= 60 ? s : s.substr(0, 57) + "...";
+}
+
 /// Does this value hold a number anywhere outside nested objects (a number or an array of them)?
 bool holds_number(const json& v) {
   if (v.is_number()) return true;
@@ -369,7 +382,7 @@ class MetadataParser {
     for (auto it = obj.begin(); it != obj.end(); ++it) {
       if (known.count(it.key())) continue;
       check_units(it.key(), it.value(), join(path, it.key()));
-      m.extra.emplace_back(join(path, it.key()), it.value());
+      m.extra.push_back({path, it.key(), it.value()});
       const Position p = pos_.at(join(path, it.key()));
       notes_.push_back({where(file_, p.line, p.column),
                         "key '" + join(path, it.key()) + "' is not part of " + kFormat + ": kept, not used"});
@@ -407,15 +420,15 @@ class MetadataParser {
   }
   std::string string(const json& obj, const std::string& path, const std::string& key) const {
     const json& v = value(obj, path, key);
-    if (!v.is_string()) throw error(join(path, key), "must be a string (got " + v.dump() + ")");
+    if (!v.is_string()) throw error(join(path, key), "must be a string (got " + shown(v) + ")");
     return v.get<std::string>();
   }
   double number(const json& obj, const std::string& path, const std::string& key, bool positive) const {
     const json& v = value(obj, path, key);
-    if (!v.is_number()) throw error(join(path, key), "must be a number (got " + v.dump() + ")");
+    if (!v.is_number()) throw error(join(path, key), "must be a number (got " + shown(v) + ")");
     const double d = v.get<double>();
     if (!std::isfinite(d)) throw error(join(path, key), "must be finite");
-    if (positive && !(d > 0.0)) throw error(join(path, key), "must be > 0 (got " + v.dump() + ")");
+    if (positive && !(d > 0.0)) throw error(join(path, key), "must be > 0 (got " + shown(v) + ")");
     return d;
   }
   const json& object(const json& obj, const std::string& path, const std::string& key) const {
@@ -466,10 +479,10 @@ class MetadataParser {
       const json& v = value(o, "sample", "size_m");
       if (!v.is_array() || v.size() != 3)
         throw error("sample.size_m",
-                    "must be [x, y, z] in metres, z the loaded direction (got " + v.dump() + ")");
+                    "must be [x, y, z] in metres, z the loaded direction (got " + shown(v) + ")");
       for (int i = 0; i < 3; ++i) {
         const std::string p = "sample.size_m[" + std::to_string(i) + "]";
-        if (!v[i].is_number()) throw error(p, "must be a number (got " + v[i].dump() + ")");
+        if (!v[i].is_number()) throw error(p, "must be a number (got " + shown(v[i]) + ")");
         s.size_m[i] = v[i].get<double>();
         if (!(s.size_m[i] > 0.0) || !std::isfinite(s.size_m[i])) throw error(p, "must be > 0");
       }
@@ -710,7 +723,7 @@ std::vector<Test> parse_samples(const std::string& text, const std::string& file
           if (!t.time_s.empty() && !(v > t.time_s.back()))
             throw located(file, line_no, fields[c].column,
                           "column 'time_s': time " + std::string(fields[c].text) +
-                              " does not increase (the sample before has " + std::to_string(t.time_s.back()) +
+                              " does not increase (the sample before has " + format_double(t.time_s.back()) +
                               ")" + (t.id.empty() ? "" : " in test '" + t.id + "'"));
           t.time_s.push_back(v);
           break;
@@ -731,12 +744,6 @@ std::vector<Test> parse_samples(const std::string& text, const std::string& file
   if (!header_done) throw located(file, std::max(1L, last_line), 1, "no header line (an empty file)");
   if (tests.empty()) throw located(file, header_line + 1, 1, "no samples after the header (an empty test)");
   return tests;
-}
-
-std::string format_double(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 }  // namespace
@@ -765,39 +772,45 @@ DataSet read_data_set(const fs::path& csv, const fs::path& json_file) {
 }
 
 std::string format_metadata(const Metadata& m) {
-  nlohmann::ordered_json o;
-  o["format"] = kFormat;
-  o["name"] = m.name;
-  o["test"] = to_string(m.test);
-  if (m.indenter) {
-    o["indenter"]["shape"] = to_string(m.indenter->shape);
-    o["indenter"]["radius_m"] = m.indenter->radius_m;
-    if (m.indenter->length_m) o["indenter"]["length_m"] = *m.indenter->length_m;
+  try {
+    nlohmann::ordered_json o;
+    o["format"] = kFormat;
+    o["name"] = m.name;
+    o["test"] = to_string(m.test);
+    if (m.indenter) {
+      o["indenter"]["shape"] = to_string(m.indenter->shape);
+      o["indenter"]["radius_m"] = m.indenter->radius_m;
+      if (m.indenter->length_m) o["indenter"]["length_m"] = *m.indenter->length_m;
+    }
+    auto& s = o["sample"];
+    s["shape"] = to_string(m.sample.shape);
+    if (m.sample.shape == SampleShape::block) s["size_m"] = m.sample.size_m;
+    if (m.sample.shape == SampleShape::cylinder) {
+      s["radius_m"] = m.sample.radius_m;
+      s["height_m"] = m.sample.height_m;
+    }
+    if (m.sample.bottom) s["bottom"] = to_string(*m.sample.bottom);
+    if (m.sample.platens) s["platens"] = to_string(*m.sample.platens);
+    if (m.temperature_C) o["temperature_C"] = *m.temperature_C;
+    if (!m.source.empty()) o["source"] = m.source;
+    if (!m.license.empty()) o["license"] = m.license;
+    if (!m.notes.empty()) o["notes"] = m.notes;
+    // Unknown keys go back into the object they came from ("sample.colour" into "sample").
+    for (const ExtraKey& x : m.extra) {
+      const nlohmann::ordered_json v = nlohmann::ordered_json::parse(x.value.dump());
+      if (x.object.empty())
+        o[x.key] = v;
+      else if (x.object == "indenter" || x.object == "sample")
+        o[x.object][x.key] = v;
+      else
+        throw Error("metadata of '" + m.name + "': unknown key '" + x.key + "' in an unknown object '" +
+                    x.object + "'");
+    }
+    return o.dump(2) + "\n";
+  } catch (const nlohmann::json::exception& e) {
+    // Strings made in memory that are not UTF-8 (the reader only ever yields valid UTF-8).
+    throw Error("metadata of '" + m.name + "': " + e.what());
   }
-  auto& s = o["sample"];
-  s["shape"] = to_string(m.sample.shape);
-  if (m.sample.shape == SampleShape::block) s["size_m"] = m.sample.size_m;
-  if (m.sample.shape == SampleShape::cylinder) {
-    s["radius_m"] = m.sample.radius_m;
-    s["height_m"] = m.sample.height_m;
-  }
-  if (m.sample.bottom) s["bottom"] = to_string(*m.sample.bottom);
-  if (m.sample.platens) s["platens"] = to_string(*m.sample.platens);
-  if (m.temperature_C) o["temperature_C"] = *m.temperature_C;
-  if (!m.source.empty()) o["source"] = m.source;
-  if (!m.license.empty()) o["license"] = m.license;
-  if (!m.notes.empty()) o["notes"] = m.notes;
-  // Unknown keys go back into the object they came from ("sample.colour" into "sample").
-  for (const auto& [path, value] : m.extra) {
-    const std::size_t dot = path.find('.');
-    const nlohmann::ordered_json v = nlohmann::ordered_json::parse(value.dump());
-    if (dot != std::string::npos && (path.substr(0, dot) == "indenter" || path.substr(0, dot) == "sample") &&
-        o.contains(path.substr(0, dot)))
-      o[path.substr(0, dot)][path.substr(dot + 1)] = v;
-    else
-      o[path] = v;
-  }
-  return o.dump(2) + "\n";
 }
 
 std::string format_samples(const DataSet& d) {

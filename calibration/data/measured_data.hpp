@@ -51,7 +51,15 @@ struct Sample {
   std::optional<Interface> platens;  ///< compression tests only, required there
 };
 
-/// NAME.json, parsed. Unknown keys are kept in `extra` (dotted key path -> value, in file order).
+/// A key the format does not know, kept with its value.
+struct ExtraKey {
+  std::string object;  ///< "" (top level), "indenter" or "sample": where it was
+  std::string key;
+  nlohmann::json value;
+  std::string path() const { return object.empty() ? key : object + "." + key; }
+};
+
+/// NAME.json, parsed. Unknown keys are kept in `extra` (in the order of the keys of each object).
 struct Metadata {
   std::string name;  ///< the data set's name: letters, digits, '_', '-', '.'
   TestType test = TestType::indentation;
@@ -61,7 +69,7 @@ struct Metadata {
   std::string source;
   std::string license;
   std::string notes;
-  std::vector<std::pair<std::string, nlohmann::json>> extra;
+  std::vector<ExtraKey> extra;
 };
 
 /// A column the format does not know (its name carries a unit), kept with its values.

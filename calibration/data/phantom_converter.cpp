@@ -98,6 +98,13 @@ double metres_from_millimetres(std::string_view text, double mm) {
   return parse_decimal(shifted, m, why) ? m : mm * 1e-3;
 }
 
+/// Text from the file for the metadata: printable ASCII only (the JSON must be valid UTF-8).
+std::string printable(std::string_view s) {
+  std::string out;
+  for (char c : s.substr(0, 200)) out += (c >= 0x20 && c < 0x7F) ? c : '?';
+  return out;
+}
+
 std::string safe_name(const std::string& stem) {
   std::string n;
   for (char c : stem)
@@ -146,15 +153,15 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
   bool compression = false;
   for (std::size_t i = 0; i < table; ++i) {
     const std::string_view l = trim(lines[i]);
-    if (i == 0) label = std::string(l.substr(0, 120));
+    if (i == 0) label = printable(l.substr(0, 120));
     if (l == "Compression test;" || l == "Compression test") compression = true;
     if (l.substr(0, 18) == "Cylinder Diameter:" && !millimetres(l, "Cylinder Diameter:", diameter_mm))
       throw located(file, long(i) + 1, 1, "cannot read the diameter (expected 'Cylinder Diameter: 50mm;')");
     if (l.substr(0, 16) == "Cylinder Height:" && !millimetres(l, "Cylinder Height:", height_mm))
       throw located(file, long(i) + 1, 1, "cannot read the height (expected 'Cylinder Height: 30mm;')");
-    if (machine.empty()) machine = header_value(l, "Machine:");
-    if (load_cell.empty()) load_cell = header_value(l, "Load cell:");
-    if (speed.empty()) speed = header_value(l, "Speed (mm/min):");
+    if (machine.empty()) machine = printable(header_value(l, "Machine:"));
+    if (load_cell.empty()) load_cell = printable(header_value(l, "Load cell:"));
+    if (speed.empty()) speed = printable(header_value(l, "Speed (mm/min):"));
   }
   if (!compression) throw located(file, 1, 1, "the header does not say 'Compression test;'");
   if (diameter_mm <= 0.0)
@@ -204,7 +211,7 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
     throw located(file, long(table) + 2, 1, "no samples after the column line (an empty test)");
 
   std::string conversion =
-      "Converted by 'tmlab data convert' from " + fs::path(file).filename().string() +
+      "Converted by 'tmlab data convert' from " + printable(fs::path(file).filename().string()) +
       ": Time (s) -> time_s; Compression (mm) / 1000 -> displacement_m; Load (N) -> force_N. The derived "
       "strain and stress columns are not copied (their stress unit is kPa, although the upstream README "
       "says N/mm^2).";

@@ -148,8 +148,8 @@ TEST_F(MeasuredData, WrittenDataSetReadsBackBitForBit) {
   d.meta.source = "a test";
   d.meta.license = "CC-BY-4.0";
   d.meta.notes = "round trip";
-  d.meta.extra.emplace_back("sample.colour", "blue");
-  d.meta.extra.emplace_back("rate_m_per_s", 1.0 / 6000.0);
+  d.meta.extra.push_back({"sample", "colour", "blue"});
+  d.meta.extra.push_back({"", "rate_m_per_s", 1.0 / 6000.0});
   for (int k = 0; k < 2; ++k) {
     tmlab::measured::Test t;
     t.id = "r" + std::to_string(k);
