@@ -37,5 +37,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
 int cmd_verify(const std::vector<std::string>& args, const std::string& command_line);
 // Measured-data work: the test rigs (cmd_rig.cpp).
 int cmd_rig(const std::vector<std::string>& args);
+// Measured data sets (cmd_data.cpp, docs/measured-data.md).
+int cmd_data(const std::vector<std::string>& args);
 
 }  // namespace tmlab::cli

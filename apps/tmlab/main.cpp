@@ -60,6 +60,12 @@ void print_usage(std::ostream& os) {
         "                            in results/verification/ (docs/verification.md); finished cases\n"
         "                            are checkpointed in results/verification.checkpoint/ until the\n"
         "                            report is complete: --resume continues an interrupted suite\n"
+        "  data convert FILE --out DIR [--platens frictionless|bonded]\n"
+        "                            convert measured data (the silicone phantom CSVs) to\n"
+        "                            tmlab-measured/1: DIR/NAME.csv + DIR/NAME.json (docs/measured-data.md)\n"
+        "  data show NAME.csv [--out DIR] [--no-plots]\n"
+        "                            read a tmlab-measured/1 data set strictly; a summary per test and\n"
+        "                            a plot (default results/data/NAME/NAME.png)\n"
         "  rig indentation|unconfined|confined|tension --out DIR [--name N]\n"
         "      [--shape block|cylinder] [--size X,Y,Z] [--radius R] [--height H]\n"
         "      [--indenter sphere|flat_punch] [--indenter-radius R] [--at CX,CY]\n"
@@ -108,6 +114,7 @@ int main(int argc, char** argv) {
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
+    if (cmd == "data") return tmlab::cli::cmd_data(args);
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);

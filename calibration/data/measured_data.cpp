@@ -1,0 +1,867 @@
+// The tmlab-measured/1 reader and writer (measured_data.hpp, docs/measured-data.md).
+#include "calibration/data/measured_data.hpp"
+
+#include "core/base/error.hpp"
+#include "core/config/config_reader.hpp"
+#include "core/io/atomic_file.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <string_view>
+
+namespace tmlab::measured {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// ---------------------------------------------------------------------------------------------
+// Names of things
+// ---------------------------------------------------------------------------------------------
+
+std::string to_string(TestType t) {
+  switch (t) {
+    case TestType::indentation:
+      return "indentation";
+    case TestType::unconfined_compression:
+      return "unconfined_compression";
+    case TestType::confined_compression:
+      return "confined_compression";
+    case TestType::uniaxial_tension:
+      return "uniaxial_tension";
+  }
+  return "?";
+}
+std::string to_string(IndenterShape s) {
+  switch (s) {
+    case IndenterShape::sphere:
+      return "sphere";
+    case IndenterShape::flat_punch:
+      return "flat_punch";
+    case IndenterShape::cylinder:
+      return "cylinder";
+  }
+  return "?";
+}
+std::string to_string(SampleShape s) {
+  switch (s) {
+    case SampleShape::block:
+      return "block";
+    case SampleShape::cylinder:
+      return "cylinder";
+    case SampleShape::half_space:
+      return "half_space";
+  }
+  return "?";
+}
+std::string to_string(Interface i) { return i == Interface::bonded ? "bonded" : "frictionless"; }
+bool is_compression(TestType t) {
+  return t == TestType::unconfined_compression || t == TestType::confined_compression;
+}
+
+fs::path metadata_path(const fs::path& csv) {
+  fs::path j = csv;
+  j.replace_extension(".json");
+  return j;
+}
+
+namespace {
+
+/// "file:line:column: reason", the form of every error of this reader.
+Error located(const std::string& file, long line, long column, const std::string& reason) {
+  return Error(file + ":" + std::to_string(line) + ":" + std::to_string(column) + ": " + reason);
+}
+std::string where(const std::string& file, long line, long column) {
+  return file + ":" + std::to_string(line) + ":" + std::to_string(column);
+}
+
+std::string read_text(const fs::path& p) {
+  std::error_code ec;
+  if (fs::is_directory(p, ec)) throw Error(p.string() + ": is a directory, not a file");
+  std::ifstream in(p, std::ios::binary);
+  if (!in) throw Error(p.string() + ": cannot open file");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  if (in.bad()) throw Error(p.string() + ": read error");
+  return ss.str();
+}
+
+/// The shortest text that reads back to the same double.
+std::string format_double(double v) {
+  char buf[64];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
+/// Columns count characters, not bytes: UTF-8 continuation bytes do not start one.
+bool starts_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }
+
+/// Data-set names become file names: a plain, safe stem.
+bool valid_name(const std::string& s) {
+  if (s.empty() || s.size() > 200 || s[0] == '.' || s[0] == '-') return false;
+  return std::all_of(s.begin(), s.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
+           c == '-' || c == '.';
+  });
+}
+bool valid_identifier(const std::string& s) {
+  return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+  });
+}
+
+// Units: a name carries its unit as a suffix, quantity_unit, where unit is an atom or
+// atom_per_atom[_per_atom...] ("speed_m_per_s"); "_1" marks a dimensionless number.
+const std::set<std::string>& unit_atoms() {
+  static const std::set<std::string> atoms = {"1",  "percent", "s",  "ms",  "us",  "min", "h",   "Hz", "m",
+                                              "cm", "mm",      "um", "m2",  "mm2", "m3",  "mm3", "s2", "N",
+                                              "mN", "kN",      "Pa", "kPa", "MPa", "GPa", "kg",  "g",  "J",
+                                              "mJ", "W",       "C",  "K",   "rad", "deg"};
+  return atoms;
+}
+}  // namespace
+
+bool has_unit_suffix(const std::string& name) {
+  std::vector<std::string> t;
+  std::string cur;
+  for (char c : name) {
+    if (c == '_') {
+      t.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  t.push_back(cur);
+  if (t.size() < 2) return false;
+  std::size_t k = t.size() - 1;  // index of the first token of the unit
+  if (!unit_atoms().count(t[k])) return false;
+  while (k >= 3 && t[k - 1] == "per" && unit_atoms().count(t[k - 2])) k -= 2;
+  if (t[k - 1] == "per") return false;  // "speed_per_s": a rate without its numerator unit
+  for (std::size_t i = 0; i < k; ++i)
+    if (t[i].empty()) return false;
+  return true;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Where each JSON value is. nlohmann::json keeps no positions, so after ConfigReader::parse_file
+// has accepted the text (syntax, duplicate keys, number range) this scanner walks the same text
+// once and records the line and column of every value under its key path ("sample.size_m[2]").
+// ---------------------------------------------------------------------------------------------
+struct Position {
+  long line = 1;
+  long column = 1;
+};
+
+class JsonPositions {
+ public:
+  JsonPositions(const std::string& text, std::string file) : s_(text), file_(std::move(file)) {
+    skip_space();
+    value("", 0);
+  }
+  /// The position of `path`, else of the nearest enclosing value that has one.
+  Position at(std::string path) const {
+    for (;;) {
+      if (auto it = pos_.find(path); it != pos_.end()) return it->second;
+      if (path.empty()) return {};
+      const std::size_t cut = path.find_last_of(".[");
+      path = cut == std::string::npos ? "" : path.substr(0, cut);
+    }
+  }
+
+ private:
+  static constexpr int kMaxDepth = 64;
+  bool done() const { return i_ >= s_.size(); }
+  char peek() const { return done() ? '\0' : s_[i_]; }
+  void advance() {
+    if (done()) return;
+    if (s_[i_] == '\n') {
+      ++line_;
+      column_ = 1;
+    } else if (i_ + 1 < s_.size() && starts_character(s_[i_ + 1])) {
+      ++column_;
+    }
+    ++i_;
+  }
+  void skip_space() {
+    for (;;) {
+      while (!done() && (peek() == ' ' || peek() == '\t' || peek() == '\r' || peek() == '\n')) advance();
+      if (peek() == '/' && i_ + 1 < s_.size() && s_[i_ + 1] == '/') {
+        while (!done() && peek() != '\n') advance();
+      } else if (peek() == '/' && i_ + 1 < s_.size() && s_[i_ + 1] == '*') {
+        advance();
+        advance();
+        while (!done() && !(peek() == '*' && i_ + 1 < s_.size() && s_[i_ + 1] == '/')) advance();
+        advance();
+        advance();
+      } else {
+        return;
+      }
+    }
+  }
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  void value(const std::string& path, int depth) {
+    if (depth > kMaxDepth)
+      throw located(
+          file_, line_, column_,
+          "nested deeper than " + std::to_string(kMaxDepth) + " levels (not a tmlab-measured/1 file)");
+    pos_.emplace(path, Position{line_, column_});
+    const char c = peek();
+    if (c == '{' || c == '[') {
+      const bool object = c == '{';
+      const char close = object ? '}' : ']';
+      advance();
+      skip_space();
+      for (int index = 0; !done() && peek() != close; ++index) {
+        const std::size_t before = i_;
+        std::string child = path + "[" + std::to_string(index) + "]";
+        if (object) {
+          child = join(path, string());
+          skip_space();
+          if (peek() == ':') advance();
+          skip_space();
+        }
+        value(child, depth + 1);
+        skip_space();
+        if (peek() == ',') advance();
+        skip_space();
+        if (i_ == before) return;  // not JSON after all: stop rather than loop
+      }
+      advance();
+    } else if (c == '"') {
+      string();
+    } else {
+      while (!done() && std::string_view(",]} \t\r\n/").find(peek()) == std::string_view::npos) advance();
+    }
+  }
+  /// A JSON string at the cursor, decoded enough to match nlohmann's keys (escapes, \uXXXX).
+  std::string string() {
+    std::string out;
+    if (peek() != '"') return out;
+    advance();
+    while (!done() && peek() != '"') {
+      if (peek() != '\\') {
+        out += peek();
+        advance();
+        continue;
+      }
+      advance();
+      const char e = peek();
+      advance();
+      switch (e) {
+        case 'n':
+          out += '\n';
+          break;
+        case 't':
+          out += '\t';
+          break;
+        case 'r':
+          out += '\r';
+          break;
+        case 'b':
+          out += '\b';
+          break;
+        case 'f':
+          out += '\f';
+          break;
+        case 'u': {
+          unsigned cp = 0;
+          for (int k = 0; k < 4 && !done(); ++k) {
+            const char h = peek();
+            advance();
+            cp = cp * 16 + unsigned(h >= 'a' ? h - 'a' + 10 : h >= 'A' ? h - 'A' + 10 : h - '0');
+          }
+          // UTF-8 of a BMP code point (a surrogate pair gives a different key: the position then
+          // falls back to the enclosing object, which is still the right place to look).
+          if (cp < 0x80) {
+            out += char(cp);
+          } else if (cp < 0x800) {
+            out += char(0xC0 | (cp >> 6));
+            out += char(0x80 | (cp & 0x3F));
+          } else {
+            out += char(0xE0 | (cp >> 12));
+            out += char(0x80 | ((cp >> 6) & 0x3F));
+            out += char(0x80 | (cp & 0x3F));
+          }
+          break;
+        }
+        default:
+          out += e;
+      }
+    }
+    advance();
+    return out;
+  }
+
+  const std::string& s_;
+  std::string file_;
+  std::size_t i_ = 0;
+  long line_ = 1;
+  long column_ = 1;
+  std::map<std::string, Position> pos_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// NAME.json
+// ---------------------------------------------------------------------------------------------
+
+/// A JSON value for a message, cut to 60 characters.
+std::string shown(const json& v) {
+  const std::string s = v.dump();
+  return s.size() <= 60 ? s : s.substr(0, 57) + "...";
+}
+
+/// Does this value hold a number anywhere outside nested objects (a number or an array of them)?
+bool holds_number(const json& v) {
+  if (v.is_number()) return true;
+  if (v.is_array()) return std::any_of(v.begin(), v.end(), [](const json& e) { return holds_number(e); });
+  return false;
+}
+
+class MetadataParser {
+ public:
+  MetadataParser(const json& doc, const std::string& text, std::string file, std::vector<Note>& notes)
+      : doc_(doc), pos_(text, file), file_(std::move(file)), notes_(notes) {}
+
+  Metadata parse() {
+    if (!doc_.is_object()) throw error("", "the document must be a JSON object");
+    Metadata m;
+    // Unit-less numbers and unknown keys first: "radius": 0.005 is reported as a number without
+    // its unit, not as a missing radius_m.
+    const std::set<std::string> top = {"format",        "name",   "test",    "indenter", "sample",
+                                       "temperature_C", "source", "license", "notes"};
+    const std::string format = string(doc_, "", "format");
+    if (format != kFormat)
+      throw error("format", "must be \"" + std::string(kFormat) + "\" (got \"" + format + "\")");
+    keep_unknown(doc_, "", top, m);
+    m.name = string(doc_, "", "name");
+    if (!valid_name(m.name))
+      throw error("name",
+                  "must be a plain file stem: letters, digits, '_', '-', '.' (got \"" + m.name + "\")");
+    m.test = choice<TestType>(doc_, "", "test",
+                              {TestType::indentation, TestType::unconfined_compression,
+                               TestType::confined_compression, TestType::uniaxial_tension});
+    if (m.test == TestType::indentation) {
+      m.indenter = indenter(m);
+    } else if (doc_.contains("indenter")) {
+      throw error("indenter", "is only for indentation tests (test is " + to_string(m.test) + ")");
+    }
+    m.sample = sample(m);
+    if (doc_.contains("temperature_C")) m.temperature_C = number(doc_, "", "temperature_C", false);
+    for (const char* k : {"source", "license", "notes"}) {
+      if (!doc_.contains(k)) continue;
+      const std::string s = string(doc_, "", k);
+      if (std::string(k) == "source") m.source = s;
+      if (std::string(k) == "license") m.license = s;
+      if (std::string(k) == "notes") m.notes = s;
+    }
+    return m;
+  }
+
+ private:
+  Error error(const std::string& path, const std::string& reason) const {
+    const Position p = pos_.at(path);
+    return located(file_, p.line, p.column, path.empty() ? reason : "key '" + path + "' " + reason);
+  }
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+
+  /// Keys of `obj` outside `known`: numbers need a unit in their name (recursively); the rest is
+  /// kept in m.extra with a note.
+  void keep_unknown(const json& obj, const std::string& path, const std::set<std::string>& known,
+                    Metadata& m) {
+    for (auto it = obj.begin(); it != obj.end(); ++it) {
+      if (known.count(it.key())) continue;
+      check_units(it.key(), it.value(), join(path, it.key()));
+      m.extra.push_back({path, it.key(), it.value()});
+      const Position p = pos_.at(join(path, it.key()));
+      notes_.push_back({where(file_, p.line, p.column),
+                        "key '" + join(path, it.key()) + "' is not part of " + kFormat + ": kept, not used"});
+    }
+  }
+  void check_units(const std::string& key, const json& v, const std::string& path) const {
+    if (holds_number(v) && !has_unit_suffix(key))
+      throw error(path,
+                  "is a unit-less number: the name must end in its unit (radius_m, temperature_C, "
+                  "speed_m_per_s; _1 for a dimensionless number)");
+    if (v.is_object())
+      for (auto it = v.begin(); it != v.end(); ++it) check_units(it.key(), it.value(), join(path, it.key()));
+    if (v.is_array())
+      for (std::size_t i = 0; i < v.size(); ++i)
+        if (v[i].is_object())
+          for (auto it = v[i].begin(); it != v[i].end(); ++it)
+            check_units(it.key(), it.value(), path + "[" + std::to_string(i) + "]." + it.key());
+  }
+
+  /// "missing key" with a hint when the object holds the quantity in another unit (radius_mm).
+  Error missing(const json& obj, const std::string& path, const std::string& key) const {
+    std::string hint;
+    const std::string quantity = key.substr(0, key.rfind('_') + 1);
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+      if (!quantity.empty() && it.key().rfind(quantity, 0) == 0)
+        hint = " (found '" + it.key() + "': the format wants SI units, " + key + ")";
+    const Position p = pos_.at(path);
+    return located(
+        file_, p.line, p.column,
+        "missing key '" + join(path, key) + "'" + (path.empty() ? "" : " in '" + path + "'") + hint);
+  }
+  const json& value(const json& obj, const std::string& path, const std::string& key) const {
+    if (!obj.contains(key)) throw missing(obj, path, key);
+    return obj.at(key);
+  }
+  std::string string(const json& obj, const std::string& path, const std::string& key) const {
+    const json& v = value(obj, path, key);
+    if (!v.is_string()) throw error(join(path, key), "must be a string (got " + shown(v) + ")");
+    return v.get<std::string>();
+  }
+  double number(const json& obj, const std::string& path, const std::string& key, bool positive) const {
+    const json& v = value(obj, path, key);
+    if (!v.is_number()) throw error(join(path, key), "must be a number (got " + shown(v) + ")");
+    const double d = v.get<double>();
+    if (!std::isfinite(d)) throw error(join(path, key), "must be finite");
+    if (positive && !(d > 0.0)) throw error(join(path, key), "must be > 0 (got " + shown(v) + ")");
+    return d;
+  }
+  const json& object(const json& obj, const std::string& path, const std::string& key) const {
+    const json& v = value(obj, path, key);
+    if (!v.is_object())
+      throw error(join(path, key), "must be an object (got " + std::string(v.type_name()) + ")");
+    return v;
+  }
+  template <class E>
+  E choice(const json& obj, const std::string& path, const std::string& key, std::vector<E> options) const {
+    const std::string s = string(obj, path, key);
+    std::string list;
+    for (E e : options) {
+      if (to_string(e) == s) return e;
+      list += (list.empty() ? "" : ", ") + to_string(e);
+    }
+    throw error(join(path, key), "must be one of " + list + " (got \"" + s + "\")");
+  }
+  /// A key that must not be there for this shape or test.
+  void refuse(const json& obj, const std::string& path, const std::string& key,
+              const std::string& why) const {
+    if (obj.contains(key)) throw error(join(path, key), why);
+  }
+
+  Indenter indenter(Metadata& m) {
+    const json& o = object(doc_, "", "indenter");
+    keep_unknown(o, "indenter", {"shape", "radius_m", "length_m"}, m);
+    Indenter ind;
+    ind.shape = choice<IndenterShape>(
+        o, "indenter", "shape", {IndenterShape::sphere, IndenterShape::flat_punch, IndenterShape::cylinder});
+    ind.radius_m = number(o, "indenter", "radius_m", true);
+    if (ind.shape == IndenterShape::cylinder) {
+      if (o.contains("length_m")) ind.length_m = number(o, "indenter", "length_m", true);
+    } else {
+      refuse(o, "indenter", "length_m", "is only for a cylinder indenter");
+    }
+    return ind;
+  }
+
+  Sample sample(Metadata& m) {
+    const json& o = object(doc_, "", "sample");
+    keep_unknown(o, "sample", {"shape", "size_m", "radius_m", "height_m", "bottom", "platens"}, m);
+    Sample s;
+    s.shape = choice<SampleShape>(o, "sample", "shape",
+                                  {SampleShape::block, SampleShape::cylinder, SampleShape::half_space});
+    const std::string not_for = "is not a dimension of a " + to_string(s.shape) + " sample";
+    if (s.shape == SampleShape::block) {
+      const json& v = value(o, "sample", "size_m");
+      if (!v.is_array() || v.size() != 3)
+        throw error("sample.size_m",
+                    "must be [x, y, z] in metres, z the loaded direction (got " + shown(v) + ")");
+      for (int i = 0; i < 3; ++i) {
+        const std::string p = "sample.size_m[" + std::to_string(i) + "]";
+        if (!v[i].is_number()) throw error(p, "must be a number (got " + shown(v[i]) + ")");
+        s.size_m[i] = v[i].get<double>();
+        if (!(s.size_m[i] > 0.0) || !std::isfinite(s.size_m[i])) throw error(p, "must be > 0");
+      }
+      refuse(o, "sample", "radius_m", not_for);
+      refuse(o, "sample", "height_m", not_for);
+    } else if (s.shape == SampleShape::cylinder) {
+      s.radius_m = number(o, "sample", "radius_m", true);
+      s.height_m = number(o, "sample", "height_m", true);
+      refuse(o, "sample", "size_m", not_for);
+    } else {
+      for (const char* k : {"size_m", "radius_m", "height_m"}) refuse(o, "sample", k, not_for);
+    }
+    const std::vector<Interface> both = {Interface::bonded, Interface::frictionless};
+    if (s.shape != SampleShape::half_space || o.contains("bottom"))
+      s.bottom = choice<Interface>(o, "sample", "bottom", both);
+    if (is_compression(m.test))
+      s.platens = choice<Interface>(o, "sample", "platens", both);
+    else
+      refuse(o, "sample", "platens", "is only for compression tests (test is " + to_string(m.test) + ")");
+    if (m.test != TestType::indentation && s.shape == SampleShape::half_space)
+      throw error("sample.shape", "half_space is only for indentation tests");
+    return s;
+  }
+
+  const json& doc_;
+  JsonPositions pos_;
+  std::string file_;
+  std::vector<Note>& notes_;
+};
+
+Metadata parse_metadata(const json& doc, const std::string& text, const std::string& file,
+                        std::vector<Note>& notes) {
+  return MetadataParser(doc, text, file, notes).parse();
+}
+
+// ---------------------------------------------------------------------------------------------
+// NAME.csv
+// ---------------------------------------------------------------------------------------------
+
+struct Field {
+  std::string_view text;
+  long column = 1;
+};
+
+/// Splits a line at commas, trimming blanks around each field; columns count characters.
+std::vector<Field> split_fields(std::string_view line) {
+  std::vector<Field> out;
+  std::size_t start = 0;
+  for (;;) {
+    std::size_t end = line.find(',', start);
+    if (end == std::string_view::npos) end = line.size();
+    std::size_t a = start, b = end;
+    while (a < b && (line[a] == ' ' || line[a] == '\t')) ++a;
+    while (b > a && (line[b - 1] == ' ' || line[b - 1] == '\t')) --b;
+    long column = 1;
+    for (std::size_t k = 0; k < a; ++k)
+      if (starts_character(line[k])) ++column;
+    out.push_back({line.substr(a, b - a), column});
+    if (end == line.size()) break;
+    start = end + 1;
+  }
+  return out;
+}
+
+}  // namespace
+
+bool parse_decimal(std::string_view s, double& out, std::string& why) {
+  if (s.empty()) {
+    why = "empty field (every sample needs a value)";
+    return false;
+  }
+  std::string lower;
+  for (char c : s) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  const std::string_view body =
+      (lower[0] == '+' || lower[0] == '-') ? std::string_view(lower).substr(1) : lower;
+  if (body.rfind("nan", 0) == 0) {
+    why = "NaN is not a measurement (remove the sample or the test)";
+    return false;
+  }
+  if (body.rfind("inf", 0) == 0) {
+    why = "an infinite value is not a measurement";
+    return false;
+  }
+  std::size_t i = (s[0] == '+' || s[0] == '-') ? 1 : 0;
+  const std::size_t first = i;
+  std::size_t digits = 0;
+  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++digits;
+  if (i < s.size() && s[i] == '.') {
+    ++i;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++digits;
+  }
+  bool ok = digits > 0;
+  if (ok && i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
+    ++i;
+    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
+    std::size_t exp_digits = 0;
+    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++exp_digits;
+    ok = exp_digits > 0;
+  }
+  if (!ok || i != s.size()) {
+    why = "'" + std::string(s.substr(0, 40)) + "' is not a number";
+    return false;
+  }
+  // from_chars takes no leading '+'.
+  const std::size_t from = s[0] == '+' ? first : 0;
+  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), out);
+  if (r.ec == std::errc::result_out_of_range || !std::isfinite(out)) {
+    why = "'" + std::string(s.substr(0, 40)) + "' is out of the range of a double";
+    return false;
+  }
+  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) {
+    why = "'" + std::string(s.substr(0, 40)) + "' is not a number";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+std::vector<Test> parse_samples(const std::string& text, const std::string& file, std::vector<Note>& notes) {
+  enum Role { kId, kTime, kDisplacement, kForce, kExtra };
+  std::vector<Role> roles;
+  std::vector<std::string> names;
+  std::vector<std::size_t> extra_index;  // per column: index into Test::extra (kExtra only)
+  std::vector<std::string> extra_names;
+  bool header_done = false;
+  long header_line = 0;
+  std::vector<Test> tests;
+  std::set<std::string> ids_seen;
+  long line_no = 0;
+  long last_line = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string_view line(text.data() + start, end - start);
+    start = end + 1;
+    ++line_no;
+    last_line = line_no;
+    if (line_no == 1 && line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // UTF-8 BOM
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos || line[first] == '#') continue;  // blank or comment
+    const std::vector<Field> fields = split_fields(line);
+
+    if (!header_done) {
+      header_done = true;
+      header_line = line_no;
+      std::set<std::string> seen;
+      for (const Field& f : fields) {
+        const std::string n(f.text);
+        if (n.empty()) throw located(file, line_no, f.column, "empty column name in the header");
+        if (!valid_identifier(n))
+          throw located(file, line_no, f.column,
+                        "column name '" + n.substr(0, 60) +
+                            "' is not a tmlab-measured/1 name (letters, digits and '_', the unit last: "
+                            "time_s, displacement_m, force_N; 'tmlab data convert' reads other layouts)");
+        if (!seen.insert(n).second)
+          throw located(file, line_no, f.column, "column '" + n + "' appears twice");
+        names.push_back(n);
+        extra_index.push_back(0);
+        if (n == "test_id") {
+          roles.push_back(kId);
+        } else if (n == "time_s") {
+          roles.push_back(kTime);
+        } else if (n == "displacement_m") {
+          roles.push_back(kDisplacement);
+        } else if (n == "force_N") {
+          roles.push_back(kForce);
+        } else if (!has_unit_suffix(n)) {
+          throw located(file, line_no, f.column,
+                        "column '" + n +
+                            "' is a unit-less number: the name must end in its unit (time_s, "
+                            "displacement_m, force_N; _1 for a dimensionless column)");
+        } else {
+          roles.push_back(kExtra);
+          extra_index.back() = extra_names.size();
+          extra_names.push_back(n);
+          notes.push_back({where(file, line_no, f.column),
+                           "column '" + n + "' is not part of " + std::string(kFormat) + ": kept, not used"});
+        }
+      }
+      for (const char* required : {"time_s", "displacement_m", "force_N"}) {
+        if (seen.count(required)) continue;
+        const std::string r = required;
+        const std::string quantity = r.substr(0, r.find('_') + 1);
+        std::string hint;
+        for (const std::string& n : names)
+          if (n.rfind(quantity, 0) == 0) hint = " (found '" + n + "': the format wants SI units, " + r + ")";
+        throw located(file, line_no, 1, "missing column '" + r + "'" + hint);
+      }
+      continue;
+    }
+
+    if (fields.size() != names.size()) {
+      const long column = fields.size() > names.size()
+                              ? fields[names.size()].column
+                              : fields.back().column + long(fields.back().text.size());
+      throw located(file, line_no, column,
+                    std::to_string(fields.size()) + " fields, but the header (line " +
+                        std::to_string(header_line) + ") has " + std::to_string(names.size()) + " columns");
+    }
+    // Which test: the test_id column, else the one test of the file.
+    std::string id;
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      if (roles[c] != kId) continue;
+      id = std::string(fields[c].text);
+      if (id.empty()) throw located(file, line_no, fields[c].column, "column 'test_id': empty test_id");
+      if (!valid_name(id))
+        throw located(file, line_no, fields[c].column,
+                      "column 'test_id': '" + id.substr(0, 40) +
+                          "' is not a plain id (letters, digits, '_', '-', '.')");
+    }
+    if (tests.empty() || tests.back().id != id) {
+      if (!ids_seen.insert(id).second) {
+        const Test& earlier =
+            *std::find_if(tests.begin(), tests.end(), [&](const Test& t) { return t.id == id; });
+        throw located(file, line_no, 1,
+                      "test '" + id + "' (begun at line " + std::to_string(earlier.first_line) +
+                          ") continues after test '" + tests.back().id +
+                          "': a test's samples must be contiguous");
+      }
+      Test t;
+      t.id = id;
+      t.first_line = line_no;
+      for (const std::string& n : extra_names) t.extra.push_back({n, {}});
+      tests.push_back(std::move(t));
+    }
+    Test& t = tests.back();
+    for (std::size_t c = 0; c < fields.size(); ++c) {
+      if (roles[c] == kId) continue;
+      double v = 0.0;
+      std::string why;
+      if (!parse_decimal(fields[c].text, v, why))
+        throw located(file, line_no, fields[c].column, "column '" + names[c] + "': " + why);
+      switch (roles[c]) {
+        case kTime:
+          if (!t.time_s.empty() && !(v > t.time_s.back()))
+            throw located(file, line_no, fields[c].column,
+                          "column 'time_s': time " + std::string(fields[c].text) +
+                              " does not increase (the sample before has " + format_double(t.time_s.back()) +
+                              ")" + (t.id.empty() ? "" : " in test '" + t.id + "'"));
+          t.time_s.push_back(v);
+          break;
+        case kDisplacement:
+          t.displacement_m.push_back(v);
+          break;
+        case kForce:
+          t.force_N.push_back(v);
+          break;
+        case kExtra:
+          t.extra[extra_index[c]].values.push_back(v);
+          break;
+        case kId:
+          break;
+      }
+    }
+  }
+  if (!header_done) throw located(file, std::max(1L, last_line), 1, "no header line (an empty file)");
+  if (tests.empty()) throw located(file, header_line + 1, 1, "no samples after the header (an empty test)");
+  return tests;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Public functions
+// ---------------------------------------------------------------------------------------------
+
+DataSet read_data_set(const fs::path& csv) { return read_data_set(csv, metadata_path(csv)); }
+
+DataSet read_data_set(const fs::path& csv, const fs::path& json_file) {
+  DataSet d;
+  // Metadata first: a data set without its description is not usable.
+  std::error_code ec;
+  if (!fs::exists(csv, ec)) throw Error(csv.string() + ": no such file");
+  if (!fs::exists(json_file, ec))
+    throw Error(json_file.string() + ": missing (every " + csv.filename().string() +
+                " needs its metadata file beside it, with the same name and .json)");
+  const json doc = ConfigReader::parse_file(json_file.string());
+  d.meta = parse_metadata(doc, read_text(json_file), json_file.string(), d.notes);
+  d.tests = parse_samples(read_text(csv), csv.string(), d.notes);
+  if (d.meta.name != csv.stem().string())
+    d.notes.push_back({json_file.string(), "name '" + d.meta.name + "' differs from the file name '" +
+                                               csv.stem().string() + "'"});
+  return d;
+}
+
+std::string format_metadata(const Metadata& m) {
+  try {
+    nlohmann::ordered_json o;
+    o["format"] = kFormat;
+    o["name"] = m.name;
+    o["test"] = to_string(m.test);
+    if (m.indenter) {
+      o["indenter"]["shape"] = to_string(m.indenter->shape);
+      o["indenter"]["radius_m"] = m.indenter->radius_m;
+      if (m.indenter->length_m) o["indenter"]["length_m"] = *m.indenter->length_m;
+    }
+    auto& s = o["sample"];
+    s["shape"] = to_string(m.sample.shape);
+    if (m.sample.shape == SampleShape::block) s["size_m"] = m.sample.size_m;
+    if (m.sample.shape == SampleShape::cylinder) {
+      s["radius_m"] = m.sample.radius_m;
+      s["height_m"] = m.sample.height_m;
+    }
+    if (m.sample.bottom) s["bottom"] = to_string(*m.sample.bottom);
+    if (m.sample.platens) s["platens"] = to_string(*m.sample.platens);
+    if (m.temperature_C) o["temperature_C"] = *m.temperature_C;
+    if (!m.source.empty()) o["source"] = m.source;
+    if (!m.license.empty()) o["license"] = m.license;
+    if (!m.notes.empty()) o["notes"] = m.notes;
+    // Unknown keys go back into the object they came from ("sample.colour" into "sample").
+    for (const ExtraKey& x : m.extra) {
+      const nlohmann::ordered_json v = nlohmann::ordered_json::parse(x.value.dump());
+      if (x.object.empty())
+        o[x.key] = v;
+      else if (x.object == "indenter" || x.object == "sample")
+        o[x.object][x.key] = v;
+      else
+        throw Error("metadata of '" + m.name + "': unknown key '" + x.key + "' in an unknown object '" +
+                    x.object + "'");
+    }
+    return o.dump(2) + "\n";
+  } catch (const nlohmann::json::exception& e) {
+    // Strings made in memory that are not UTF-8 (the reader only ever yields valid UTF-8).
+    throw Error("metadata of '" + m.name + "': " + e.what());
+  }
+}
+
+std::string format_samples(const DataSet& d) {
+  const bool ids = d.tests.size() > 1 || (!d.tests.empty() && !d.tests.front().id.empty());
+  std::string out;
+  out += ids ? "test_id,time_s,displacement_m,force_N" : "time_s,displacement_m,force_N";
+  if (!d.tests.empty())
+    for (const Column& c : d.tests.front().extra) out += "," + c.name;
+  out += "\n";
+  for (const Test& t : d.tests) {
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (ids) out += t.id + ",";
+      out += format_double(t.time_s[i]) + "," +
+             format_double(i < t.displacement_m.size() ? t.displacement_m[i] : NAN) + "," +
+             format_double(i < t.force_N.size() ? t.force_N[i] : NAN);
+      for (const Column& c : t.extra) out += "," + format_double(i < c.values.size() ? c.values[i] : NAN);
+      out += "\n";
+    }
+  }
+  return out;
+}
+
+void validate(const DataSet& d) {
+  // The writer's output must read back: check it with the reader itself (one set of rules).
+  const std::string label = d.meta.name.empty() ? std::string("(data set)") : d.meta.name;
+  for (const Test& t : d.tests) {
+    if (t.displacement_m.size() != t.size() || t.force_N.size() != t.size())
+      throw Error(label + ": test '" + t.id + "': time, displacement and force have different lengths");
+    if (d.tests.size() > 1 && t.id.empty()) throw Error(label + ": several tests need a test_id each");
+    if (t.extra.size() != d.tests.front().extra.size())
+      throw Error(label + ": test '" + t.id + "': every test needs the same extra columns");
+    for (std::size_t k = 0; k < t.extra.size(); ++k)
+      if (t.extra[k].name != d.tests.front().extra[k].name || t.extra[k].values.size() != t.size())
+        throw Error(label + ": test '" + t.id + "': extra column '" + t.extra[k].name + "' does not match");
+  }
+  std::vector<Note> ignored;
+  const std::string text = format_metadata(d.meta);
+  parse_metadata(json::parse(text), text, label + ".json (as it would be written)", ignored);
+  parse_samples(format_samples(d), label + ".csv (as it would be written)", ignored);
+}
+
+fs::path write_data_set(const DataSet& d, const fs::path& dir) {
+  validate(d);
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(dir.string() + ": cannot create directory (" + ec.message() + ")");
+  const fs::path csv = dir / (d.meta.name + ".csv");
+  // The metadata is written last: a CSV without its JSON does not read as a data set.
+  write_file_atomically(csv, format_samples(d));
+  write_file_atomically(metadata_path(csv), format_metadata(d.meta));
+  return csv;
+}
+
+}  // namespace tmlab::measured
