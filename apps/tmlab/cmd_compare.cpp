@@ -41,7 +41,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   opt.plots = false;
   opt.log = &std::cerr;
   CaseConfig tm_cfg = cfg;
-  tm_cfg.model = "tensor_mass";
+  tm_cfg.model = CaseModel::TensorMass;
   std::cerr << "tmlab compare: tensor-mass run\n";
   const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
   tmlab::RunResult b;
@@ -51,7 +51,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   } else {
     CaseConfig o = cfg;
     o.name = cfg.name + "-tl_oracle";
-    o.model = "tl_oracle";
+    o.model = CaseModel::TlOracle;
     std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
     b = tm::run_case(o, opt);
   }

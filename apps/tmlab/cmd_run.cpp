@@ -85,7 +85,7 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   opt.command_line = split_words(command_line);
   opt.plots = !p.has("--no-plots");
   opt.log = &std::cerr;
-  const std::string model = p.get("--model", cfg.model);
+  const std::string model = p.get("--model", to_string(cfg.model));
   int degree = 1;
   if (p.has("--degree")) {
     const std::string d = p.get("--degree");
@@ -122,11 +122,9 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
   CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
   if (p.has("--model")) {
     const std::string m = p.get("--model");
-    if (m != "tensor_mass" && m != "tl_oracle" && m != "reference")
-      throw UsageError("--model must be tensor_mass, tl_oracle or reference");
-    if (m != "reference") {
-      cfg.model = m;
-    }
+    const std::optional<CaseModel> fast = case_model_from_string(m);
+    if (!fast && m != "reference") throw UsageError("--model must be tensor_mass, tl_oracle or reference");
+    if (fast) cfg.model = *fast;
   }
   return run_config(cfg, p, command_line);
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace tmlab {
 
@@ -11,5 +12,8 @@ std::string significant(double v, int digits = 3);
 std::string scientific(double v, int digits = 3);
 /// printf "%.<digits>f": fixed decimals ("1.97").
 std::string fixed_point(double v, int digits = 2);
+
+/// The accepted values of a choice for a message: "'a', 'b' or 'c'" (each name between `quote`).
+std::string choice_list(const std::vector<std::string>& names, const std::string& quote = "'");
 
 }  // namespace tmlab

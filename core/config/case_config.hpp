@@ -3,14 +3,18 @@
 // and the deal.II reference both build their problem from it. docs/case-files.md is the reference.
 #pragma once
 
+#include "core/config/implicit_scheme.hpp"
 #include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
+#include "core/constitutive/material_law.hpp"
+#include "core/constitutive/prony.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,21 +26,22 @@ struct MeshSpec {
   bool repair_orientation = false;
 };
 
-/// Prony-series viscoelasticity (issue 3; docs/theory/viscoelasticity.md). Plain data here; the
-/// tensor-mass model validates and converts it (tmlab::tm::PronySeries).
+/// Prony-series viscoelasticity (issue 3; docs/theory/viscoelasticity.md). The choices are the
+/// shared vocabulary of core/constitutive/prony.hpp, parsed once here; the weights are as given.
 struct ViscoelasticSpec {
   bool enabled = false;
-  std::string convention = "long_term";      ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
+  PronyConvention convention =
+      PronyConvention::LongTerm;             ///< long_term (alpha_j, eq. 10) | instantaneous (g_j, eq. 24)
   std::vector<double> weights, taus;         ///< one per Prony term
-  std::string history = "pk2";               ///< nodal_force (the seed's eq. 20) | pk2 (objective)
-  std::string integration = "exact_linear";  ///< midpoint | exact_linear | backward_euler
-  std::string relaxation = "full";           ///< full | deviatoric (pk2 only)
-  std::string scheme;                        ///< the shorthand given, if any (seed, objective, ...)
+  PronyHistory history = PronyHistory::Pk2;  ///< nodal_force (the seed's eq. 20) | pk2 (objective)
+  PronyIntegration integration = PronyIntegration::ExactLinear;  ///< midpoint | exact_linear | backward_euler
+  PronyRelaxation relaxation = PronyRelaxation::Full;            ///< full | deviatoric (pk2 only)
+  std::optional<PronyScheme> scheme;  ///< the shorthand given, if any (seed, objective, ...)
 };
 
 struct MaterialSpec {
-  std::string law = "stvk";  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
-  double young = 0.0;        ///< Pa; the long-term modulus E_inf of a viscoelastic material
+  MaterialLaw law = MaterialLaw::StVK;  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
+  double young = 0.0;                   ///< Pa; the long-term modulus E_inf of a viscoelastic material
   double poisson = 0.0;
   double density = 0.0;  ///< kg/m^3
   ViscoelasticSpec viscoelastic;
@@ -64,10 +69,10 @@ struct LoadSpec {
 struct SolverSpec {
   enum class Type { Static, Explicit, Implicit };
   Type type = Type::Static;
-  double t_end = 1.0;              ///< end time (pseudo-time for static)
-  int steps = 10;                  ///< static: number of load steps; dynamics: derived from dt
-  double dt = 0.0;                 ///< dynamics: time step
-  std::string scheme = "newmark";  ///< implicit: newmark | backward_euler
+  double t_end = 1.0;  ///< end time (pseudo-time for static)
+  int steps = 10;      ///< static: number of load steps; dynamics: derived from dt
+  double dt = 0.0;     ///< dynamics: time step
+  ImplicitScheme scheme = ImplicitScheme::Newmark;  ///< implicit: newmark | backward_euler
   double damping_alpha = 0.0, damping_beta = 0.0;
   int max_iterations = 25;
   double rtol = 1e-10;
@@ -90,11 +95,18 @@ struct OutputSpec {
   std::vector<ProbeSpec> probes;
 };
 
+/// The fast model's elastic kernel: tensor_mass (Picinbono's tensors, relative displacements) |
+/// tl_oracle (the F-based total-Lagrangian kernel). The reference is chosen on the command line.
+enum class CaseModel { TensorMass, TlOracle };
+std::string to_string(CaseModel m);
+/// The model a name denotes ("tensor_mass", "tl_oracle"), or nothing.
+std::optional<CaseModel> case_model_from_string(const std::string& name);
+
 struct CaseConfig {
   std::string name;
   std::string description;
-  std::string file;                   ///< where the case came from ("<embedded>" for the demo)
-  std::string model = "tensor_mass";  ///< tensor_mass | tl_oracle
+  std::string file;                         ///< where the case came from ("<embedded>" for the demo)
+  CaseModel model = CaseModel::TensorMass;  ///< tensor_mass | tl_oracle
   MeshSpec mesh;
   MaterialSpec material;
   std::vector<BoundarySpec> boundary;

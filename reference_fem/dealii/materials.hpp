@@ -4,8 +4,12 @@
 // S against finite differences of W and D against finite differences of S, for every law.
 //
 // Prony viscoelasticity (PronySeries) acts on the PK2 stress at each quadrature point, with the
-// update schemes of the tensor-mass model (docs/reference-fem.md, "Viscoelasticity").
+// update schemes of the tensor-mass model (docs/reference-fem.md, "Viscoelasticity"): the choices,
+// recursion factors and weight conversion are the shared ones of core/constitutive/prony.hpp.
 #pragma once
+
+#include "core/constitutive/material_law.hpp"
+#include "core/constitutive/prony.hpp"
 
 #include <deal.II/base/symmetric_tensor.h>
 #include <deal.II/base/tensor.h>
@@ -109,17 +113,20 @@ struct YeohLaw {
 
 /// One of the laws above, chosen at run time (a closed set: a switch is clearer than virtuals).
 struct Material {
-  enum class Kind { StVK, NeoHookean, Yeoh };
+  using Kind = MaterialLaw;
   Kind kind = Kind::StVK;
   double lambda = 0.0, mu = 0.0;  ///< Lame constants of the small-strain limit
   StVenantKirchhoffLaw stvk;
   NeoHookeanLaw neo;
   YeohLaw yeoh;
 
-  /// law: stvk | neo_hookean | yeoh; lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)).
+  /// lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)). Throws tmlab::Error for bad E, nu or Yeoh ratios.
+  static Material make(MaterialLaw law, double young, double poisson, double yeoh_c20_ratio = 1.0,
+                       double yeoh_c30_ratio = 0.0);
+  /// law: stvk | neo_hookean | yeoh (the names of core/constitutive/material_law.hpp); throws for others.
   static Material make(const std::string& law, double young, double poisson, double yeoh_c20_ratio = 1.0,
                        double yeoh_c30_ratio = 0.0);
-  std::string name() const;
+  std::string name() const { return to_string(kind); }
 
   double energy(const SymTensor2& E) const {
     switch (kind) {
@@ -155,37 +162,29 @@ struct Material {
 
 /// Prony series on the PK2 stress (the objective form of the tensor-mass model's viscoelasticity):
 ///   S_total^{n+1} = S_e^{n+1} + sum_j alpha_j h_j^{n+1},
-///   h_j^{n+1} = a_j h_j^n + c_j (S_r^{n+1} - S_r^n),  a_j = exp(-dt/tau_j),
+///   h_j^{n+1} = a_j h_j^n + c_j (S_r^{n+1} - S_r^n),  (a_j, c_j) = recursion_factors(integration, dt,
+///   tau_j),
 /// with S_e = dW/dE (long-term law) and S_r the relaxing stress: S_e ("full") or, for St VK only,
-/// S_dev = 2 mu (E - tr(E)/3 I) ("deviatoric"). c_j: midpoint exp(-dt/(2 tau_j)); exact_linear
-/// (tau_j/dt)(1 - exp(-dt/tau_j)); backward_euler a_j = c_j = 1/(1 + dt/tau_j).
+/// S_dev = 2 mu (E - tr(E)/3 I) ("deviatoric"). The factors (midpoint, exact_linear, backward_euler)
+/// are those of core/constitutive/prony.hpp, the ones the tensor-mass model uses.
 /// alpha_j are long-term normalised; an instantaneous series g_j is converted alpha_j = g_j/(1-sum g).
 struct PronySeries {
-  enum class Integration { Midpoint, ExactLinear, BackwardEuler };
+  using Integration = PronyIntegration;
   std::vector<double> alpha, tau;
   Integration integration = Integration::ExactLinear;
   bool deviatoric = false;
 
-  /// convention: long_term | instantaneous; integration: midpoint | exact_linear | backward_euler;
-  /// relaxation: full | deviatoric. Throws tmlab::Error for bad input.
-  static PronySeries make(const std::string& convention, const std::vector<double>& weights,
-                          const std::vector<double>& taus, const std::string& integration,
-                          const std::string& relaxation);
+  /// The weights as given in `convention`. Throws tmlab::Error for bad input (sizes, a negative
+  /// weight, a tau <= 0, instantaneous weights summing to >= 1).
+  static PronySeries make(PronyConvention convention, const std::vector<double>& weights,
+                          const std::vector<double>& taus, PronyIntegration integration,
+                          PronyRelaxation relaxation);
   std::size_t size() const { return alpha.size(); }
 
-  /// Recursion factors (a_j, c_j) for a step dt > 0.
+  /// Recursion factors (a_j, c_j) for a step dt >= 0.
   void factors(std::size_t j, double dt, double& a, double& c) const {
-    const double x = dt / tau[j];
-    switch (integration) {
-      case Integration::Midpoint:
-        a = std::exp(-x), c = std::exp(-0.5 * x);
-        break;
-      case Integration::ExactLinear:
-        a = std::exp(-x), c = x > 1e-12 ? (1.0 - std::exp(-x)) / x : 1.0 - 0.5 * x;
-        break;
-      default:
-        a = c = 1.0 / (1.0 + x);
-    }
+    const RecursionFactors f = recursion_factors(integration, dt, tau[j]);
+    a = f.a, c = f.c;
   }
   /// The relaxing stress S_r(E) and its tangent dS_r/dE.
   SymTensor2 relaxing_stress(const Material& m, const SymTensor2& E) const {

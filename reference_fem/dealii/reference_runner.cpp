@@ -121,7 +121,7 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
                 ": key 'solver.type': the deal.II reference solves quasi-static problems only (got a dynamic "
                 "solver)");
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
-  if (vs.enabled && vs.history == "nodal_force")
+  if (vs.enabled && vs.history == PronyHistory::NodalForce)
     throw Error(
         cfg.file +
         ": key 'material.viscoelastic': the deal.II reference implements only the objective "
@@ -130,7 +130,7 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
   if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
-  if (vs.enabled && vs.relaxation == "deviatoric" && ro.law != "stvk")
+  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && ro.law != "stvk")
     throw Error(
         "reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law "
         "'" +
@@ -619,12 +619,12 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
                  {"plots", "skipped"},
                  {"run_seconds", wall}};
       if (vs.enabled)
-        summary["material"]["viscoelastic"] = {{"convention", vs.convention},
+        summary["material"]["viscoelastic"] = {{"convention", to_string(vs.convention)},
                                                {"weights", vs.weights},
                                                {"taus", vs.taus},
                                                {"alpha", prony->alpha},
-                                               {"integration", vs.integration},
-                                               {"relaxation", vs.relaxation},
+                                               {"integration", to_string(vs.integration)},
+                                               {"relaxation", to_string(vs.relaxation)},
                                                {"history", "pk2"}};
       if (use_ida) summary["solver"]["ida"] = ida_summary;
       nlohmann::json reac = nlohmann::json::object();

@@ -30,6 +30,7 @@
 #include <iomanip>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 
 namespace tmlab::ref {
@@ -43,7 +44,7 @@ namespace {}  // namespace
 // Materials
 // =====================================================================================================
 
-Material Material::make(const std::string& law, double young, double poisson, double yeoh_c20_ratio,
+Material Material::make(MaterialLaw law, double young, double poisson, double yeoh_c20_ratio,
                         double yeoh_c30_ratio) {
   if (!(young > 0.0) || !std::isfinite(young))
     throw Error("material: E must be > 0 (got " + std::to_string(young) + ")");
@@ -55,35 +56,24 @@ Material Material::make(const std::string& law, double young, double poisson, do
   m.neo = {m.lambda, m.mu};
   m.yeoh = {0.5 * m.mu, 0.5 * m.mu * yeoh_c20_ratio, 0.5 * m.mu * yeoh_c30_ratio,
             m.lambda + 2.0 * m.mu / 3.0};
-  if (law == "stvk")
-    m.kind = Kind::StVK;
-  else if (law == "neo_hookean")
-    m.kind = Kind::NeoHookean;
-  else if (law == "yeoh") {
-    m.kind = Kind::Yeoh;
-    if (yeoh_c20_ratio < 0.0 || yeoh_c30_ratio < 0.0) throw Error("material: Yeoh C20, C30 must be >= 0");
-  } else
-    throw Error("reference: unknown law '" + law + "' (expected stvk, neo_hookean or yeoh)");
+  m.kind = law;
+  if (law == Kind::Yeoh && (yeoh_c20_ratio < 0.0 || yeoh_c30_ratio < 0.0))
+    throw Error("material: Yeoh C20, C30 must be >= 0");
   return m;
 }
 
-std::string Material::name() const {
-  switch (kind) {
-    case Kind::StVK:
-      return "stvk";
-    case Kind::NeoHookean:
-      return "neo_hookean";
-    default:
-      return "yeoh";
-  }
+Material Material::make(const std::string& law, double young, double poisson, double yeoh_c20_ratio,
+                        double yeoh_c30_ratio) {
+  const std::optional<MaterialLaw> named = material_law_from_string(law);
+  if (!named) throw Error("reference: unknown law '" + law + "' (expected stvk, neo_hookean or yeoh)");
+  return make(*named, young, poisson, yeoh_c20_ratio, yeoh_c30_ratio);
 }
 
-PronySeries PronySeries::make(const std::string& convention, const std::vector<double>& weights,
-                              const std::vector<double>& taus, const std::string& integration,
-                              const std::string& relaxation) {
+PronySeries PronySeries::make(PronyConvention convention, const std::vector<double>& weights,
+                              const std::vector<double>& taus, PronyIntegration integration,
+                              PronyRelaxation relaxation) {
   if (weights.size() != taus.size() || weights.empty())
     throw Error("prony: need one tau per weight (and at least one term)");
-  PronySeries p;
   double gsum = 0.0;
   for (double w : weights) {
     if (!(w >= 0.0)) throw Error("prony: weights must be >= 0");
@@ -91,26 +81,13 @@ PronySeries PronySeries::make(const std::string& convention, const std::vector<d
   }
   for (double t : taus)
     if (!(t > 0.0)) throw Error("prony: tau must be > 0");
-  if (convention == "long_term")
-    p.alpha = weights;
-  else if (convention == "instantaneous") {
-    if (!(gsum < 1.0)) throw Error("prony: instantaneous weights must sum to < 1");
-    for (double g : weights) p.alpha.push_back(g / (1.0 - gsum));
-  } else
-    throw Error("prony: unknown convention '" + convention + "'");
+  if (convention == PronyConvention::Instantaneous && !(gsum < 1.0))
+    throw Error("prony: instantaneous weights must sum to < 1");
+  PronySeries p;
+  p.alpha = long_term_weights(convention, weights);
   p.tau = taus;
-  if (integration == "midpoint")
-    p.integration = Integration::Midpoint;
-  else if (integration == "exact_linear")
-    p.integration = Integration::ExactLinear;
-  else if (integration == "backward_euler")
-    p.integration = Integration::BackwardEuler;
-  else
-    throw Error("prony: unknown integration '" + integration + "'");
-  if (relaxation == "deviatoric")
-    p.deviatoric = true;
-  else if (relaxation != "full")
-    throw Error("prony: unknown relaxation '" + relaxation + "'");
+  p.integration = integration;
+  p.deviatoric = relaxation == PronyRelaxation::Deviatoric;
   return p;
 }
 

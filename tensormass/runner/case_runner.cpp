@@ -137,21 +137,21 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled) {
     // Prony-series viscoelasticity on the tensor-mass model; material.E is the long-term modulus.
-    if (cfg.model == "tl_oracle")
+    if (cfg.model == CaseModel::TlOracle)
       throw Error(
           cfg.file +
           ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass for a viscoelastic material");
-    const PronySeries prony = vs.convention == "instantaneous"
+    const PronySeries prony = vs.convention == PronyConvention::Instantaneous
                                   ? PronySeries::from_instantaneous(vs.weights, vs.taus)
                                   : PronySeries::from_long_term(vs.weights, vs.taus);
     ViscoelasticOptions vo;
-    vo.history = ViscoelasticOptions::parse_history(vs.history);
-    vo.integration = ViscoelasticOptions::parse_integration(vs.integration);
-    vo.relaxation = ViscoelasticOptions::parse_relaxation(vs.relaxation);
+    vo.history = vs.history;
+    vo.integration = vs.integration;
+    vo.relaxation = vs.relaxation;
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
     visco = vm.get();
     model = std::move(vm);
-  } else if (cfg.model == "tl_oracle") {
+  } else if (cfg.model == CaseModel::TlOracle) {
     model = std::make_unique<TotalLagrangianStVK>(mesh, material);
   } else {
     model = std::make_unique<TensorMassStVK>(mesh, material);
@@ -389,7 +389,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                      {"omega_max", st.omega_max},
                      {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
     } else {
-      const ImplicitScheme scheme = implicit_scheme_from_string(cfg.solver.scheme);
+      const ImplicitScheme scheme = cfg.solver.scheme;
       ImplicitDynamics integ(system, scheme, newton_options(cfg.solver));
       NewtonLog newton_log;
       integ.initialize(0.0, u, v);
@@ -406,7 +406,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
         progress(k, t);
       }
       solver_info = {{"type", "implicit"},
-                     {"scheme", cfg.solver.scheme},
+                     {"scheme", to_string(cfg.solver.scheme)},
                      {"dt", cfg.solver.dt},
                      {"steps", n_steps},
                      {"newton_iterations", total_newton},
@@ -488,7 +488,7 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     nlohmann::json summary = {{"case", cfg.name},
                               {"description", cfg.description},
-                              {"model", cfg.model},
+                              {"model", to_string(cfg.model)},
                               {"mesh",
                                {{"file", cfg.mesh.file},
                                 {"points", mesh.num_points()},
@@ -527,9 +527,9 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                            {"balance_residual_J", external_work - stored - kinetic - dissipated}};
     }
     if (visco)
-      summary["viscoelastic"] = {{"history", vs.history},
-                                 {"integration", vs.integration},
-                                 {"relaxation", vs.relaxation},
+      summary["viscoelastic"] = {{"history", to_string(vs.history)},
+                                 {"integration", to_string(vs.integration)},
+                                 {"relaxation", to_string(vs.relaxation)},
                                  {"prony_long_term", visco->prony().to_json()}};
     nlohmann::json probes = nlohmann::json::object();
     for (std::size_t k = 0; k < probe_nodes.size(); ++k) {

@@ -8,16 +8,6 @@
 
 namespace tmlab::tm {
 
-ImplicitScheme implicit_scheme_from_string(const std::string& name) {
-  if (name == "backward_euler") return ImplicitScheme::BackwardEuler;
-  if (name == "newmark") return ImplicitScheme::Newmark;
-  throw Error("unknown implicit scheme '" + name + "' (expected backward_euler or newmark)");
-}
-
-std::string to_string(ImplicitScheme s) {
-  return s == ImplicitScheme::BackwardEuler ? "backward_euler" : "newmark";
-}
-
 ImplicitCoefficients implicit_coefficients(ImplicitScheme s, double dt) {
   if (s == ImplicitScheme::BackwardEuler) {
     // v = (u - un)/dt, a = (v - vn)/dt.

@@ -5,6 +5,7 @@
 // and Jacobian c_a M + d_u C + K(u) (+ load stiffness).
 #pragma once
 
+#include "core/config/implicit_scheme.hpp"
 #include "tensormass/solvers/newton.hpp"
 #include "tensormass/system/mechanical_system.hpp"
 
@@ -12,9 +13,7 @@
 
 namespace tmlab::tm {
 
-enum class ImplicitScheme { BackwardEuler, Newmark };
-ImplicitScheme implicit_scheme_from_string(const std::string& name);  ///< "backward_euler" | "newmark"
-std::string to_string(ImplicitScheme s);
+using tmlab::ImplicitScheme;  ///< core/config/implicit_scheme.hpp: the case file's names too
 
 /// a = ca (u - un) - cv vn - caa an;  v = du (u - un) + dv vn + da an.
 struct ImplicitCoefficients {

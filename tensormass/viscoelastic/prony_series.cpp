@@ -2,7 +2,9 @@
 #include "tensormass/viscoelastic/prony_series.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/constitutive/prony.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -52,18 +54,17 @@ PronySeries PronySeries::from_instantaneous(const std::vector<double>& g, std::v
     throw Error("Prony series: instantaneous weights sum to " + num(sum) +
                 ", must be < 1 (the long-term modulus E_0 (1 - sum g) must stay positive)");
   }
-  // alpha_j = g_j / (1 - sum_k g_k)   (errata, eq. 10 vs 24)
-  std::vector<double> alpha(g.size());
-  for (std::size_t j = 0; j < g.size(); ++j) alpha[j] = g[j] / (1.0 - sum);
-  return from_long_term(std::move(alpha), std::move(tau));
+  return from_long_term(long_term_weights(g), std::move(tau));  // alpha_j = g_j / (1 - sum g)
 }
 
 PronySeries PronySeries::from_json(const nlohmann::json& j, const std::string& where,
                                    const std::string& path) {
   ConfigReader r(j, where, path);
-  const std::string convention = r.require<std::string>("convention");
-  if (convention != "long_term" && convention != "instantaneous")
-    throw r.error("convention", "must be \"long_term\" or \"instantaneous\" (got \"" + convention + "\")");
+  const std::string name = r.require<std::string>("convention");
+  const std::optional<PronyConvention> convention = prony_convention_from_string(name);
+  if (!convention)
+    throw r.error("convention",
+                  "must be " + choice_list(prony_convention_names(), "\"") + " (got \"" + name + "\")");
   const nlohmann::json& terms = r.raw("terms");
   if (!terms.is_array() || terms.empty())
     throw r.error("terms", "must be a non-empty array of {\"weight\": w, \"tau\": t}");
@@ -78,8 +79,8 @@ PronySeries PronySeries::from_json(const nlohmann::json& j, const std::string& w
   }
   r.finish();
   try {
-    return convention == "long_term" ? from_long_term(std::move(w), std::move(tau))
-                                     : from_instantaneous(w, std::move(tau));
+    return *convention == PronyConvention::LongTerm ? from_long_term(std::move(w), std::move(tau))
+                                                    : from_instantaneous(w, std::move(tau));
   } catch (const Error& e) {
     throw Error(where + ": key '" + r.key_path("terms") + "': " + e.what());
   }
@@ -98,11 +99,7 @@ bool PronySeries::is_elastic() const {
 }
 
 std::vector<double> PronySeries::instantaneous_weights() const {
-  // g_j = alpha_j / (1 + sum alpha)
-  const double s = 1.0 + alpha_sum();
-  std::vector<double> g(alpha_.size());
-  for (std::size_t j = 0; j < g.size(); ++j) g[j] = alpha_[j] / s;
-  return g;
+  return tmlab::instantaneous_weights(alpha_);
 }
 
 double PronySeries::relaxation(double t) const {

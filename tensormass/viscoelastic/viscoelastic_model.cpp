@@ -3,6 +3,7 @@
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 
 #include <Eigen/Eigenvalues>
 
@@ -27,55 +28,19 @@ inline double voigt_dot(const double* a, const double* b) {
 // ---------------------------------------------------------------- options
 
 Opt::History Opt::parse_history(const std::string& s) {
-  if (s == "nodal_force") return History::NodalForce;
-  if (s == "pk2") return History::Pk2;
-  throw Error("viscoelastic history '" + s + "' is unknown (use \"nodal_force\" or \"pk2\")");
+  if (const auto h = prony_history_from_string(s)) return *h;
+  throw Error("viscoelastic history '" + s + "' is unknown (use " + choice_list(prony_history_names(), "\"") +
+              ")");
 }
 Opt::Integration Opt::parse_integration(const std::string& s) {
-  if (s == "midpoint") return Integration::Midpoint;
-  if (s == "exact_linear") return Integration::ExactLinear;
-  if (s == "backward_euler") return Integration::BackwardEuler;
-  throw Error("viscoelastic integration '" + s +
-              "' is unknown (use \"midpoint\", \"exact_linear\" or \"backward_euler\")");
+  if (const auto i = prony_integration_from_string(s)) return *i;
+  throw Error("viscoelastic integration '" + s + "' is unknown (use " +
+              choice_list(prony_integration_names(), "\"") + ")");
 }
 Opt::Relaxation Opt::parse_relaxation(const std::string& s) {
-  if (s == "full") return Relaxation::Full;
-  if (s == "deviatoric") return Relaxation::Deviatoric;
-  throw Error("viscoelastic relaxation '" + s + "' is unknown (use \"full\" or \"deviatoric\")");
-}
-std::string Opt::to_string(History h) { return h == History::Pk2 ? "pk2" : "nodal_force"; }
-std::string Opt::to_string(Integration i) {
-  switch (i) {
-    case Integration::Midpoint:
-      return "midpoint";
-    case Integration::ExactLinear:
-      return "exact_linear";
-    case Integration::BackwardEuler:
-      return "backward_euler";
-  }
-  return "?";
-}
-std::string Opt::to_string(Relaxation r) { return r == Relaxation::Full ? "full" : "deviatoric"; }
-
-RecursionFactors recursion_factors(Opt::Integration scheme, double dt, double tau) {
-  assert(dt >= 0.0 && tau > 0.0);
-  const double x = dt / tau;
-  RecursionFactors f;
-  switch (scheme) {
-    case Opt::Integration::Midpoint:  // seed eq. 20: a = e^{-dt/tau}, c = e^{-dt/(2 tau)}
-      f.a = std::exp(-x);
-      f.c = std::exp(-0.5 * x);
-      break;
-    case Opt::Integration::ExactLinear:  // errata eq. 20: c = (tau/dt)(1 - e^{-dt/tau}) -> 1 as dt -> 0
-      f.a = std::exp(-x);
-      f.c = (x == 0.0) ? 1.0 : -std::expm1(-x) / x;
-      break;
-    case Opt::Integration::BackwardEuler:  // (h^{n+1} - h^n)/dt = -h^{n+1}/tau + (X^{n+1} - X^n)/dt
-      f.a = 1.0 / (1.0 + x);
-      f.c = f.a;
-      break;
-  }
-  return f;
+  if (const auto r = prony_relaxation_from_string(s)) return *r;
+  throw Error("viscoelastic relaxation '" + s + "' is unknown (use " +
+              choice_list(prony_relaxation_names(), "\"") + ")");
 }
 
 // ---------------------------------------------------------------- construction

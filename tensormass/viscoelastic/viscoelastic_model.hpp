@@ -8,9 +8,8 @@
 //   X(t) = X_e(t) + sum_j alpha_j h_j(t),  h_j(t) = integral_0^t exp(-(t-s)/tau_j) dX_e/ds ds   (eqs. 13-21)
 // and advanced over a step dt by the recursion
 //   h_j^{n+1} = a_j h_j^n + c_j (X_e^{n+1} - X_e^n)                                    (eq. 20 family)
-// with (Integration)  midpoint:       a = exp(-dt/tau), c = exp(-dt/(2 tau))     (the seed's eq. 20)
-//                     exact_linear:   a = exp(-dt/tau), c = (tau/dt)(1 - a)      (exact for X_e linear in t)
-//                     backward_euler: a = c = 1/(1 + dt/tau)                     (first order)
+// with (a_j, c_j) = recursion_factors(Integration, dt, tau_j) of core/constitutive/prony.hpp (midpoint,
+// exact_linear, backward_euler: the one copy the deal.II reference uses too).
 //
 // What X is (History):
 //   nodal_force: X_e = the 12 nodal elastic forces f_e of each tet in GLOBAL axes
@@ -43,6 +42,7 @@
 // With all Prony weights zero every call forwards to the elastic model (bit-for-bit identical).
 #pragma once
 
+#include "core/constitutive/prony.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tet_geometry.hpp"
@@ -54,10 +54,11 @@
 
 namespace tmlab::tm {
 
+/// The names of the choices are the shared vocabulary (core/constitutive/prony.hpp).
 struct ViscoelasticOptions {
-  enum class History { NodalForce, Pk2 };
-  enum class Integration { Midpoint, ExactLinear, BackwardEuler };
-  enum class Relaxation { Full, Deviatoric };
+  using History = PronyHistory;
+  using Integration = PronyIntegration;
+  using Relaxation = PronyRelaxation;
 
   History history = History::Pk2;
   Integration integration = Integration::Midpoint;
@@ -66,22 +67,19 @@ struct ViscoelasticOptions {
   /// evaluations per commit; switch off for long explicit runs that do not report energies).
   bool energy_bookkeeping = true;
 
-  /// "nodal_force" | "pk2", "midpoint" | "exact_linear" | "backward_euler", "full" | "deviatoric".
-  /// Throw tmlab::Error naming the accepted values.
+  /// "nodal_force" | "pk2", "midpoint" | "exact_linear" | "backward_euler", "full" | "deviatoric"
+  /// (the shared parsers of prony.hpp). Throw tmlab::Error naming the accepted values.
   static History parse_history(const std::string& s);
   static Integration parse_integration(const std::string& s);
   static Relaxation parse_relaxation(const std::string& s);
-  static std::string to_string(History h);
-  static std::string to_string(Integration i);
-  static std::string to_string(Relaxation r);
+  /// tmlab::to_string of prony.hpp, kept here for the model's users.
+  static std::string to_string(History h) { return tmlab::to_string(h); }
+  static std::string to_string(Integration i) { return tmlab::to_string(i); }
+  static std::string to_string(Relaxation r) { return tmlab::to_string(r); }
 };
 
-/// Recursion factors of one Prony term for a step dt >= 0 (dt = 0 gives a = c = 1).
-struct RecursionFactors {
-  double a = 1.0;  ///< decay of the old history
-  double c = 1.0;  ///< weight of the increment of X_e
-};
-RecursionFactors recursion_factors(ViscoelasticOptions::Integration scheme, double dt, double tau);
+using tmlab::recursion_factors;
+using tmlab::RecursionFactors;
 
 class ViscoelasticStVK : public ElasticModel {
  public:

@@ -89,7 +89,7 @@ void quiet_output(CaseConfig& c) {
 
 /// The tensor-mass run of a case (model forced to tensor_mass).
 tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
-  c.model = "tensor_mass";
+  c.model = CaseModel::TensorMass;
   return tm::run_case(c, run_options(ctx));
 }
 

@@ -429,7 +429,7 @@ LiverStudy liver_study(const nlohmann::json& params, const std::string& where, c
   const StVenantKirchhoff material =
       StVenantKirchhoff::from_young_poisson(cfg0.material.young, cfg0.material.poisson);
   const ViscoelasticSpec& vs = cfg0.material.viscoelastic;
-  const PronySeries prony = vs.convention == "instantaneous"
+  const PronySeries prony = vs.convention == PronyConvention::Instantaneous
                                 ? PronySeries::from_instantaneous(vs.weights, vs.taus)
                                 : PronySeries::from_long_term(vs.weights, vs.taus);
   std::vector<DirichletCondition> conditions;

@@ -20,5 +20,13 @@ TEST(Format, PrintfStyles) {
   EXPECT_EQ(scientific(-INFINITY, 3), "-inf");
 }
 
+TEST(Format, ChoiceList) {
+  EXPECT_EQ(choice_list({"a"}), "'a'");
+  EXPECT_EQ(choice_list({"a", "b"}), "'a' or 'b'");
+  EXPECT_EQ(choice_list({"a", "b", "c"}, "\""), "\"a\", \"b\" or \"c\"");
+  EXPECT_EQ(choice_list({"seed", "objective"}, ""), "seed or objective");
+  EXPECT_EQ(choice_list({}), "");
+}
+
 }  // namespace
 }  // namespace tmlab

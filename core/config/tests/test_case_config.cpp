@@ -41,7 +41,8 @@ class CaseConfigTest : public ::testing::Test {
 
 TEST_F(CaseConfigTest, MinimalCaseGetsDefaults) {
   const CaseConfig c = parse_case(minimal(), "case.json", {dir_.string()});
-  EXPECT_EQ(c.model, "tensor_mass");
+  EXPECT_EQ(c.model, CaseModel::TensorMass);
+  EXPECT_EQ(c.material.law, MaterialLaw::StVK);
   EXPECT_EQ(c.solver.steps, 10);
   EXPECT_DOUBLE_EQ(c.solver.t_end, 1.0);
   ASSERT_EQ(c.boundary.size(), 1u);
@@ -85,6 +86,75 @@ TEST_F(CaseConfigTest, ErrorsNameTheKeyPath) {
   j = minimal();
   j["extra"] = true;
   EXPECT_NE(error_of(j).find("unknown key 'extra'"), std::string::npos) << error_of(j);
+}
+
+TEST_F(CaseConfigTest, ChoicesAreParsedOnceIntoEnums) {
+  auto j = minimal();
+  j["model"] = "tl_oracle";
+  j["material"]["viscoelastic"] = {
+      {"history", "nodal_force"},
+      {"integration", "backward_euler"},
+      {"prony", {{"convention", "instantaneous"}, {"terms", {{{"weight", 0.5}, {"tau", 1.0}}}}}}};
+  j["solver"] = {{"type", "implicit"}, {"dt", 0.1}, {"scheme", "backward_euler"}};
+  CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+  EXPECT_EQ(c.model, CaseModel::TlOracle);
+  const ViscoelasticSpec& vs = c.material.viscoelastic;
+  EXPECT_TRUE(vs.enabled);
+  EXPECT_EQ(vs.history, PronyHistory::NodalForce);
+  EXPECT_EQ(vs.integration, PronyIntegration::BackwardEuler);
+  EXPECT_EQ(vs.relaxation, PronyRelaxation::Full);
+  EXPECT_EQ(vs.convention, PronyConvention::Instantaneous);
+  EXPECT_FALSE(vs.scheme);
+  EXPECT_EQ(c.solver.scheme, ImplicitScheme::BackwardEuler);
+  // A shorthand sets both halves and is remembered.
+  j["material"]["viscoelastic"] = {{"scheme", "objective"},
+                                   {"relaxation", "deviatoric"},
+                                   {"prony", {{"terms", {{{"weight", 0.5}, {"tau", 1.0}}}}}}};
+  c = parse_case(j, "case.json", {dir_.string()});
+  EXPECT_EQ(c.material.viscoelastic.scheme, PronyScheme::Objective);
+  EXPECT_EQ(c.material.viscoelastic.history, PronyHistory::Pk2);
+  EXPECT_EQ(c.material.viscoelastic.integration, PronyIntegration::ExactLinear);
+  EXPECT_EQ(c.material.viscoelastic.relaxation, PronyRelaxation::Deviatoric);
+  EXPECT_EQ(c.material.viscoelastic.convention, PronyConvention::LongTerm);
+}
+
+TEST_F(CaseConfigTest, BadChoicesNameTheAcceptedValues) {
+  const nlohmann::json prony = {{"terms", {{{"weight", 0.5}, {"tau", 1.0}}}}};
+  struct Bad {
+    const char* section;
+    nlohmann::json value;
+    const char* message;
+  };
+  const Bad cases[] = {
+      {"model", "fem", "key 'model' must be 'tensor_mass' or 'tl_oracle' (got 'fem')"},
+      {"law", "ogden", "key 'material.law' must be 'stvk' (St Venant-Kirchhoff; got 'ogden')"},
+      {"history", "stress",
+       "key 'material.viscoelastic.history' must be 'nodal_force' or 'pk2' (got 'stress')"},
+      {"integration", "trapezoid",
+       "key 'material.viscoelastic.integration' must be 'midpoint', 'exact_linear' or 'backward_euler' (got "
+       "'trapezoid')"},
+      {"relaxation", "bulk",
+       "key 'material.viscoelastic.relaxation' must be 'full' or 'deviatoric' (got 'bulk')"},
+      {"scheme", "nava",
+       "key 'material.viscoelastic.scheme' unknown scheme 'nava' (expected seed, seed_exact_linear, "
+       "backward_euler "
+       "or objective)"},
+      {"convention", "nava",
+       "key 'material.viscoelastic.prony.convention' must be 'long_term' or 'instantaneous' (got 'nava')"},
+      {"solver", "crank", "key 'solver.scheme' must be 'newmark' or 'backward_euler' (got 'crank')"},
+  };
+  for (const Bad& b : cases) {
+    auto j = minimal();
+    const std::string section = b.section;
+    j["material"]["viscoelastic"] = {{"prony", prony}};
+    if (section == "model") j["model"] = b.value;
+    if (section == "law") j["material"]["law"] = b.value;
+    if (section == "history" || section == "integration" || section == "relaxation" || section == "scheme")
+      j["material"]["viscoelastic"][section] = b.value;
+    if (section == "convention") j["material"]["viscoelastic"]["prony"]["convention"] = b.value;
+    if (section == "solver") j["solver"] = {{"type", "implicit"}, {"dt", 0.1}, {"scheme", b.value}};
+    EXPECT_NE(error_of(j).find(b.message), std::string::npos) << error_of(j);
+  }
 }
 
 TEST_F(CaseConfigTest, JsonSyntaxErrorNamesFileAndLine) {

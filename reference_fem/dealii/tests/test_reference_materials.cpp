@@ -17,6 +17,9 @@
 #include <random>
 
 using namespace tmlab::ref;
+using tmlab::PronyConvention;
+using tmlab::PronyIntegration;
+using tmlab::PronyRelaxation;
 
 namespace {
 
@@ -107,7 +110,8 @@ TEST(ReferenceMaterials, YeohStiffensInShearBeyondNeoHookean) {
 }
 
 TEST(ReferenceMaterials, PronyFactorsAndConversion) {
-  const PronySeries p = PronySeries::make("instantaneous", {0.3, 0.2}, {0.5, 5.0}, "exact_linear", "full");
+  const PronySeries p = PronySeries::make(PronyConvention::Instantaneous, {0.3, 0.2}, {0.5, 5.0},
+                                          PronyIntegration::ExactLinear, PronyRelaxation::Full);
   EXPECT_NEAR(p.alpha[0], 0.3 / 0.5, 1e-15);
   EXPECT_NEAR(p.alpha[1], 0.2 / 0.5, 1e-15);
   double a = 0, c = 0;
@@ -122,17 +126,22 @@ TEST(ReferenceMaterials, PronyFactorsAndConversion) {
   m.factors(0, 0.1, a, c);
   EXPECT_NEAR(a, 1 / 1.2, 1e-15);
   EXPECT_NEAR(c, 1 / 1.2, 1e-15);
-  EXPECT_THROW(PronySeries::make("instantaneous", {0.6, 0.5}, {1, 2}, "exact_linear", "full"), tmlab::Error);
-  EXPECT_THROW(PronySeries::make("long_term", {0.6}, {1}, "trapezoid", "full"), tmlab::Error);
+  EXPECT_THROW(PronySeries::make(PronyConvention::Instantaneous, {0.6, 0.5}, {1, 2},
+                                 PronyIntegration::ExactLinear, PronyRelaxation::Full),
+               tmlab::Error);
+  EXPECT_THROW(PronySeries::make(PronyConvention::LongTerm, {-0.6}, {1}, PronyIntegration::ExactLinear,
+                                 PronyRelaxation::Full),
+               tmlab::Error);
 }
 
 TEST(ReferenceMaterials, PronyTangentIsConsistent) {
   std::mt19937 rng(7);
   for (const std::string law : {"stvk", "neo_hookean"})
-    for (const std::string relax : {"full", "deviatoric"}) {
-      if (relax == "deviatoric" && law != "stvk") continue;
+    for (const PronyRelaxation relax : {PronyRelaxation::Full, PronyRelaxation::Deviatoric}) {
+      if (relax == PronyRelaxation::Deviatoric && law != "stvk") continue;
       const Material m = Material::make(law, 4000.0, 0.4);
-      const PronySeries p = PronySeries::make("long_term", {0.7, 1.3}, {0.2, 3.0}, "exact_linear", relax);
+      const PronySeries p = PronySeries::make(PronyConvention::LongTerm, {0.7, 1.3}, {0.2, 3.0},
+                                              PronyIntegration::ExactLinear, relax);
       PronyState st;
       st.resize(2);
       // Some committed history.
@@ -148,9 +157,9 @@ TEST(ReferenceMaterials, PronyTangentIsConsistent) {
       prony_update(m, p, E - h * dE, dt, b, Sm, nullptr);
       prony_update(m, p, E, dt, c, S0, &D);
       const SymTensor2 fd = (Sp - Sm) / (2 * h), an = D * dE;
-      EXPECT_LE(max_abs(fd - an), 1e-7 * max_abs(an)) << law << " " << relax;
+      EXPECT_LE(max_abs(fd - an), 1e-7 * max_abs(an)) << law << " " << to_string(relax);
       // Deviatoric relaxation leaves a purely volumetric strain's stress unrelaxed.
-      if (relax == "deviatoric") {
+      if (relax == PronyRelaxation::Deviatoric) {
         PronyState v;
         v.resize(2);
         SymTensor2 Sv;

@@ -187,8 +187,8 @@ TEST_F(ReferenceRunnerTest, P1ViscoelasticEqualsTensorMassOnLiver) {
   CaseConfig c = load_case(std::string(TMLAB_SOURCE_DIR) + "/cases/liver-probe.json", TMLAB_SOURCE_DIR);
   c.name = "liver-visco";
   c.material.viscoelastic.enabled = true;
-  c.material.viscoelastic.history = "pk2";
-  c.material.viscoelastic.integration = "exact_linear";
+  c.material.viscoelastic.history = PronyHistory::Pk2;
+  c.material.viscoelastic.integration = PronyIntegration::ExactLinear;
   c.material.viscoelastic.weights = {1.0, 0.5};
   c.material.viscoelastic.taus = {0.3, 3.0};
   c.solver.t_end = 2.0;

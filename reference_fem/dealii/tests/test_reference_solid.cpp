@@ -42,7 +42,9 @@ double tangent_fd_error(const std::string& law, bool simplex, unsigned degree, b
   make_cube(coarse, simplex, 2);
   const Material m = Material::make(law, 1000.0, 0.35, 1.5, 0.5);
   std::optional<PronySeries> p;
-  if (with_prony) p = PronySeries::make("long_term", {0.8, 0.3}, {0.1, 1.0}, "midpoint", "full");
+  if (with_prony)
+    p = PronySeries::make(PronyConvention::LongTerm, {0.8, 0.3}, {0.1, 1.0}, PronyIntegration::Midpoint,
+                          PronyRelaxation::Full);
   Solid s(MPI_COMM_SELF, coarse, Discretisation{simplex, degree}, m, p, NewtonParameters{});
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> d(-1.0, 1.0);

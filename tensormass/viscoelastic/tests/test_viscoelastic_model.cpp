@@ -851,16 +851,7 @@ TEST(ViscoelasticStVK, OptionsParseAndDeviatoricNodalForceIsRejected) {
     EXPECT_NE(std::string(e.what()).find("deviatoric"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("pk2"), std::string::npos) << e.what();
   }
-  // factors: dt = 0 gives a = c = 1 for every scheme; exact_linear c -> 1 smoothly
-  for (Integ s : kSchemes) {
-    const RecursionFactors f = recursion_factors(s, 0.0, 1.0);
-    EXPECT_EQ(f.a, 1.0);
-    EXPECT_EQ(f.c, 1.0);
-  }
-  EXPECT_NEAR(recursion_factors(Integ::ExactLinear, 1e-9, 1.0).c, 1.0 - 0.5e-9, 1e-17);
-  EXPECT_NEAR(recursion_factors(Integ::ExactLinear, 1.0, 2.0).c, 2.0 * (1.0 - std::exp(-0.5)), 1e-15);
-  EXPECT_NEAR(recursion_factors(Integ::Midpoint, 1.0, 2.0).c, std::exp(-0.25), 1e-15);
-  EXPECT_NEAR(recursion_factors(Integ::BackwardEuler, 1.0, 2.0).a, 1.0 / 1.5, 1e-15);
+  // The recursion factors are tested beside their source, core/constitutive/tests/test_prony.cpp.
 }
 
 }  // namespace

@@ -36,8 +36,8 @@ TEST(PaperExperiments, EveryRunOfEveryFigureIsAValidCase) {
   // The seed runs use the paper's recursion, the objective ones the PK2 form.
   const CaseConfig seed =
       parse_case(paper_figure("fig6", params, kParams).runs.front().case_doc, kParams, {kRoot});
-  EXPECT_EQ(seed.material.viscoelastic.history, "nodal_force");
-  EXPECT_EQ(seed.material.viscoelastic.integration, "midpoint");
+  EXPECT_EQ(seed.material.viscoelastic.history, PronyHistory::NodalForce);
+  EXPECT_EQ(seed.material.viscoelastic.integration, PronyIntegration::Midpoint);
 }
 
 TEST(PaperExperiments, BadParametersAreNamed) {
