@@ -6,7 +6,7 @@
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
 #include "core/config/case_config.hpp"
-#include "core/io/hdf5_file.hpp"
+#include "core/results/recorder.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
 #include "tensormass/runner/case_runner.hpp"
@@ -19,6 +19,22 @@
 namespace tmlab::cli {
 
 namespace fs = std::filesystem;
+
+namespace {
+
+/// The per-step differences as series (no units: they are ratios); `floor` > 0 floors the
+/// differences for a log-scale plot (round-off zeros).
+SeriesTable comparison_table(const ComparisonSeries& s, double floor) {
+  SeriesTable t;
+  for (double v : s.time) t.add("time", "", v);
+  for (double v : s.step_time) t.add("step_time", "", v);
+  for (double v : s.rel_displacement) t.add("rel_diff_displacement", "", std::max(v, floor));
+  for (double v : s.rel_reaction) t.add("rel_diff_reaction", "", std::max(v, floor));
+  for (double v : s.rel_energy) t.add("rel_diff_energy", "", std::max(v, floor));
+  return t;
+}
+
+}  // namespace
 
 int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p = parse(args, {"--results", "--against", "--degree", "--time-integration"}, {"--no-plots"});
@@ -71,30 +87,11 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
                  {"time_integration", time_integration}, {"a", a.dir},         {"b", b.dir}};
     out.write_json("manifest.json", make_manifest(mi));
     out.write_json("compare.json", cmp);
-    {
-      H5File h5 = H5File::create(out.file("compare.h5").string());
-      h5.write("/series/time", series.time, {series.time.size()});
-      h5.write("/series/step_time", series.step_time, {series.step_time.size()});
-      h5.write("/series/rel_diff_displacement", series.rel_displacement, {series.rel_displacement.size()});
-      h5.write("/series/rel_diff_reaction", series.rel_reaction, {series.rel_reaction.size()});
-      h5.write("/series/rel_diff_energy", series.rel_energy, {series.rel_energy.size()});
-      h5.close();
-    }
+    write_series_file(out.file("compare.h5"), comparison_table(series, 0.0));
     // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
     std::string plot_status = "skipped (--no-plots)";
     if (!p.has("--no-plots")) {
-      auto floored = [](std::vector<double> v) {
-        for (double& x : v) x = std::max(x, 1e-17);
-        return v;
-      };
-      H5File h5 = H5File::create(out.file("timeseries.h5").string());
-      h5.write("/series/time", series.time, {series.time.size()});
-      h5.write("/series/step_time", series.step_time, {series.step_time.size()});
-      h5.write("/series/rel_diff_displacement", floored(series.rel_displacement),
-               {series.rel_displacement.size()});
-      h5.write("/series/rel_diff_reaction", floored(series.rel_reaction), {series.rel_reaction.size()});
-      h5.write("/series/rel_diff_energy", floored(series.rel_energy), {series.rel_energy.size()});
-      h5.close();
+      write_series_file(out.file("timeseries.h5"), comparison_table(series, 1e-17));
       const nlohmann::json plots = nlohmann::json::array(
           {{{"file", "compare_displacement.png"},
             {"x", "time"},

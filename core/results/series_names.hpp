@@ -17,6 +17,19 @@
 
 namespace tmlab::series_names {
 
+/// The scalar series (one value per recorded step).
+inline constexpr const char* kTime = "time";                           ///< s
+inline constexpr const char* kMaxDisplacement = "max_displacement";    ///< m, the largest nodal |u|
+inline constexpr const char* kElasticEnergy = "elastic_energy";        ///< J, the stored energy
+inline constexpr const char* kKineticEnergy = "kinetic_energy";        ///< J
+inline constexpr const char* kExternalWork = "external_work";          ///< J, of loads and supports
+inline constexpr const char* kSpringEnergy = "spring_energy";          ///< J, the long-term spring
+inline constexpr const char* kBranchEnergy = "branch_energy";          ///< J, the Maxwell branches
+inline constexpr const char* kDissipatedEnergy = "dissipated_energy";  ///< J, accumulated
+inline constexpr const char* kStepDissipation = "step_dissipation";    ///< J, of the last step
+inline constexpr const char* kMinVolumeRatio = "min_volume_ratio";     ///< 1, smallest J of the step
+inline constexpr const char* kNewtonIterations = "newton_iterations";  ///< 1
+
 /// The component suffixes of a vector quantity, in order.
 inline constexpr std::array<const char*, 4> kComponents{"x", "y", "z", "norm"};
 

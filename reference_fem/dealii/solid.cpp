@@ -468,35 +468,155 @@ int Solid::linear_solve(TrilinosWrappers::MPI::Vector& du, const TrilinosWrapper
 // potential where there is one, a falling |R| accepted too, round-off stagnation stop)
 // =====================================================================================================
 
+namespace {
+
+using TrilinosVector = TrilinosWrappers::MPI::Vector;
+
+/// Where a line search starts: |R_free| at u_ref and, for the energy merit, Pi(u_ref) and the slope
+/// R(u_ref) . du_free (a descent when negative).
+struct SearchStart {
+  double rref;
+  bool energy;
+  double pi_ref, slope;
+};
+
+using Residual = std::function<double(const TrilinosVector&, TrilinosVector&)>;
+using Potential = std::function<double(const TrilinosVector&)>;
+
+/// The start of the line search from u_ref (the constrained DoFs moved in full): |R_free| there
+/// (evaluated into r_trial while prescribed increments are pending, else |R(u)| = rnorm with R(u)
+/// in r) and, for the energy merit (see tmlab::tm::newton_solve), Pi(u_ref) and the slope
+/// R(u_ref) . du_free, which must be a descent.
+SearchStart search_start(const NewtonParameters& np, bool has_potential, bool pending, double rnorm,
+                         const Residual& residual, const Potential& potential, const TrilinosVector& u_ref,
+                         const TrilinosVector& du_free, const TrilinosVector& r, TrilinosVector& r_trial) {
+  SearchStart start{rnorm, false, 0.0, 0.0};
+  if (pending) start.rref = residual(u_ref, r_trial);
+  start.energy = np.line_search == LineSearch::Energy && has_potential && std::isfinite(start.rref);
+  if (start.energy) {
+    start.slope = (pending ? r_trial : r) * du_free;
+    start.pi_ref = potential(u_ref);
+    start.energy = start.slope < 0.0 && std::isfinite(start.pi_ref);
+  }
+  return start;
+}
+
+/// Backtracking along the free step du_free from u_ref: Armijo on the potential where there is one,
+/// a falling |R| accepted too; with LineSearch::None the full step. The step is shortened by halving,
+/// or for the energy merit to the minimiser of the quadratic through Pi(0), Pi'(0), Pi(alpha).
+/// Leaves the accepted point in u_trial and its residual in r_trial; returns |R_free| there and the
+/// number of backtracks. A non-finite residual after the last backtrack throws (iteration k, time t).
+std::pair<double, int> line_search(
+    const NewtonParameters& np, const SearchStart& s,
+    const std::function<double(const TrilinosVector&, TrilinosVector&)>& residual,
+    const std::function<double(const TrilinosVector&)>& potential, const TrilinosVector& u_ref,
+    const TrilinosVector& du_free, TrilinosVector& u_trial, TrilinosVector& r_trial, int k, double t) {
+  const double eps = std::numeric_limits<double>::epsilon();
+  const double rref = s.rref, pi_ref = s.pi_ref, slope = s.slope;
+  double alpha = 1.0;
+  int backtracks = 0;
+  double rt = 0.0;
+  while (true) {
+    u_trial = u_ref;
+    u_trial.add(alpha, du_free);
+    rt = residual(u_trial, r_trial);
+    double pi = std::numeric_limits<double>::quiet_NaN();
+    bool ok;
+    if (!std::isfinite(rt)) {
+      ok = false;  // an element inverted: always shorten the step
+    } else if (np.line_search == LineSearch::None) {
+      ok = true;
+    } else if (s.energy) {
+      pi = potential(u_trial);
+      ok = (std::isfinite(pi) &&
+            pi <= pi_ref + 1e-4 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(pi))) ||
+           rt <= (1.0 - 1e-4 * alpha) * rref;
+    } else if (np.line_search == LineSearch::Residual) {
+      ok = rt <= (1.0 - 1e-4 * alpha) * rref || !std::isfinite(rref);
+    } else {
+      ok = true;  // energy merit but no potential (Prony history): the full step, as the fast model
+    }
+    if (ok) break;
+    if (backtracks >= np.max_backtracks) {
+      if (!std::isfinite(rt))
+        throw Error("reference: non-finite residual in Newton iteration " + std::to_string(k + 1) +
+                    " at t = " + std::to_string(t) + " (step too large or element inversion)");
+      break;
+    }
+    double next = 0.5 * alpha;
+    if (s.energy && std::isfinite(pi)) {  // minimiser of the quadratic through Pi(0), Pi'(0), Pi(alpha)
+      const double curvature = pi - pi_ref - slope * alpha;
+      if (curvature > 0.0)
+        next = std::clamp(-slope * alpha * alpha / (2.0 * curvature), 0.1 * alpha, 0.5 * alpha);
+    }
+    alpha = next;
+    ++backtracks;
+  }
+  return {rt, backtracks};
+}
+
+/// One line per solve: the iterations and the residual history.
+void log_newton(std::ostream& log, double t, int iterations, const std::vector<double>& residuals,
+                bool converged) {
+  std::ostringstream s;
+  s << "    t = " << std::setprecision(6) << t << ": " << iterations << " Newton iterations, |R| =";
+  for (double v : residuals) s << " " << std::setprecision(3) << std::scientific << v << std::defaultfloat;
+  s << (converged ? "" : "  (not converged)") << "\n";
+  log << s.str() << std::flush;
+}
+
+}  // namespace
+
+double Solid::prescribed_increments(double t, const TrilinosWrappers::MPI::Vector& g,
+                                    AffineConstraints<double>& first,
+                                    TrilinosWrappers::MPI::Vector& du_c) const {
+  double max_duc = 0.0;
+  std::vector<global_dof_index> idx;
+  std::vector<double> val;
+  for (const auto& p : prescribed_) {
+    const double target = p.value * conditions_[p.condition].f(t);
+    const double d = target - g[p.dof];
+    first.add_line(p.dof);
+    first.set_inhomogeneity(p.dof, d);
+    if (owned_.is_element(p.dof)) {
+      idx.push_back(p.dof);
+      val.push_back(d);
+      max_duc = std::max(max_duc, std::abs(d));
+    }
+  }
+  first.close();
+  du_c.set(idx, val);
+  du_c.compress(VectorOperation::insert);
+  return Utilities::MPI::max(max_duc, comm_);
+}
+
+void Solid::newton_direction(double t, double dt, const TrilinosWrappers::MPI::Vector& u,
+                             const AffineConstraints<double>& constraints, TrilinosWrappers::MPI::Vector& du,
+                             StepStats& stats) {
+  TrilinosWrappers::MPI::Vector g(owned_, relevant_, comm_), r(owned_, comm_), rhs(owned_, comm_);
+  {
+    const auto t0 = Clock::now();
+    g = u;
+    assemble(g, t, dt, Mode::ResidualAndTangent, &constraints, r, &K_, &rhs);
+    stats.assembly_seconds += seconds_since(t0);
+  }
+  {
+    const auto t0 = Clock::now();
+    stats.linear_iterations += linear_solve(du, rhs);
+    stats.solve_seconds += seconds_since(t0);
+  }
+  constraints.distribute(du);
+}
+
 bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepStats& stats) {
   TrilinosWrappers::MPI::Vector g(owned_, relevant_, comm_), r(owned_, comm_), r_trial(owned_, comm_),
-      rhs(owned_, comm_), du(owned_, comm_), du_c(owned_, comm_), u_trial(owned_, comm_);
+      du(owned_, comm_), du_c(owned_, comm_), u_trial(owned_, comm_);
   g = u;
 
   // Prescribed increments du_c = g(t) - u on the Dirichlet DoFs, applied in the first iteration
   // through inhomogeneous constraints (the free DoFs then get K_ff du_f = -r_f - K_fc du_c).
   AffineConstraints<double> first(relevant_);
-  double max_duc = 0.0;
-  {
-    std::vector<global_dof_index> idx;
-    std::vector<double> val;
-    for (const auto& p : prescribed_) {
-      const double target = p.value * conditions_[p.condition].f(t);
-      const double d = target - g[p.dof];
-      first.add_line(p.dof);
-      first.set_inhomogeneity(p.dof, d);
-      if (owned_.is_element(p.dof)) {
-        idx.push_back(p.dof);
-        val.push_back(d);
-        max_duc = std::max(max_duc, std::abs(d));
-      }
-    }
-    first.close();
-    du_c.set(idx, val);
-    du_c.compress(VectorOperation::insert);
-  }
-  max_duc = Utilities::MPI::max(max_duc, comm_);
-  bool pending = max_duc > 0.0;
+  bool pending = prescribed_increments(t, g, first, du_c) > 0.0;
 
   auto residual = [&](const TrilinosWrappers::MPI::Vector& v, TrilinosWrappers::MPI::Vector& out) {
     const auto t0 = Clock::now();
@@ -520,7 +640,6 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     g = v;
     return hyperelastic_energy(g) + (minus_fext * v);
   };
-  const double eps = std::numeric_limits<double>::epsilon();
 
   double rnorm = residual(u, r);
   stats.residuals.assign(1, rnorm);
@@ -537,18 +656,7 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
       break;
     }
     // Tangent and right-hand side -R with the constraints of this iteration.
-    {
-      const auto t0 = Clock::now();
-      g = u;
-      assemble(g, t, dt, Mode::ResidualAndTangent, pending ? &first : &hom_constraints_, r_trial, &K_, &rhs);
-      stats.assembly_seconds += seconds_since(t0);
-    }
-    {
-      const auto t0 = Clock::now();
-      stats.linear_iterations += linear_solve(du, rhs);
-      stats.solve_seconds += seconds_since(t0);
-    }
-    (pending ? first : hom_constraints_).distribute(du);
+    newton_direction(t, dt, u, pending ? first : hom_constraints_, du, stats);
     // Free part of the step (the constrained part du_c is always taken in full).
     TrilinosWrappers::MPI::Vector du_free(du);
     hom_constraints_.set_zero(du_free);
@@ -556,58 +664,11 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
     // u_ref: the constrained DoFs moved in full; the search scales the free part of the step.
     TrilinosWrappers::MPI::Vector u_ref(u);
     u_ref += du_c;
-    double rref = rnorm;
-    if (pending) {
-      rref = residual(u_ref, r_trial);
-      scale = std::max(scale, rref);
-    }
-    // Energy merit (see tmlab::tm::newton_solve): slope = R(u_ref) . du_free must be a descent.
-    double pi_ref = 0.0, slope = 0.0;
-    bool energy = newton_.line_search == LineSearch::Energy && has_potential && std::isfinite(rref);
-    if (energy) {
-      slope = (pending ? r_trial : r) * du_free;
-      pi_ref = potential(u_ref);
-      energy = slope < 0.0 && std::isfinite(pi_ref);
-    }
-    double alpha = 1.0;
-    int backtracks = 0;
-    double rt = 0.0;
-    while (true) {
-      u_trial = u_ref;
-      u_trial.add(alpha, du_free);
-      rt = residual(u_trial, r_trial);
-      double pi = std::numeric_limits<double>::quiet_NaN();
-      bool ok;
-      if (!std::isfinite(rt)) {
-        ok = false;  // an element inverted: always shorten the step
-      } else if (newton_.line_search == LineSearch::None) {
-        ok = true;
-      } else if (energy) {
-        pi = potential(u_trial);
-        ok = (std::isfinite(pi) &&
-              pi <= pi_ref + 1e-4 * alpha * slope + 16.0 * eps * (std::abs(pi_ref) + std::abs(pi))) ||
-             rt <= (1.0 - 1e-4 * alpha) * rref;
-      } else if (newton_.line_search == LineSearch::Residual) {
-        ok = rt <= (1.0 - 1e-4 * alpha) * rref || !std::isfinite(rref);
-      } else {
-        ok = true;  // energy merit but no potential (Prony history): the full step, as the fast model
-      }
-      if (ok) break;
-      if (backtracks >= newton_.max_backtracks) {
-        if (!std::isfinite(rt))
-          throw Error("reference: non-finite residual in Newton iteration " + std::to_string(k + 1) +
-                      " at t = " + std::to_string(t) + " (step too large or element inversion)");
-        break;
-      }
-      double next = 0.5 * alpha;
-      if (energy && std::isfinite(pi)) {  // minimiser of the quadratic through Pi(0), Pi'(0), Pi(alpha)
-        const double curvature = pi - pi_ref - slope * alpha;
-        if (curvature > 0.0)
-          next = std::clamp(-slope * alpha * alpha / (2.0 * curvature), 0.1 * alpha, 0.5 * alpha);
-      }
-      alpha = next;
-      ++backtracks;
-    }
+    const SearchStart start =
+        search_start(newton_, has_potential, pending, rnorm, residual, potential, u_ref, du_free, r, r_trial);
+    if (pending) scale = std::max(scale, start.rref);
+    const auto [rt, backtracks] =
+        line_search(newton_, start, residual, potential, u_ref, du_free, u_trial, r_trial, k, t);
     stats.backtracks += backtracks;
     // Size of the step actually taken, for the round-off stagnation test.
     TrilinosWrappers::MPI::Vector step(u_trial);
@@ -634,14 +695,8 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
   }
   if (!converged && !pending && rnorm <= newton_.rtol * scale + newton_.atol) converged = true;
   stats.newton_iterations += iterations;
-  if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0) {
-    std::ostringstream s;
-    s << "    t = " << std::setprecision(6) << t << ": " << iterations << " Newton iterations, |R| =";
-    for (double v : stats.residuals)
-      s << " " << std::setprecision(3) << std::scientific << v << std::defaultfloat;
-    s << (converged ? "" : "  (not converged)") << "\n";
-    *log_ << s.str() << std::flush;
-  }
+  if (log_ && Utilities::MPI::this_mpi_process(comm_) == 0)
+    log_newton(*log_, t, iterations, stats.residuals, converged);
   return converged;
 }
 

@@ -202,6 +202,15 @@ class Solid {
                 dealii::TrilinosWrappers::MPI::Vector* rhs);
   double free_norm(const dealii::TrilinosWrappers::MPI::Vector& r) const;
   bool newton(double t, double dt, dealii::TrilinosWrappers::MPI::Vector& u_owned, StepStats& stats);
+  /// The first iteration's constraints: du_c = g(t) - u on the Dirichlet DoFs (into `first` as
+  /// inhomogeneities and into du_c); returns max |du_c| over all ranks.
+  double prescribed_increments(double t, const dealii::TrilinosWrappers::MPI::Vector& u_ghost,
+                               dealii::AffineConstraints<double>& first,
+                               dealii::TrilinosWrappers::MPI::Vector& du_c) const;
+  /// The Newton step du: K du = -R at u under `constraints` (their inhomogeneities applied).
+  void newton_direction(double t, double dt, const dealii::TrilinosWrappers::MPI::Vector& u_owned,
+                        const dealii::AffineConstraints<double>& constraints,
+                        dealii::TrilinosWrappers::MPI::Vector& du, StepStats& stats);
   int linear_solve(dealii::TrilinosWrappers::MPI::Vector& du,
                    const dealii::TrilinosWrappers::MPI::Vector& rhs);
   void commit(double dt);

@@ -10,9 +10,9 @@
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
+#include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/series_names.hpp"
-#include "core/results/series_table.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
 #include "tensormass/solvers/explicit_dynamics.hpp"
@@ -108,32 +108,10 @@ class NewtonLog {
   std::vector<bool> roundoff_;
   std::vector<std::vector<double>> history_;
 };
-}  // namespace
 
-NewtonOptions newton_options(const SolverSpec& s) {
-  NewtonOptions o;
-  o.max_iterations = s.max_iterations;
-  o.rtol = s.rtol;
-  o.atol = s.atol;
-  o.line_search = s.line_search;
-  return o;
-}
-
-RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
-  const auto wall0 = std::chrono::steady_clock::now();
-  std::ostream* log = opt.log;
-
-  // ---- Geometry: read, scale, check. An inverted or degenerate tet stops the run here. ----
-  MeshReport report;
-  int repaired = 0;
-  Mesh mesh = load_case_mesh(cfg.mesh, report, repaired);
-  const double size = (report.bbox_max - report.bbox_min).norm();
-
-  // ---- Material and elastic model. ----
-  const StVenantKirchhoff material =
-      StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson);
-  std::unique_ptr<ElasticModel> model;
-  const ViscoelasticStVK* visco = nullptr;
+/// The elastic model a case asks for; `visco` is set when it is the viscoelastic one.
+std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
+                                         const StVenantKirchhoff& material, const ViscoelasticStVK*& visco) {
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled) {
     // Prony-series viscoelasticity on the tensor-mass model; material.E is the long-term modulus.
@@ -150,16 +128,14 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
     vo.relaxation = vs.relaxation;
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
     visco = vm.get();
-    model = std::move(vm);
-  } else if (cfg.model == CaseModel::TlOracle) {
-    model = std::make_unique<TotalLagrangianStVK>(mesh, material);
-  } else {
-    model = std::make_unique<TensorMassStVK>(mesh, material);
+    return vm;
   }
-  const TotalLagrangianStVK fields_kernel(mesh, material);  // per-tet F, E, S for output
+  if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);
+  return std::make_unique<TensorMassStVK>(mesh, material);
+}
 
-  // ---- Boundary conditions and loads from the node/face selectors. ----
-  const VecX node_mass = lumped_node_mass(mesh, cfg.material.density);
+/// The Dirichlet conditions of the case's node selectors; an empty selection is an error.
+std::vector<DirichletCondition> make_conditions(const CaseConfig& cfg, const Mesh& mesh) {
   std::vector<DirichletCondition> conditions;
   for (std::size_t i = 0; i < cfg.boundary.size(); ++i) {
     const auto& b = cfg.boundary[i];
@@ -168,6 +144,11 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       throw Error(cfg.file + ": boundary[" + std::to_string(i) + "] '" + b.name + "' selects no nodes");
     conditions.push_back(std::move(c));
   }
+  return conditions;
+}
+
+/// The loads of the case's node/face selectors; an empty selection is an error.
+ExternalLoads make_loads(const CaseConfig& cfg, const Mesh& mesh, const VecX& node_mass) {
   ExternalLoads loads(mesh, node_mass);
   for (std::size_t i = 0; i < cfg.loads.size(); ++i) {
     const auto& l = cfg.loads[i];
@@ -188,356 +169,437 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
       loads.add(Gravity{l.vector, l.function});
     }
   }
-  const MechanicalSystem system(*model, lumped_dof_mass(node_mass),
-                                DirichletSet(mesh.num_points(), conditions), loads,
-                                RayleighDamping{cfg.solver.damping_alpha, cfg.solver.damping_beta});
-  if (system.bc().dofs().empty() && cfg.solver.type == SolverSpec::Type::Static)
-    throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
+  return loads;
+}
 
+/// The problem a case describes: mesh (read, scaled and checked: an inverted or degenerate tet stops
+/// the run here), material, model, constraints, loads and probes. Built in place and never moved:
+/// the model, loads and system refer to the mesh.
+struct Problem {
+  explicit Problem(const CaseConfig& config)
+      : cfg(config),
+        mesh(load_case_mesh(cfg.mesh, report, repaired)),
+        size((report.bbox_max - report.bbox_min).norm()),
+        material(StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson)),
+        model(make_model(cfg, mesh, material, visco)),
+        fields_kernel(mesh, material),
+        node_mass(lumped_node_mass(mesh, cfg.material.density)),
+        conditions(make_conditions(cfg, mesh)),
+        loads(make_loads(cfg, mesh, node_mass)),
+        system(*model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), conditions), loads,
+               RayleighDamping{cfg.solver.damping_alpha, cfg.solver.damping_beta}) {
+    if (system.bc().dofs().empty() && cfg.solver.type == SolverSpec::Type::Static)
+      throw Error(cfg.file + ": a static run needs boundary conditions that stop rigid motion (none given)");
+    for (const auto& p : cfg.output.probes) probe_nodes.push_back(probe_node(mesh, p, cfg.file));
+  }
+  Problem(const Problem&) = delete;
+  Problem& operator=(const Problem&) = delete;
+
+  const CaseConfig& cfg;
+  MeshReport report;
+  int repaired = 0;
+  Mesh mesh;
+  double size;  ///< bounding-box diagonal, m
+  StVenantKirchhoff material;
+  const ViscoelasticStVK* visco = nullptr;  ///< the model when it is viscoelastic
+  std::unique_ptr<ElasticModel> model;
+  TotalLagrangianStVK fields_kernel;  // per-tet F, E, S for output
+  VecX node_mass;
+  std::vector<DirichletCondition> conditions;
+  ExternalLoads loads;
+  MechanicalSystem system;
   std::vector<Index> probe_nodes;
-  for (const auto& p : cfg.output.probes) probe_nodes.push_back(probe_node(mesh, p, cfg.file));
+};
 
-  // ---- Result directory (staged; summary.json only when everything succeeded). ----
-  RunOutput out(fs::path(opt.results_root) / cfg.name, log);
-  try {
-    ManifestInput mi;
-    mi.command_line = opt.command_line;
-    mi.config = effective_case_json(cfg);
-    mi.input_files.push_back(cfg.mesh.file);
-    if (fs::exists(cfg.file)) mi.input_files.push_back(cfg.file);
-    out.write_json("manifest.json", make_manifest(mi));
-    out.write_json("mesh_report.json", mesh_report_json(report));
+/// The per-tet output fields of a displacement u: volume ratio J, Green strain E, Cauchy stress
+/// sigma = F S F^T / J and its von Mises value.
+struct CellFields {
+  std::vector<double> jratio, von_mises;
+  std::vector<Eigen::Matrix3d> strain, cauchy;
+};
 
-    std::unique_ptr<XdmfTimeSeries> xdmf;
-    if (cfg.output.xdmf) xdmf = std::make_unique<XdmfTimeSeries>(out.file("fields.xdmf"), mesh);
-    std::unique_ptr<PvdWriter> pvd;
-    if (cfg.output.vtu) pvd = std::make_unique<PvdWriter>(out.file("result.pvd"));
+CellFields cell_fields(const Problem& p, const VecX& u) {
+  const std::size_t n = p.mesh.tets.size();
+  CellFields c{std::vector<double>(n), std::vector<double>(n), std::vector<Eigen::Matrix3d>(n),
+               std::vector<Eigen::Matrix3d>(n)};
+  for (Index t2 = 0; t2 < p.mesh.num_tets(); ++t2) {
+    const Eigen::Matrix3d F = p.fields_kernel.deformation_gradient(t2, u);
+    const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
+    const Eigen::Matrix3d S = p.material.pk2_stress(E);
+    const double J = F.determinant();
+    const Eigen::Matrix3d sigma = F * S * F.transpose() / J;
+    const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
+    c.jratio[t2] = J;
+    c.strain[t2] = E;
+    c.cauchy[t2] = sigma;
+    c.von_mises[t2] = std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
+  }
+  return c;
+}
+
+/// The recorder of the problem's conditions and probes.
+Recorder make_recorder(const Problem& p) {
+  std::vector<std::string> conditions, probes;
+  for (const auto& c : p.conditions) conditions.push_back(c.name);
+  for (const auto& pr : p.cfg.output.probes) probes.push_back(pr.name);
+  return Recorder(conditions, probes, p.probe_nodes);
+}
+
+/// Records the steps of a run: the scalar series (core::Recorder), the work of the loads and
+/// supports, and at field frames displacement.h5, fields.xdmf and vtu/.
+class StepRecorder {
+ public:
+  StepRecorder(const Problem& p, const RunOutput& out)
+      : p_(p),
+        out_(out),
+        rec_(make_recorder(p)),
+        f_applied_prev_(VecX::Zero(p.system.num_dofs())),
+        u_prev_(VecX::Zero(p.system.num_dofs())) {
+    if (p.cfg.output.xdmf) xdmf_ = std::make_unique<XdmfTimeSeries>(out.file("fields.xdmf"), p.mesh);
+    if (p.cfg.output.vtu) pvd_ = std::make_unique<PvdWriter>(out.file("result.pvd"));
     // Nodal displacements at every field frame, in mesh node order: what `tmlab compare` diffs
     // against the deal.II reference (which writes the same file).
-    H5File disp_h5 = H5File::create(out.file("displacement.h5"));
+    rec_.open_displacements(out.file("displacement.h5"));
+  }
 
-    SeriesTable table;
-    VecX u = VecX::Zero(system.num_dofs());
-    VecX v = VecX::Zero(system.num_dofs());
-    VecX fint, fext;
-    long total_newton = 0, total_cutbacks = 0;
-    int field_frames = 0;
-    double jmin_overall = 1.0;
+  /// Records the scalar series of one step and, when asked, the fields.
+  void record(int step, double t, const VecX& u, const VecX& v, int newton_its, bool write_fields) {
+    rec_.record(values(step, t, u, v, newton_its));
+    if (write_fields) fields(t, u, v);
+  }
+
+  /// Writes timeseries.h5 and closes the field files.
+  void close() {
+    rec_.write_timeseries(out_.file("timeseries.h5"), {{"case", p_.cfg.name}});
+    rec_.close_displacements("");
+    if (xdmf_) xdmf_->close();
+    if (pvd_) pvd_->write();
+  }
+
+  const Recorder& recorder() const { return rec_; }
+  double external_work() const { return external_work_; }
+
+ private:
+  Recorder::StepValues values(int step, double t, const VecX& u, const VecX& v, int newton_its) {
+    const auto [jmin, jtet] = min_volume_ratio(p_.mesh, u);
+    if (!(jmin > 0.0)) {
+      std::ostringstream m;
+      m << p_.mesh.tet_name(jtet) << " inverted at t = " << t << " (step " << step << ", volume ratio "
+        << jmin
+        << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or "
+           "refine the mesh";
+      throw Error(m.str());
+    }
+    p_.model->internal_force(u, fint_);
+    p_.system.loads().assemble(u, t, fext_);
+    const VecX r = fint_ - fext_;
     // Work of the loads and supports on the body, by the trapezoidal rule over the recorded steps:
     // W += 1/2 (F_n + F_{n+1}) . (u_{n+1} - u_n), F = f_ext + reactions (exact for quasi-static
     // runs; in dynamics the reactions leave out the inertia of the prescribed nodes).
-    double external_work = 0.0;
-    VecX f_applied_prev = VecX::Zero(system.num_dofs()), u_prev = VecX::Zero(system.num_dofs());
-
-    // Writes the scalar series of one step and, when asked, the fields.
-    auto record = [&](int step, double t, int newton_its, bool write_fields) {
-      const auto [jmin, jtet] = min_volume_ratio(mesh, u);
-      if (!(jmin > 0.0)) {
-        std::ostringstream m;
-        m << mesh.tet_name(jtet) << " inverted at t = " << t << " (step " << step << ", volume ratio " << jmin
-          << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or "
-             "refine the mesh";
-        throw Error(m.str());
-      }
-      jmin_overall = std::min(jmin_overall, jmin);
-      model->internal_force(u, fint);
-      system.loads().assemble(u, t, fext);
-      const VecX r = fint - fext;
-      VecX f_applied = fext;
-      for (Index d : system.bc().dofs()) f_applied[d] += r[d];
-      external_work += 0.5 * (f_applied_prev + f_applied).dot(u - u_prev);
-      f_applied_prev = f_applied;
-      u_prev = u;
-      double umax = 0.0;
-      for (Index i = 0; i < mesh.num_points(); ++i) umax = std::max(umax, u.segment<3>(3 * i).norm());
-      table.add("time", "s", t);
-      table.add("max_displacement", "m", umax);
-      // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
-      // the Maxwell-branch energies of the committed state (the same definition as the deal.II
-      // reference); dissipation is the model's own count.
-      table.add(
-          "elastic_energy", "J",
-          visco ? visco->committed_elastic_energy() + visco->committed_branch_energy() : model->energy(u));
-      if (visco) {
-        table.add("spring_energy", "J", visco->committed_elastic_energy());
-        table.add("branch_energy", "J", visco->committed_branch_energy());
-        table.add("dissipated_energy", "J", visco->total_dissipation());
-        table.add("step_dissipation", "J", visco->step_dissipation());
-      }
-      table.add("external_work", "J", external_work);
-      table.add("kinetic_energy", "J", 0.5 * v.dot(system.mass().cwiseProduct(v)));
-      table.add("min_volume_ratio", "1", jmin);
-      table.add("newton_iterations", "1", newton_its);
-      for (std::size_t k = 0; k < conditions.size(); ++k) {
-        const Vec3 rk = system.bc().resultant(k, r);
-        series_names::add_vector(table, series_names::reaction(conditions[k].name), "N", rk.x(), rk.y(),
-                                 rk.z());
-      }
-      for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
-        const Vec3 up = u.segment<3>(3 * probe_nodes[k]);
-        const std::string& n = cfg.output.probes[k].name;
-        series_names::add_vector(table, series_names::probe(n), "m", up.x(), up.y(), up.z());
-      }
-      if (!write_fields) return;
-      disp_h5.append_row("/u", std::vector<double>(u.data(), u.data() + u.size()));
-      disp_h5.append("/time", t);
-      // Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
-      std::vector<double> jratio(mesh.tets.size()), vm(mesh.tets.size());
-      std::vector<Eigen::Matrix3d> strain(mesh.tets.size()), cauchy(mesh.tets.size());
-      for (Index t2 = 0; t2 < mesh.num_tets(); ++t2) {
-        const Eigen::Matrix3d F = fields_kernel.deformation_gradient(t2, u);
-        const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
-        const Eigen::Matrix3d S = material.pk2_stress(E);
-        const double J = F.determinant();
-        const Eigen::Matrix3d sigma = F * S * F.transpose() / J;
-        const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
-        jratio[t2] = J;
-        strain[t2] = E;
-        cauchy[t2] = sigma;
-        vm[t2] = std::sqrt(1.5 * dev.cwiseProduct(dev).sum());
-      }
-      const auto disp = as_vec3(u), vel = as_vec3(v);
-      std::vector<double> umag(disp.size());
-      for (std::size_t i = 0; i < disp.size(); ++i) umag[i] = disp[i].norm();
-      if (xdmf) {
-        xdmf->begin_step(t);
-        xdmf->add_point_vector("displacement", disp);
-        xdmf->add_point_vector("velocity", vel);
-        xdmf->add_cell_scalar("volume_ratio", jratio);
-        xdmf->add_cell_scalar("von_mises", vm);
-        xdmf->add_cell_tensor("green_strain", strain);
-        xdmf->add_cell_tensor("cauchy_stress", cauchy);
-        xdmf->flush();
-      }
-      if (pvd) {
-        VtuWriter w(mesh);
-        w.set_displacement(disp);
-        w.add_point_vector("displacement", disp);
-        w.add_point_scalar("displacement_magnitude", umag);
-        w.add_point_vector("velocity", vel);
-        w.add_cell_scalar("volume_ratio", jratio);
-        w.add_cell_scalar("von_mises", vm);
-        w.add_cell_tensor("green_strain", strain);
-        w.add_cell_tensor("cauchy_stress", cauchy);
-        char name[64];
-        std::snprintf(name, sizeof name, "vtu/step_%05d.vtu", field_frames);
-        w.write(out.file(name));
-        pvd->add(t, out.file(name));
-      }
-      ++field_frames;
-    };
-
-    const int n_steps = cfg.solver.steps;
-    const double t_end = cfg.solver.t_end;
-    std::unique_ptr<ProgressReporter> reporter;
-    if (log) {
-      ProgressOptions po;
-      po.label = cfg.name;
-      reporter = std::make_unique<ProgressReporter>(n_steps, po);
-    }
-    // After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
-    auto progress = [&](int step, double t) {
-      if (reporter) reporter->update(step, t);
-      check_interrupt("at t = " + std::to_string(t) + " s (step " + std::to_string(step) + " of " +
-                      std::to_string(n_steps) + ")");
-    };
-
-    nlohmann::json solver_info;
-    record(0, 0.0, 0, true);
-    if (cfg.solver.type == SolverSpec::Type::Static) {
-      StaticSolver solver(system, newton_options(cfg.solver), cfg.solver.max_cutbacks);
-      NewtonLog newton_log;
-      for (int k = 1; k <= n_steps; ++k) {
-        const double t0 = t_end * (k - 1) / n_steps, t1 = t_end * k / n_steps;
-        const StaticStepReport rep = solver.advance(t0, t1, u);
-        total_newton += rep.newton_iterations;
-        total_cutbacks += rep.cutbacks;
-        newton_log.add(rep.newton, rep.newton_iterations, rep.cutbacks, rep.sub_increments, rep.at_roundoff);
-        record(k, t1, rep.newton_iterations, k % cfg.output.every == 0 || k == n_steps);
-        progress(k, t1);
-      }
-      solver_info = {{"type", "static"},
-                     {"load_steps", n_steps},
-                     {"newton_iterations", total_newton},
-                     {"cutbacks", total_cutbacks},
-                     {"newton", newton_log.json(cfg.solver)}};
-    } else if (cfg.solver.type == SolverSpec::Type::Explicit) {
-      const double dt = cfg.solver.dt;
-      CentralDifference integ(system, dt, cfg.solver.check_stability);
-      integ.set_displacement_limit(10.0 * size);
-      integ.initialize(0.0, u, v);
-      const int series_every = std::max(1, n_steps / 4000);
-      double t = 0.0;
-      for (int k = 1; k <= n_steps; ++k) {
-        integ.step(t, dt);
-        t = integ.time();
-        const bool fields = k % cfg.output.every == 0 || k == n_steps;
-        if (fields || k % series_every == 0) {
-          u = integ.displacement();
-          v = integ.velocity();
-          record(k, t, 0, fields);
-          progress(k, t);
-        }
-      }
-      const auto& st = integ.stability();
-      solver_info = {{"type", "explicit"},
-                     {"scheme", "central_difference"},
-                     {"dt", dt},
-                     {"steps", n_steps},
-                     {"dt_critical_estimate", st.dt_critical},
-                     {"dt_guaranteed", st.dt_guaranteed},
-                     {"omega_max", st.omega_max},
-                     {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
-    } else {
-      const ImplicitScheme scheme = cfg.solver.scheme;
-      ImplicitDynamics integ(system, scheme, newton_options(cfg.solver));
-      NewtonLog newton_log;
-      integ.initialize(0.0, u, v);
-      double t = 0.0;
-      for (int k = 1; k <= n_steps; ++k) {
-        const double dt = std::min(cfg.solver.dt, t_end - t);
-        const NewtonResult nr = integ.step(t, dt);
-        t = integ.time();
-        total_newton += nr.iterations;
-        newton_log.add(nr, nr.iterations, 0, 1, nr.at_roundoff);
-        u = integ.displacement();
-        v = integ.velocity();
-        record(k, t, nr.iterations, k % cfg.output.every == 0 || k == n_steps);
-        progress(k, t);
-      }
-      solver_info = {{"type", "implicit"},
-                     {"scheme", to_string(cfg.solver.scheme)},
-                     {"dt", cfg.solver.dt},
-                     {"steps", n_steps},
-                     {"newton_iterations", total_newton},
-                     {"newton", newton_log.json(cfg.solver)},
-                     {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
-    }
-    if (reporter) reporter->finish();
-
-    // ---- Numbers: timeseries.h5 (one 1-D dataset per quantity, with its unit). ----
-    {
-      H5File h5 = H5File::create(out.file("timeseries.h5"));
-      for (const auto& s : table.series()) {
-        h5.write("/series/" + s.name, s.values, {s.values.size()});
-        h5.set_attribute("/series/" + s.name, "unit", s.unit);
-      }
-      h5.set_attribute("/", "case", cfg.name);
-      h5.close();
-    }
-    disp_h5.set_attribute("/u", "unit", "m");
-    disp_h5.set_attribute("/u", "layout",
-                          "rows: field frames; columns: 3*node + component (tmlab node order)");
-    disp_h5.close();
-    if (xdmf) xdmf->close();
-    if (pvd) pvd->write();
-
-    // ---- Plots (PNG through matplotlib; a missing python3/matplotlib is reported, not fatal). ----
-    nlohmann::json plots = nlohmann::json::array();
-    plots.push_back({{"file", "displacement.png"},
-                     {"x", "time"},
-                     {"y", {"max_displacement"}},
-                     {"title", cfg.name + ": largest displacement"},
-                     {"xlabel", "time [s]"},
-                     {"ylabel", "displacement [m]"}});
-    nlohmann::json reactions = nlohmann::json::array();
-    for (const auto& c : conditions)
-      reactions.push_back(series_names::component(series_names::reaction(c.name), "norm"));
-    if (!reactions.empty())
-      plots.push_back({{"file", "reaction.png"},
-                       {"x", "time"},
-                       {"y", reactions},
-                       {"title", cfg.name + ": reaction forces"},
-                       {"xlabel", "time [s]"},
-                       {"ylabel", "|reaction| [N]"}});
-    nlohmann::json energy_series = {"elastic_energy", "kinetic_energy", "external_work"};
-    if (visco) {
-      energy_series.push_back("spring_energy");
-      energy_series.push_back("branch_energy");
-      energy_series.push_back("dissipated_energy");
-    }
-    plots.push_back({{"file", "energy.png"},
-                     {"x", "time"},
-                     {"y", energy_series},
-                     {"title", cfg.name + ": energies"},
-                     {"xlabel", "time [s]"},
-                     {"ylabel", "energy [J]"}});
-    if (!probe_nodes.empty()) {
-      nlohmann::json py = nlohmann::json::array();
-      for (const auto& p : cfg.output.probes)
-        py.push_back(series_names::component(series_names::probe(p.name), "norm"));
-      plots.push_back({{"file", "probes.png"},
-                       {"x", "time"},
-                       {"y", py},
-                       {"title", cfg.name + ": probe displacements"},
-                       {"xlabel", "time [s]"},
-                       {"ylabel", "|u| [m]"}});
-    }
-    out.write_json("plots.json", plots);
-    std::string plot_status = "skipped";
-    if (opt.plots && cfg.output.plots) {
-      const fs::path script = fs::path(opt.tmlab_root) / "core" / "results" / "python" / "tmlab_plot.py";
-      const ProcessStatus ps =
-          run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
-      const int rc = ps.ok() ? 0 : 1;
-      plot_status = rc == 0 ? "ok" : "failed (see plots.log)";
-      if (rc != 0 && log)
-        *log << "  warning: plotting failed (see plots.log); the numbers are in timeseries.h5\n";
-    }
-
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-    nlohmann::json summary = {{"case", cfg.name},
-                              {"description", cfg.description},
-                              {"model", to_string(cfg.model)},
-                              {"mesh",
-                               {{"file", cfg.mesh.file},
-                                {"points", mesh.num_points()},
-                                {"tets", mesh.num_tets()},
-                                {"volume_m3", report.total_volume},
-                                {"orientation_repaired", repaired}}},
-                              {"material",
-                               {{"law", "stvk"},
-                                {"E", cfg.material.young},
-                                {"nu", cfg.material.poisson},
-                                {"density", cfg.material.density},
-                                {"lambda", material.lambda},
-                                {"mu", material.mu}}},
-                              {"solver", solver_info},
-                              {"final_time", table.last("time")},
-                              {"max_displacement_m", table.last("max_displacement")},
-                              {"elastic_energy_J", table.last("elastic_energy")},
-                              {"min_volume_ratio", jmin_overall},
-                              {"min_volume_ratio_over", "all recorded steps, t = 0 included"},
-                              {"field_frames", field_frames},
-                              {"plots", plot_status},
-                              {"run_seconds", wall}};
-    nlohmann::json reac = nlohmann::json::object();
-    for (const auto& c : conditions)
-      reac[c.name] = series_names::last_vector(table, series_names::reaction(c.name));
-    summary["final_reactions_N"] = reac;
-    {
-      // Energy balance: work in = stored (+ kinetic) + dissipated.
-      const double stored = table.last("elastic_energy");
-      const double kinetic = table.last("kinetic_energy");
-      const double dissipated = visco ? visco->total_dissipation() : 0.0;
-      summary["energy"] = {{"external_work_J", external_work},
-                           {"stored_J", stored},
-                           {"kinetic_J", kinetic},
-                           {"total_dissipation_J", dissipated},
-                           {"balance_residual_J", external_work - stored - kinetic - dissipated}};
-    }
+    VecX f_applied = fext_;
+    for (Index d : p_.system.bc().dofs()) f_applied[d] += r[d];
+    external_work_ += 0.5 * (f_applied_prev_ + f_applied).dot(u - u_prev_);
+    f_applied_prev_ = f_applied;
+    u_prev_ = u;
+    Recorder::StepValues s;
+    s.time = t;
+    for (Index i = 0; i < p_.mesh.num_points(); ++i)
+      s.max_displacement = std::max(s.max_displacement, u.segment<3>(3 * i).norm());
+    // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
+    // the Maxwell-branch energies of the committed state (the same definition as the deal.II
+    // reference); dissipation is the model's own count.
+    const ViscoelasticStVK* visco = p_.visco;
+    s.elastic_energy =
+        visco ? visco->committed_elastic_energy() + visco->committed_branch_energy() : p_.model->energy(u);
     if (visco)
-      summary["viscoelastic"] = {{"history", to_string(vs.history)},
-                                 {"integration", to_string(vs.integration)},
-                                 {"relaxation", to_string(vs.relaxation)},
-                                 {"prony_long_term", visco->prony().to_json()}};
-    nlohmann::json probes = nlohmann::json::object();
-    for (std::size_t k = 0; k < probe_nodes.size(); ++k) {
-      const std::string& n = cfg.output.probes[k].name;
-      probes[n] = {{"node", probe_nodes[k]},
-                   {"displacement_m", series_names::last_vector(table, series_names::probe(n))}};
+      s.extras = {{series_names::kSpringEnergy, "J", visco->committed_elastic_energy()},
+                  {series_names::kBranchEnergy, "J", visco->committed_branch_energy()},
+                  {series_names::kDissipatedEnergy, "J", visco->total_dissipation()},
+                  {series_names::kStepDissipation, "J", visco->step_dissipation()}};
+    s.extras.push_back({series_names::kExternalWork, "J", external_work_});
+    s.kinetic_energy = 0.5 * v.dot(p_.system.mass().cwiseProduct(v));
+    s.min_volume_ratio = jmin;
+    s.newton_iterations = newton_its;
+    for (std::size_t k = 0; k < p_.conditions.size(); ++k) {
+      const Vec3 rk = p_.system.bc().resultant(k, r);
+      s.reactions.push_back({rk.x(), rk.y(), rk.z()});
     }
-    summary["probes"] = probes;
+    for (Index n : p_.probe_nodes) {
+      const Vec3 up = u.segment<3>(3 * n);
+      s.probes.push_back({up.x(), up.y(), up.z()});
+    }
+    return s;
+  }
+
+  /// Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
+  void fields(double t, const VecX& u, const VecX& v) {
+    const int frame = rec_.field_frames();
+    rec_.add_field_frame(t, std::vector<double>(u.data(), u.data() + u.size()));
+    const CellFields c = cell_fields(p_, u);
+    const auto disp = as_vec3(u), vel = as_vec3(v);
+    std::vector<double> umag(disp.size());
+    for (std::size_t i = 0; i < disp.size(); ++i) umag[i] = disp[i].norm();
+    if (xdmf_) {
+      xdmf_->begin_step(t);
+      xdmf_->add_point_vector("displacement", disp);
+      xdmf_->add_point_vector("velocity", vel);
+      xdmf_->add_cell_scalar("volume_ratio", c.jratio);
+      xdmf_->add_cell_scalar("von_mises", c.von_mises);
+      xdmf_->add_cell_tensor("green_strain", c.strain);
+      xdmf_->add_cell_tensor("cauchy_stress", c.cauchy);
+      xdmf_->flush();
+    }
+    if (pvd_) {
+      VtuWriter w(p_.mesh);
+      w.set_displacement(disp);
+      w.add_point_vector("displacement", disp);
+      w.add_point_scalar("displacement_magnitude", umag);
+      w.add_point_vector("velocity", vel);
+      w.add_cell_scalar("volume_ratio", c.jratio);
+      w.add_cell_scalar("von_mises", c.von_mises);
+      w.add_cell_tensor("green_strain", c.strain);
+      w.add_cell_tensor("cauchy_stress", c.cauchy);
+      char name[64];
+      std::snprintf(name, sizeof name, "vtu/step_%05d.vtu", frame);
+      w.write(out_.file(name));
+      pvd_->add(t, out_.file(name));
+    }
+  }
+
+  const Problem& p_;
+  const RunOutput& out_;
+  Recorder rec_;
+  std::unique_ptr<XdmfTimeSeries> xdmf_;
+  std::unique_ptr<PvdWriter> pvd_;
+  VecX fint_, fext_;
+  double external_work_ = 0.0;
+  VecX f_applied_prev_, u_prev_;
+};
+
+/// After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
+class Progress {
+ public:
+  Progress(const CaseConfig& cfg, std::ostream* log) : n_steps_(cfg.solver.steps) {
+    if (!log) return;
+    ProgressOptions po;
+    po.label = cfg.name;
+    reporter_ = std::make_unique<ProgressReporter>(n_steps_, po);
+  }
+  void operator()(int step, double t) {
+    if (reporter_) reporter_->update(step, t);
+    check_interrupt("at t = " + std::to_string(t) + " s (step " + std::to_string(step) + " of " +
+                    std::to_string(n_steps_) + ")");
+  }
+  void finish() {
+    if (reporter_) reporter_->finish();
+  }
+
+ private:
+  int n_steps_;
+  std::unique_ptr<ProgressReporter> reporter_;
+};
+
+/// Displacement u and velocity v of the run, advanced by the stepping functions.
+struct State {
+  VecX u, v;
+};
+
+bool field_step(const CaseConfig& cfg, int k) { return k % cfg.output.every == 0 || k == cfg.solver.steps; }
+
+/// Static load stepping: solver.steps increments of the load factor t = t_end k / steps.
+nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const int n_steps = cfg.solver.steps;
+  StaticSolver solver(p.system, newton_options(cfg.solver), cfg.solver.max_cutbacks);
+  NewtonLog newton_log;
+  long total_newton = 0, total_cutbacks = 0;
+  for (int k = 1; k <= n_steps; ++k) {
+    const double t0 = cfg.solver.t_end * (k - 1) / n_steps, t1 = cfg.solver.t_end * k / n_steps;
+    const StaticStepReport rep = solver.advance(t0, t1, s.u);
+    total_newton += rep.newton_iterations;
+    total_cutbacks += rep.cutbacks;
+    newton_log.add(rep.newton, rep.newton_iterations, rep.cutbacks, rep.sub_increments, rep.at_roundoff);
+    rec.record(k, t1, s.u, s.v, rep.newton_iterations, field_step(cfg, k));
+    progress(k, t1);
+  }
+  return {{"type", "static"},
+          {"load_steps", n_steps},
+          {"newton_iterations", total_newton},
+          {"cutbacks", total_cutbacks},
+          {"newton", newton_log.json(cfg.solver)}};
+}
+
+/// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
+nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const int n_steps = cfg.solver.steps;
+  const double dt = cfg.solver.dt;
+  CentralDifference integ(p.system, dt, cfg.solver.check_stability);
+  integ.set_displacement_limit(10.0 * p.size);
+  integ.initialize(0.0, s.u, s.v);
+  const int series_every = std::max(1, n_steps / 4000);
+  double t = 0.0;
+  for (int k = 1; k <= n_steps; ++k) {
+    integ.step(t, dt);
+    t = integ.time();
+    const bool fields = field_step(cfg, k);
+    if (fields || k % series_every == 0) {
+      s.u = integ.displacement();
+      s.v = integ.velocity();
+      rec.record(k, t, s.u, s.v, 0, fields);
+      progress(k, t);
+    }
+  }
+  const auto& st = integ.stability();
+  return {{"type", "explicit"},
+          {"scheme", "central_difference"},
+          {"dt", dt},
+          {"steps", n_steps},
+          {"dt_critical_estimate", st.dt_critical},
+          {"dt_guaranteed", st.dt_guaranteed},
+          {"omega_max", st.omega_max},
+          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
+}
+
+/// Implicit dynamics (backward Euler or Newmark), steps of solver.dt up to t_end.
+nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const int n_steps = cfg.solver.steps;
+  const ImplicitScheme scheme = cfg.solver.scheme;
+  ImplicitDynamics integ(p.system, scheme, newton_options(cfg.solver));
+  NewtonLog newton_log;
+  long total_newton = 0;
+  integ.initialize(0.0, s.u, s.v);
+  double t = 0.0;
+  for (int k = 1; k <= n_steps; ++k) {
+    const double dt = std::min(cfg.solver.dt, cfg.solver.t_end - t);
+    const NewtonResult nr = integ.step(t, dt);
+    t = integ.time();
+    total_newton += nr.iterations;
+    newton_log.add(nr, nr.iterations, 0, 1, nr.at_roundoff);
+    s.u = integ.displacement();
+    s.v = integ.velocity();
+    rec.record(k, t, s.u, s.v, nr.iterations, field_step(cfg, k));
+    progress(k, t);
+  }
+  return {{"type", "implicit"},
+          {"scheme", to_string(cfg.solver.scheme)},
+          {"dt", cfg.solver.dt},
+          {"steps", n_steps},
+          {"newton_iterations", total_newton},
+          {"newton", newton_log.json(cfg.solver)},
+          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
+}
+
+/// Steps the case's solver from rest, recording t = 0 first; returns the summary's solver block.
+nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log) {
+  Progress progress(p.cfg, log);
+  State s{VecX::Zero(p.system.num_dofs()), VecX::Zero(p.system.num_dofs())};
+  rec.record(0, 0.0, s.u, s.v, 0, true);
+  nlohmann::json solver_info;
+  if (p.cfg.solver.type == SolverSpec::Type::Static)
+    solver_info = step_static(p, rec, progress, s);
+  else if (p.cfg.solver.type == SolverSpec::Type::Explicit)
+    solver_info = step_explicit(p, rec, progress, s);
+  else
+    solver_info = step_implicit(p, rec, progress, s);
+  progress.finish();
+  return solver_info;
+}
+
+/// manifest.json and mesh_report.json.
+void write_inputs(const RunOutput& out, const Problem& p, const RunOptions& opt) {
+  ManifestInput mi;
+  mi.command_line = opt.command_line;
+  mi.config = effective_case_json(p.cfg);
+  mi.input_files.push_back(p.cfg.mesh.file);
+  if (fs::exists(p.cfg.file)) mi.input_files.push_back(p.cfg.file);
+  out.write_json("manifest.json", make_manifest(mi));
+  out.write_json("mesh_report.json", mesh_report_json(p.report));
+}
+
+/// plots.json, and the PNGs through matplotlib when asked (a missing python3/matplotlib is reported,
+/// not fatal). Returns the summary's "plots" status.
+std::string plot(const Problem& p, const RunOptions& opt, const RunOutput& out, const Recorder& rec) {
+  out.write_json("plots.json", rec.plots(p.cfg.name));
+  if (!opt.plots || !p.cfg.output.plots) return "skipped";
+  const fs::path script = fs::path(opt.tmlab_root) / "core" / "results" / "python" / "tmlab_plot.py";
+  const ProcessStatus ps =
+      run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
+  if (ps.ok()) return "ok";
+  if (opt.log) *opt.log << "  warning: plotting failed (see plots.log); the numbers are in timeseries.h5\n";
+  return "failed (see plots.log)";
+}
+
+/// summary.json: the case, mesh, material, solver, the recorder's common blocks, the energy balance
+/// (work in = stored + kinetic + dissipated) and the viscoelastic settings.
+nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohmann::json& solver_info,
+                         const std::string& plot_status, double wall) {
+  const CaseConfig& cfg = p.cfg;
+  nlohmann::json summary = {{"case", cfg.name},
+                            {"description", cfg.description},
+                            {"model", to_string(cfg.model)},
+                            {"mesh",
+                             {{"file", cfg.mesh.file},
+                              {"points", p.mesh.num_points()},
+                              {"tets", p.mesh.num_tets()},
+                              {"volume_m3", p.report.total_volume},
+                              {"orientation_repaired", p.repaired}}},
+                            {"material",
+                             {{"law", "stvk"},
+                              {"E", cfg.material.young},
+                              {"nu", cfg.material.poisson},
+                              {"density", cfg.material.density},
+                              {"lambda", p.material.lambda},
+                              {"mu", p.material.mu}}},
+                            {"solver", solver_info},
+                            {"plots", plot_status},
+                            {"run_seconds", wall}};
+  summary.update(rec.recorder().summary_blocks());
+  const SeriesTable& table = rec.recorder().table();
+  const double stored = table.last(series_names::kElasticEnergy);
+  const double kinetic = table.last(series_names::kKineticEnergy);
+  const double dissipated = p.visco ? p.visco->total_dissipation() : 0.0;
+  const double work = rec.external_work();
+  summary["energy"] = {{"external_work_J", work},
+                       {"stored_J", stored},
+                       {"kinetic_J", kinetic},
+                       {"total_dissipation_J", dissipated},
+                       {"balance_residual_J", work - stored - kinetic - dissipated}};
+  if (p.visco) {
+    const ViscoelasticSpec& vs = cfg.material.viscoelastic;
+    summary["viscoelastic"] = {{"history", to_string(vs.history)},
+                               {"integration", to_string(vs.integration)},
+                               {"relaxation", to_string(vs.relaxation)},
+                               {"prony_long_term", p.visco->prony().to_json()}};
+  }
+  return summary;
+}
+
+}  // namespace
+
+NewtonOptions newton_options(const SolverSpec& s) {
+  NewtonOptions o;
+  o.max_iterations = s.max_iterations;
+  o.rtol = s.rtol;
+  o.atol = s.atol;
+  o.line_search = s.line_search;
+  return o;
+}
+
+RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const Problem p(cfg);
+  // The result directory is staged; summary.json only when everything succeeded.
+  RunOutput out(fs::path(opt.results_root) / cfg.name, opt.log);
+  try {
+    write_inputs(out, p, opt);
+    StepRecorder rec(p, out);
+    const nlohmann::json solver_info = step(p, rec, opt.log);
+    rec.close();
+    const std::string plot_status = plot(p, opt, out, rec.recorder());
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
+    const nlohmann::json summary = summarise(p, rec, solver_info, plot_status, wall);
     out.finalize(summary);
     return {out.dir().string(), summary};
   } catch (const std::exception& e) {

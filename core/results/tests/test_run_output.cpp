@@ -2,6 +2,7 @@
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/tests/scratch_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -26,15 +27,9 @@ std::string slurp(const fs::path& p) {
 
 void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
 
-class RunOutputTest : public ::testing::Test {
+class RunOutputTest : public tmlab::testing::ScratchDirTest {
  protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() / ("tmlab_run_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override { fs::remove_all(root_); }
-  fs::path root_;
+  RunOutputTest() : ScratchDirTest("tmlab_run_") {}
 };
 
 TEST_F(RunOutputTest, FinalizeMovesFilesAndWritesSummaryLast) {
