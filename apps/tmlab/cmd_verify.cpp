@@ -5,7 +5,6 @@
 
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
-#include "core/base/process.hpp"
 #include "core/results/run_output.hpp"
 #include "verification/checks/builtin_checks.hpp"
 #include "verification/harness/report.hpp"
@@ -102,7 +101,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     }
     fs::remove_all(settings.work_root);
 
-    verify::ReportInput in{cases, results, command_line, p.has("--no-plots") ? "" : python_interpreter(),
+    verify::ReportInput in{cases, results, command_line, !p.has("--no-plots"),
                            root / "verification" / "harness" / "python" / "plot_convergence.py"};
     verify::write_report(in, out.staging_dir());
     const nlohmann::json vj = verify::verification_json(in);

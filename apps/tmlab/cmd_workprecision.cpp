@@ -1,19 +1,15 @@
 // tmlab workprecision: error against CPU time of the fixed-step viscoelastic tensor-mass solvers and
-// the SUNDIALS integrators (tensormass/work_precision.hpp), written to results/workprecision/:
+// the SUNDIALS integrators (verification/studies/work_precision.hpp), written to results/workprecision/:
 // workprecision.h5, workprecision.md (the tables), workprecision_<problem>.png, manifest.json and
-// summary.json (last; core/run_output.hpp).
+// summary.json (last; core/results/run_output.hpp).
 #include "commands.hpp"
 
 #include "cli_args.hpp"
 
-#include "core/base/error.hpp"
-#include "core/base/process.hpp"
 #include "core/results/run_output.hpp"
 #include "verification/studies/work_precision.hpp"
 
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 namespace tmlab::cli {
@@ -56,46 +52,10 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
                   fs::path(opt.tmlab_root) / "cases" / "paper" / "xu2011_liver.json"};
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     const std::vector<tm::WorkPrecisionProblem> results = tm::run_work_precision(opt);
-    tm::write_work_precision_h5(results, out.file("workprecision.h5").string());
-    const std::string table = tm::work_precision_table(results);
-    std::ofstream(out.file("workprecision.md"))
-        << "# Work-precision tables\n\n"
-        << "Command: `" << command_line << "`\n\n"
-        << "Error: max over the output times of |u - u_ref|_inf / max |u_ref|_inf;"
-        << " CPU: process CPU time of the run.\n\n"
-        << table;
-    std::string plot_status = "skipped";
-    if (!p.has("--no-plots")) {
-      const fs::path script =
-          fs::path(opt.tmlab_root) / "verification" / "studies" / "python" / "tmlab_workprecision_plot.py";
-      const ProcessStatus ps =
-          run_python(script, {out.staging_dir().string()}, ProcessOutput::to_file(out.file("plots.log")));
-      const int rc = ps.ok() ? 0 : 1;
-      plot_status = rc == 0 ? "ok" : "failed (see plots.log)";
-      if (rc != 0)
-        std::cerr << "tmlab workprecision: warning: plotting failed (see plots.log); the numbers are in "
-                     "workprecision.h5\n";
-    }
-    nlohmann::json summary = {
-        {"command", "workprecision"}, {"plots", plot_status}, {"problems", nlohmann::json::array()}};
-    for (const auto& P : results) {
-      nlohmann::json pj = {{"name", P.name},
-                           {"ode_size", P.ode_size},
-                           {"dt_critical", P.dt_critical},
-                           {"max_displacement_m", P.max_displacement},
-                           {"reference",
-                            {{"method", P.reference.method},
-                             {"rtol", P.reference.value},
-                             {"steps", P.reference.steps},
-                             {"cpu_seconds", P.reference.cpu_seconds}}},
-                           {"runs", P.points.size()}};
-      long failed = 0;
-      for (const auto& pt : P.points) failed += pt.failure.empty() ? 0 : 1;
-      pj["failed_runs"] = failed;
-      summary["problems"].push_back(pj);
-    }
-    out.finalize(summary);
-    std::cout << table << "results     " << dir.string() << "/ (workprecision.h5, workprecision.md, *.png)\n";
+    out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.has("--no-plots"),
+                                          opt.tmlab_root, &std::cerr));
+    std::cout << tm::work_precision_table(results) << "results     " << dir.string()
+              << "/ (workprecision.h5, workprecision.md, *.png)\n";
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

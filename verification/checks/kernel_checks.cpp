@@ -260,10 +260,10 @@ Measurements patch_test(const CheckContext& ctx) {
 }  // namespace
 
 void register_kernel_checks(CheckRegistry& registry) {
-  registry.add("kernel.finite_difference", finite_difference);
-  registry.add("kernel.tensor_mass_vs_tl", tensor_mass_vs_tl);
-  registry.add("kernel.rigid_invariance", rigid_invariance);
-  registry.add("kernel.patch_test", patch_test);
+  registry.add({{"kernel.finite_difference", finite_difference},
+                {"kernel.tensor_mass_vs_tl", tensor_mass_vs_tl},
+                {"kernel.rigid_invariance", rigid_invariance},
+                {"kernel.patch_test", patch_test}});
 }
 
 }  // namespace tmlab::verify

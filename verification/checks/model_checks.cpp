@@ -254,9 +254,9 @@ Measurements volume_creep(const CheckContext& ctx) {
 }  // namespace
 
 void register_model_checks(CheckRegistry& registry) {
-  registry.add("model.objectivity", objectivity);
-  registry.add("model.dissipation", dissipation);
-  registry.add("model.volume_creep", volume_creep);
+  registry.add({{"model.objectivity", objectivity},
+                {"model.dissipation", dissipation},
+                {"model.volume_creep", volume_creep}});
 }
 
 }  // namespace tmlab::verify

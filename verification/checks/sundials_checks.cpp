@@ -38,6 +38,29 @@ using tm::ViscoelasticOptions;
 using tm::ViscoelasticStVK;
 using Integ = ViscoelasticOptions::Integration;
 
+/// The measurements of an order check against a SUNDIALS reference, starting with the reference's
+/// steps and largest displacement; logs the reference's effort (with its linear iterations when
+/// `linear`).
+Measurements reference_measurements(const CheckContext& ctx, const std::string& integrator, double rtol,
+                                    const tm::IntegratorStats& stats, double scale, bool linear) {
+  ctx.log << "  " << integrator << " rtol " << rtol << ": " << stats.steps << " steps, "
+          << stats.nonlinear_iterations << " Newton";
+  if (linear) ctx.log << ", " << stats.linear_iterations << " linear iterations";
+  ctx.log << "\n";
+  Measurements m;
+  m.set("reference_steps", double(stats.steps));
+  m.set("reference_max_displacement", scale);
+  return m;
+}
+
+/// An empty error series against the step dt.
+Series dt_series(const std::string& y_label) {
+  Series s;
+  s.x_label = "dt [s]";
+  s.y_label = y_label;
+  return s;
+}
+
 Integ scheme_from(const ConfigReader& p, const std::string& key, const std::string& name) {
   try {
     return ViscoelasticOptions::parse_integration(name);
@@ -117,16 +140,9 @@ Measurements dynamic_order(const CheckContext& ctx) {
     ref = ode.displacement(t_end, y);
   }
   const double scale = ref.lpNorm<Eigen::Infinity>();
-  ctx.log << "  CVODE rtol " << rtol << ": " << stats.steps << " steps, " << stats.nonlinear_iterations
-          << " Newton, " << stats.linear_iterations << " linear iterations\n";
-
-  Measurements m;
-  m.set("reference_steps", double(stats.steps));
-  m.set("reference_max_displacement", scale);
+  Measurements m = reference_measurements(ctx, "CVODE", rtol, stats, scale, true);
   for (std::size_t c = 0; c < combos.size(); ++c) {
-    Series s;
-    s.x_label = "dt [s]";
-    s.y_label = "max |u - u_CVODE| / max |u_CVODE| at t_end";
+    Series s = dt_series("max |u - u_CVODE| / max |u_CVODE| at t_end");
     for (double dt : dts) {
       ViscoelasticOptions opt = base;
       opt.integration = combos[c].second;
@@ -219,15 +235,9 @@ Measurements quasistatic_order(const CheckContext& ctx) {
   }
   double scale = 0.0;
   for (const VecX& r : ref) scale = std::max(scale, r.lpNorm<Eigen::Infinity>());
-  ctx.log << "  IDA rtol " << rtol << ": " << stats.steps << " steps, " << stats.nonlinear_iterations
-          << " Newton\n";
-  Measurements m;
-  m.set("reference_steps", double(stats.steps));
-  m.set("reference_max_displacement", scale);
+  Measurements m = reference_measurements(ctx, "IDA", rtol, stats, scale, false);
   for (std::size_t r = 0; r < recursions.size(); ++r) {
-    Series s;
-    s.x_label = "dt [s]";
-    s.y_label = "max_t max |u - u_IDA| / max |u_IDA|";
+    Series s = dt_series("max_t max |u - u_IDA| / max |u_IDA|");
     for (int level = 0; level < levels; ++level) {
       const int per = 1 << level;
       const double dt = dt_out / per;
@@ -305,9 +315,9 @@ Measurements hereditary_recursion(const CheckContext& ctx) {
 }  // namespace
 
 void register_sundials_checks(CheckRegistry& registry) {
-  registry.add("sundials.dynamic_order", dynamic_order);
-  registry.add("sundials.quasistatic_order", quasistatic_order);
-  registry.add("sundials.hereditary_recursion", hereditary_recursion);
+  registry.add({{"sundials.dynamic_order", dynamic_order},
+                {"sundials.quasistatic_order", quasistatic_order},
+                {"sundials.hereditary_recursion", hereditary_recursion}});
 }
 
 }  // namespace tmlab::verify

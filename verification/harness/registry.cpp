@@ -12,6 +12,10 @@ void CheckRegistry::add(const std::string& kind, CheckFunction fn) {
     throw std::logic_error("verification check kind '" + kind + "' registered twice");
 }
 
+void CheckRegistry::add(std::initializer_list<std::pair<std::string, CheckFunction>> checks) {
+  for (const auto& [kind, fn] : checks) add(kind, fn);
+}
+
 const CheckFunction& CheckRegistry::get(const VerificationCase& c) const {
   const auto it = fns_.find(c.kind);
   if (it == fns_.end()) {

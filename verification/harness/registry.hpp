@@ -8,9 +8,11 @@
 
 #include <filesystem>
 #include <functional>
+#include <initializer_list>
 #include <iosfwd>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tmlab::verify {
@@ -29,6 +31,8 @@ class CheckRegistry {
  public:
   /// Throws (an internal error) when `kind` is registered twice.
   void add(const std::string& kind, CheckFunction fn);
+  /// add() for each (kind, function) of a module's checks.
+  void add(std::initializer_list<std::pair<std::string, CheckFunction>> checks);
   bool has(const std::string& kind) const { return fns_.count(kind) > 0; }
   /// Throws tmlab::Error naming the case file when `kind` is unknown.
   const CheckFunction& get(const VerificationCase& c) const;

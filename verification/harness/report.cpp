@@ -173,17 +173,24 @@ std::string results_table(const ReportInput& in) {
   return md.str();
 }
 
-std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
-  fs::create_directories(dir);
-  std::vector<fs::path> plots;
-  std::vector<std::string> plot_of(in.results.size());
-  std::string plot_problem;
-  // ---- plots: one PNG per case with series ----
+namespace {
+
+/// The convergence plots: plots/<case>.png for each case with series (plot_convergence.py through the
+/// plotting python), the report's link to each (empty: none), and what went wrong (empty: nothing).
+struct Plots {
+  std::vector<fs::path> files;
+  std::vector<std::string> of_case;
+  std::string problem;
+};
+
+Plots draw_plots(const ReportInput& in, const fs::path& dir) {
+  Plots p;
+  p.of_case.resize(in.results.size());
   for (std::size_t i = 0; i < in.results.size(); ++i) {
     const CaseResult& r = in.results[i];
     if (r.measurements.series.empty()) continue;
-    if (in.python.empty()) {
-      plot_problem = "plots skipped (no python3 with matplotlib given)";
+    if (!in.plots) {
+      p.problem = "plots skipped (no python3 with matplotlib given)";
       continue;
     }
     fs::create_directories(dir / "plots");
@@ -191,78 +198,85 @@ std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
     const fs::path png = dir / "plots" / (r.name + ".png");
     write_file_atomically(spec, plot_spec(in.cases[i], r).dump(1));
     const fs::path log = dir / "plots" / (r.name + ".log");
-    const ProcessStatus ps = run_process({in.python, in.plot_script.string(), spec.string(), png.string()},
-                                         ProcessOutput::to_file(log));
+    const ProcessStatus ps =
+        run_python(in.plot_script, {spec.string(), png.string()}, ProcessOutput::to_file(log));
     if (ps.ok() && fs::exists(png)) {
-      plots.push_back(png);
-      plot_of[i] = "plots/" + r.name + ".png";
+      p.files.push_back(png);
+      p.of_case[i] = "plots/" + r.name + ".png";
       fs::remove(log);
     } else {
-      plot_problem = "a plot failed: see " + log.string();
+      p.problem = "a plot failed: see " + log.string();
     }
     fs::remove(spec);
   }
+  return p;
+}
 
-  const nlohmann::json vj = verification_json(in);
-  write_file_atomically(dir / "verification.json", vj.dump(2));
-  const std::string table = results_table(in);
-  write_file_atomically(dir / "results-table.md", table);
+/// "**3 passed, 0 failed, 0 errors** of 3 cases." (markdown) or its HTML form.
+std::string counts_text(const nlohmann::json& vj, std::size_t cases, bool html) {
+  const std::string b = html ? "<b>" : "**", e = html ? "</b>" : "**";
+  return b + std::to_string(vj["passed"].get<int>()) + " passed, " + std::to_string(vj["failed"].get<int>()) +
+         " failed, " + std::to_string(vj["errors"].get<int>()) + " errors" + e + " of " +
+         std::to_string(cases) + " cases.";
+}
 
-  // ---- report.md ----
+/// The value of each informational metric of a case ("n/a" when not measured).
+std::vector<std::pair<std::string, std::string>> reported_metrics(const VerificationCase& c,
+                                                                  const CaseResult& r) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& k : c.report) {
+    const auto it = r.measurements.metrics.find(k);
+    out.emplace_back(k, it == r.measurements.metrics.end() ? "n/a" : num(it->second));
+  }
+  return out;
+}
+
+std::string measured_text(const CheckOutcome& o) {
+  return o.kind == "order" ? order_text(o.measured) : num(o.measured);
+}
+
+void markdown_case(std::ostream& md, const VerificationCase& c, const CaseResult& r,
+                   const std::string& plot) {
+  md << "## " << c.name << ": " << c.title << "\n\n"
+     << "**" << status_word(r.status) << "** (" << c.suite << " suite; labels: ";
+  for (std::size_t k = 0; k < c.labels.size(); ++k) md << (k ? ", " : "") << c.labels[k];
+  md << "; kind `" << c.kind << "`; " << seconds_text(r.seconds) << ")\n\n"
+     << "- What is checked: " << c.what << "\n- Reference: " << c.reference << "\n"
+     << "- Case data: `verification/cases/" << c.name << "/`\n\n";
+  if (r.status == Status::Error) md << "Error: `" << r.error_message << "`\n\n";
+  if (!r.outcomes.empty()) {
+    md << "| check | measured | tolerance | pass | why this tolerance |\n|---|---|---|---|---|\n";
+    for (const auto& o : r.outcomes)
+      md << "| " << cell(check_label(o)) << " | " << measured_text(o) << " | " << bound_text(o) << " | "
+         << (o.passed ? "yes" : "**no**") << " | " << cell(o.rationale) << " |\n";
+    md << "\n";
+  }
+  if (!c.report.empty()) {
+    md << "Reported without a tolerance:";
+    for (const auto& [k, v] : reported_metrics(c, r)) md << " " << k << " = " << v << ";";
+    md << "\n\n";
+  }
+  for (const auto& note : r.measurements.notes) md << "- " << note << "\n";
+  if (!r.measurements.notes.empty()) md << "\n";
+  if (!plot.empty()) md << "![" << c.name << "](" << plot << ")\n\n";
+}
+
+std::string report_markdown(const ReportInput& in, const nlohmann::json& vj, const std::string& table,
+                            const Plots& plots) {
   std::ostringstream md;
   md << "# tmlab verification report\n\n"
      << "tmlab git " << build_info::git_sha << (build_info::git_dirty ? " (modified)" : "") << ", "
      << build_info::build_type << " build. Command: `" << in.command_line << "`.\n\n"
-     << "**" << vj["passed"].get<int>() << " passed, " << vj["failed"].get<int>() << " failed, "
-     << vj["errors"].get<int>() << " errors** of " << in.results.size() << " cases.";
-  if (!plot_problem.empty()) md << " (" << plot_problem << ")";
+     << counts_text(vj, in.results.size(), false);
+  if (!plots.problem.empty()) md << " (" << plots.problem << ")";
   md << "\n\n## Summary\n\n" << table << "\n";
-  for (std::size_t i = 0; i < in.results.size(); ++i) {
-    const CaseResult& r = in.results[i];
-    const VerificationCase& c = in.cases[i];
-    md << "## " << c.name << ": " << c.title << "\n\n"
-       << "**" << status_word(r.status) << "** (" << c.suite << " suite; labels: ";
-    for (std::size_t k = 0; k < c.labels.size(); ++k) md << (k ? ", " : "") << c.labels[k];
-    md << "; kind `" << c.kind << "`; " << seconds_text(r.seconds) << ")\n\n"
-       << "- What is checked: " << c.what << "\n- Reference: " << c.reference << "\n"
-       << "- Case data: `verification/cases/" << c.name << "/`\n\n";
-    if (r.status == Status::Error) md << "Error: `" << r.error_message << "`\n\n";
-    if (!r.outcomes.empty()) {
-      md << "| check | measured | tolerance | pass | why this tolerance |\n|---|---|---|---|---|\n";
-      for (const auto& o : r.outcomes)
-        md << "| " << cell(check_label(o)) << " | "
-           << (o.kind == "order" ? order_text(o.measured) : num(o.measured)) << " | " << bound_text(o)
-           << " | " << (o.passed ? "yes" : "**no**") << " | " << cell(o.rationale) << " |\n";
-      md << "\n";
-    }
-    if (!c.report.empty()) {
-      md << "Reported without a tolerance:";
-      for (const auto& k : c.report) {
-        const auto it = r.measurements.metrics.find(k);
-        md << " " << k << " = " << (it == r.measurements.metrics.end() ? "n/a" : num(it->second)) << ";";
-      }
-      md << "\n\n";
-    }
-    for (const auto& note : r.measurements.notes) md << "- " << note << "\n";
-    if (!r.measurements.notes.empty()) md << "\n";
-    if (!plot_of[i].empty()) md << "![" << c.name << "](" << plot_of[i] << ")\n\n";
-  }
-  write_file_atomically(dir / "report.md", md.str());
+  for (std::size_t i = 0; i < in.results.size(); ++i)
+    markdown_case(md, in.cases[i], in.results[i], plots.of_case[i]);
+  return md.str();
+}
 
-  // ---- report.html: the same content, self-contained (PNGs inline as data URIs) ----
-  std::ostringstream h;
-  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>tmlab verification report</title>\n"
-    << "<style>body{font-family:sans-serif;max-width:70em;margin:auto;padding:1em}"
-       "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px "
-       "6px;font-size:90%;"
-       "vertical-align:top}.pass{color:#070;font-weight:bold}.fail,.error{color:#b00;font-weight:bold}"
-       "img{max-width:100%}code{background:#f3f3f3}</style></head><body>\n"
-    << "<h1>tmlab verification report</h1>\n<p>tmlab git " << xml_escape(build_info::git_sha)
-    << (build_info::git_dirty ? " (modified)" : "") << ", " << xml_escape(build_info::build_type)
-    << " build. Command: <code>" << xml_escape(in.command_line) << "</code></p>\n"
-    << "<p><b>" << vj["passed"].get<int>() << " passed, " << vj["failed"].get<int>() << " failed, "
-    << vj["errors"].get<int>() << " errors</b> of " << in.results.size() << " cases.</p>\n"
-    << "<table><tr><th>case</th><th>status</th><th>headline check</th><th>tolerance</th><th>order (obs / "
+void html_summary_table(std::ostream& h, const ReportInput& in) {
+  h << "<table><tr><th>case</th><th>status</th><th>headline check</th><th>tolerance</th><th>order (obs / "
        "exp)</th>"
        "<th>time</th></tr>\n";
   for (const auto& r : in.results) {
@@ -277,52 +291,75 @@ std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
     h << "</td><td>" << seconds_text(r.seconds) << "</td></tr>\n";
   }
   h << "</table>\n";
-  for (std::size_t i = 0; i < in.results.size(); ++i) {
-    const CaseResult& r = in.results[i];
-    const VerificationCase& c = in.cases[i];
-    h << "<h2 id=\"" << xml_escape(c.name) << "\">" << xml_escape(c.name + ": " + c.title)
-      << "</h2>\n<p class=\"" << to_string(r.status) << "\">" << status_word(r.status)
-      << "</p>\n<ul><li>What is checked: " << xml_escape(c.what)
-      << "</li><li>Reference: " << xml_escape(c.reference) << "</li><li>Case data: <code>verification/cases/"
-      << xml_escape(c.name) << "/</code> (" << xml_escape(c.suite) << " suite, " << seconds_text(r.seconds)
-      << ")</li></ul>\n";
-    if (r.status == Status::Error)
-      h << "<p class=\"error\">Error: " << xml_escape(r.error_message) << "</p>\n";
-    if (!r.outcomes.empty()) {
-      h << "<table><tr><th>check</th><th>measured</th><th>tolerance</th><th>pass</th><th>why this "
-           "tolerance</th></tr>\n";
-      for (const auto& o : r.outcomes)
-        h << "<tr><td>" << xml_escape(check_label(o)) << "</td><td>"
-          << (o.kind == "order" ? order_text(o.measured) : num(o.measured)) << "</td><td>"
-          << xml_escape(bound_text(o)) << "</td><td class=\"" << (o.passed ? "pass\">yes" : "fail\">no")
-          << "</td><td>" << xml_escape(o.rationale) << "</td></tr>\n";
-      h << "</table>\n";
-    }
-    if (!c.report.empty()) {
-      h << "<p>Reported without a tolerance:";
-      for (const auto& k : c.report) {
-        const auto it = r.measurements.metrics.find(k);
-        h << " " << xml_escape(k) << " = " << (it == r.measurements.metrics.end() ? "n/a" : num(it->second))
-          << ";";
-      }
-      h << "</p>\n";
-    }
-    if (!r.measurements.notes.empty()) {
-      h << "<ul>";
-      for (const auto& note : r.measurements.notes) h << "<li>" << xml_escape(note) << "</li>";
-      h << "</ul>\n";
-    }
-    if (!plot_of[i].empty())
-      h << "<img alt=\"" << xml_escape(c.name) << "\" src=\"data:image/png;base64," <<
-          [&] {
-            const std::string png = read_bytes(dir / plot_of[i]);
-            return base64_encode(png.data(), png.size());
-          }()
-        << "\">\n";
+}
+
+void html_case(std::ostream& h, const VerificationCase& c, const CaseResult& r, const fs::path& png) {
+  h << "<h2 id=\"" << xml_escape(c.name) << "\">" << xml_escape(c.name + ": " + c.title)
+    << "</h2>\n<p class=\"" << to_string(r.status) << "\">" << status_word(r.status)
+    << "</p>\n<ul><li>What is checked: " << xml_escape(c.what)
+    << "</li><li>Reference: " << xml_escape(c.reference) << "</li><li>Case data: <code>verification/cases/"
+    << xml_escape(c.name) << "/</code> (" << xml_escape(c.suite) << " suite, " << seconds_text(r.seconds)
+    << ")</li></ul>\n";
+  if (r.status == Status::Error) h << "<p class=\"error\">Error: " << xml_escape(r.error_message) << "</p>\n";
+  if (!r.outcomes.empty()) {
+    h << "<table><tr><th>check</th><th>measured</th><th>tolerance</th><th>pass</th><th>why this "
+         "tolerance</th></tr>\n";
+    for (const auto& o : r.outcomes)
+      h << "<tr><td>" << xml_escape(check_label(o)) << "</td><td>" << measured_text(o) << "</td><td>"
+        << xml_escape(bound_text(o)) << "</td><td class=\"" << (o.passed ? "pass\">yes" : "fail\">no")
+        << "</td><td>" << xml_escape(o.rationale) << "</td></tr>\n";
+    h << "</table>\n";
   }
+  if (!c.report.empty()) {
+    h << "<p>Reported without a tolerance:";
+    for (const auto& [k, v] : reported_metrics(c, r)) h << " " << xml_escape(k) << " = " << v << ";";
+    h << "</p>\n";
+  }
+  if (!r.measurements.notes.empty()) {
+    h << "<ul>";
+    for (const auto& note : r.measurements.notes) h << "<li>" << xml_escape(note) << "</li>";
+    h << "</ul>\n";
+  }
+  if (!png.empty()) {
+    const std::string bytes = read_bytes(png);
+    h << "<img alt=\"" << xml_escape(c.name) << "\" src=\"data:image/png;base64,"
+      << base64_encode(bytes.data(), bytes.size()) << "\">\n";
+  }
+}
+
+/// report.html: the report's content, self-contained (PNGs inline as data URIs).
+std::string report_html(const ReportInput& in, const nlohmann::json& vj, const Plots& plots,
+                        const fs::path& dir) {
+  std::ostringstream h;
+  h << "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>tmlab verification report</title>\n"
+    << "<style>body{font-family:sans-serif;max-width:70em;margin:auto;padding:1em}"
+       "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:3px "
+       "6px;font-size:90%;"
+       "vertical-align:top}.pass{color:#070;font-weight:bold}.fail,.error{color:#b00;font-weight:bold}"
+       "img{max-width:100%}code{background:#f3f3f3}</style></head><body>\n"
+    << "<h1>tmlab verification report</h1>\n<p>tmlab git " << xml_escape(build_info::git_sha)
+    << (build_info::git_dirty ? " (modified)" : "") << ", " << xml_escape(build_info::build_type)
+    << " build. Command: <code>" << xml_escape(in.command_line) << "</code></p>\n"
+    << "<p>" << counts_text(vj, in.results.size(), true) << "</p>\n";
+  html_summary_table(h, in);
+  for (std::size_t i = 0; i < in.results.size(); ++i)
+    html_case(h, in.cases[i], in.results[i], plots.of_case[i].empty() ? fs::path() : dir / plots.of_case[i]);
   h << "</body></html>\n";
-  write_file_atomically(dir / "report.html", h.str());
-  return plots;
+  return h.str();
+}
+
+}  // namespace
+
+std::vector<fs::path> write_report(const ReportInput& in, const fs::path& dir) {
+  fs::create_directories(dir);
+  const Plots plots = draw_plots(in, dir);
+  const nlohmann::json vj = verification_json(in);
+  write_file_atomically(dir / "verification.json", vj.dump(2));
+  const std::string table = results_table(in);
+  write_file_atomically(dir / "results-table.md", table);
+  write_file_atomically(dir / "report.md", report_markdown(in, vj, table, plots));
+  write_file_atomically(dir / "report.html", report_html(in, vj, plots, dir));
+  return plots.files;
 }
 
 void update_doc_table(const fs::path& doc, const std::string& table) {

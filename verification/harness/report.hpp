@@ -17,7 +17,7 @@ struct ReportInput {
   std::vector<VerificationCase> cases;  ///< same order as results
   std::vector<CaseResult> results;
   std::string command_line;
-  std::string python;                 ///< interpreter for the plots; empty: no plots
+  bool plots = true;                  ///< draw the plots (run_python: the plotting python)
   std::filesystem::path plot_script;  ///< verification/harness/python/plot_convergence.py
 };
 

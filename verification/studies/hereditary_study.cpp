@@ -11,6 +11,7 @@
 #include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/system/mechanical_system.hpp"
 #include "tensormass/viscoelastic/hereditary_integral.hpp"
+#include "verification/studies/liver_problem.hpp"
 #include "verification/studies/paper_experiments.hpp"
 
 #include <algorithm>
@@ -38,18 +39,16 @@ double stvk_stiffness(double e) { return 1.0 + 3.0 * e + 1.5 * e * e; }
 
 // ---------------------------------------------------------------------------------- histories
 
+DriverHistory::DriverHistory(std::string name, Kind kind, DriverLaw law, double strain, double t_end)
+    : name_(std::move(name)), kind_(kind), law_(law), strain_(strain), t_end_(t_end) {}
+
 DriverHistory DriverHistory::ramp_hold(std::string name, double strain, double ramp_time, double t_end,
                                        DriverLaw law) {
   if (!(ramp_time > 0.0) || !(t_end > 0.0))
     throw Error("hereditary history '" + name + "': ramp time and end time must be > 0 (got " +
                 fmt(ramp_time) + ", " + fmt(t_end) + ")");
-  DriverHistory h;
-  h.name_ = std::move(name);
-  h.kind_ = Kind::RampHold;
-  h.law_ = law;
-  h.strain_ = strain;
+  DriverHistory h(std::move(name), Kind::RampHold, law, strain, t_end);
   h.ramp_ = ramp_time;
-  h.t_end_ = t_end;
   if (ramp_time <= t_end) h.kinks_.push_back(ramp_time);
   return h;
 }
@@ -59,12 +58,7 @@ DriverHistory DriverHistory::sine(std::string name, double strain, double omega,
   if (!(omega > 0.0) || !(t_end > 0.0))
     throw Error("hereditary history '" + name + "': omega and end time must be > 0 (got " + fmt(omega) +
                 ", " + fmt(t_end) + ")");
-  DriverHistory h;
-  h.name_ = std::move(name);
-  h.kind_ = Kind::Sine;
-  h.law_ = law;
-  h.strain_ = strain;
-  h.t_end_ = t_end;
+  DriverHistory h(std::move(name), Kind::Sine, law, strain, t_end);
   h.omega_ = {omega};
   h.phase_ = {0.0};
   h.weight_ = {1.0};
@@ -77,12 +71,7 @@ DriverHistory DriverHistory::random(std::string name, double strain, std::uint64
   if (terms < 1 || !(omega_min > 0.0) || !(omega_max >= omega_min) || !(t_end > 0.0))
     throw Error("hereditary history '" + name +
                 "': need terms >= 1, 0 < omega_min <= omega_max and t_end > 0");
-  DriverHistory h;
-  h.name_ = std::move(name);
-  h.kind_ = Kind::Random;
-  h.law_ = law;
-  h.strain_ = strain;
-  h.t_end_ = t_end;
+  DriverHistory h(std::move(name), Kind::Random, law, strain, t_end);
   h.seed_ = seed;
   // Drawn from the raw 64-bit stream (std::mt19937_64 is specified exactly; the <random>
   // distributions are not), so a seed gives the same history with every standard library.
@@ -377,11 +366,38 @@ struct CoupledRun {
   double seconds = 0.0;
 };
 
-}  // namespace
+/// The fig6 relaxation of one node, set up once and run per scheme and dt: the liver problem (the
+/// same one the work-precision study uses), the pushed node's condition, its tets, and the times.
+struct LiverSetup {
+  LiverProblem problem;
+  SolverSpec solver;
+  std::vector<DirichletCondition> conditions;  ///< base, push
+  std::size_t push_index = 1;
+  Index push_node = 0;
+  std::vector<std::pair<Index, int>> node_tets;  ///< (tet, local index of the push node)
+  VecX node_mass;
+  ViscoelasticOptions::History history = ViscoelasticOptions::History::NodalForce;
+  /// The isolated recursion error and the path check read X_e = the nodal elastic forces of the pushed
+  /// node's tets, whose sum is the elastic reaction: nodal_force history only.
+  bool nodal = true;
+  double t_end = 0.0, ramp = 0.0, dt_max = 0.0;
 
-LiverStudy liver_study(const nlohmann::json& params, const std::string& where, const std::string& tmlab_root,
-                       const LiverStudyOptions& o, const std::function<void(const std::string&)>& progress) {
-  const auto wall0 = std::chrono::steady_clock::now();
+  /// Steps of size dt to t_end; throws unless dt divides t_end, the ramp time and the coarsest dt.
+  int steps(double dt) const {
+    const double n = t_end / dt;
+    if (std::abs(n - std::round(n)) > 1e-9 || std::abs(ramp / dt - std::round(ramp / dt)) > 1e-9 ||
+        std::abs(dt_max / dt - std::round(dt_max / dt)) > 1e-9)
+      throw Error("hereditary liver study: dt " + fmt(dt) +
+                  " must divide t_end, the ramp time and the coarsest dt");
+    return static_cast<int>(std::lround(n));
+  }
+};
+
+constexpr double kSign = -1.0;  // fig6 draws -reaction_z (pushing force positive)
+
+/// The fig6 run of the requested node (its push condition and solver settings) on the liver problem.
+LiverSetup liver_setup(const nlohmann::json& params, const std::string& where, const std::string& tmlab_root,
+                       const LiverStudyOptions& o) {
   const PaperFigure fig = paper_figure("fig6", params, where);
   // fig6 runs are [scheme][node]; take the first scheme's run of the requested node and set the
   // history/integration ourselves.
@@ -394,118 +410,100 @@ LiverStudy liver_study(const nlohmann::json& params, const std::string& where, c
   if (o.dts.empty() || o.reference_dts.size() != 2 ||
       std::abs(o.reference_dts[0] - 2.0 * o.reference_dts[1]) > 1e-12 * o.reference_dts[0])
     throw Error("hereditary liver study: need dts and a reference pair dt_f, dt_f/2");
-  const ViscoelasticOptions::History history = ViscoelasticOptions::parse_history(o.history);
-  // The isolated recursion error and the path check read X_e = the nodal elastic forces of the pushed
-  // node's tets, whose sum is the elastic reaction: nodal_force history only.
-  const bool nodal = history == ViscoelasticOptions::History::NodalForce;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  const nlohmann::json base_doc = node_runs[static_cast<std::size_t>(o.node) - 1]->case_doc;
-  const double t_end = base_doc.at("solver").at("t_end").get<double>();
-  const double ramp = params.at("fig6").at("ramp").get<double>();
-  const double dt_max = *std::max_element(o.dts.begin(), o.dts.end());
-  auto steps_of = [&](double dt) {
-    const double n = t_end / dt;
-    if (std::abs(n - std::round(n)) > 1e-9 || std::abs(ramp / dt - std::round(ramp / dt)) > 1e-9 ||
-        std::abs(dt_max / dt - std::round(dt_max / dt)) > 1e-9)
-      throw Error("hereditary liver study: dt " + fmt(dt) +
-                  " must divide t_end, the ramp time and the coarsest dt");
-    return static_cast<int>(std::lround(n));
-  };
-
-  LiverStudy study;
-  nlohmann::json prony_doc = base_doc.at("material").at("viscoelastic").at("prony");
-
-  // Mesh, push node and its tets once.
-  const nlohmann::json probe_doc = [&] {
-    nlohmann::json d = base_doc;
-    d["material"]["viscoelastic"] = {
-        {"history", o.history}, {"integration", "exact_linear"}, {"prony", prony_doc}};
-    return d;
-  }();
-  const CaseConfig cfg0 = parse_case(probe_doc, where + " (fig6)", {tmlab_root});
-  MeshReport report;
-  int repaired = 0;
-  const Mesh mesh = load_case_mesh(cfg0.mesh, report, repaired);
-  const StVenantKirchhoff material =
-      StVenantKirchhoff::from_young_poisson(cfg0.material.young, cfg0.material.poisson);
-  const ViscoelasticSpec& vs = cfg0.material.viscoelastic;
-  const PronySeries prony = vs.convention == PronyConvention::Instantaneous
-                                ? PronySeries::from_instantaneous(vs.weights, vs.taus)
-                                : PronySeries::from_long_term(vs.weights, vs.taus);
-  std::vector<DirichletCondition> conditions;
-  std::size_t push_index = 0;
-  for (std::size_t i = 0; i < cfg0.boundary.size(); ++i) {
-    const auto& b = cfg0.boundary[i];
-    DirichletCondition c{b.name, select_nodes(mesh, b.nodes), b.components, b.value, b.function};
-    if (c.nodes.empty()) throw Error(where + ": fig6 boundary '" + b.name + "' selects no nodes");
-    if (b.name == "push") push_index = i;
-    conditions.push_back(std::move(c));
-  }
-  if (conditions[push_index].nodes.size() != 1) throw Error(where + ": fig6 'push' must select one node");
-  const Index push_node = conditions[push_index].nodes[0];
-  std::vector<std::pair<Index, int>> node_tets;  // (tet, local index of the push node)
+  LiverSetup s;
+  s.history = ViscoelasticOptions::parse_history(o.history);
+  s.nodal = s.history == ViscoelasticOptions::History::NodalForce;
+  const nlohmann::json& base_doc = node_runs[static_cast<std::size_t>(o.node) - 1]->case_doc;
+  s.t_end = base_doc.at("solver").at("t_end").get<double>();
+  s.ramp = params.at("fig6").at("ramp").get<double>();
+  s.dt_max = *std::max_element(o.dts.begin(), o.dts.end());
+  // The push condition and the solver settings from the fig6 case document.
+  nlohmann::json doc = base_doc;
+  doc["material"]["viscoelastic"] = {{"history", o.history},
+                                     {"integration", "exact_linear"},
+                                     {"prony", base_doc.at("material").at("viscoelastic").at("prony")}};
+  const CaseConfig cfg = parse_case(doc, where + " (fig6)", {tmlab_root});
+  s.solver = cfg.solver;
+  s.problem = liver_problem(params, where, tmlab_root);
+  const Mesh& mesh = s.problem.mesh;
+  s.conditions.push_back(s.problem.base);
+  for (const auto& b : cfg.boundary)
+    if (b.name == "push")
+      s.conditions.push_back({b.name, select_nodes(mesh, b.nodes), b.components, b.value, b.function});
+  if (s.conditions.size() != 2 || s.conditions[s.push_index].nodes.size() != 1)
+    throw Error(where + ": fig6 'push' must select one node");
+  s.push_node = s.conditions[s.push_index].nodes[0];
   for (Index t = 0; t < mesh.num_tets(); ++t)
     for (int a = 0; a < 4; ++a)
-      if (mesh.tets[static_cast<std::size_t>(t)][static_cast<std::size_t>(a)] == push_node)
-        node_tets.emplace_back(t, a);
-  study.num_tets = mesh.num_tets();
-  study.num_nodes = mesh.num_points();
-  study.node_tets = static_cast<int>(node_tets.size());
-  const VecX node_mass = lumped_node_mass(mesh, cfg0.material.density);
-  const double sign = -1.0;  // fig6 draws -reaction_z (pushing force positive)
+      if (mesh.tets[static_cast<std::size_t>(t)][static_cast<std::size_t>(a)] == s.push_node)
+        s.node_tets.emplace_back(t, a);
+  s.node_mass = lumped_node_mass(mesh, s.problem.density);
+  return s;
+}
 
-  auto run = [&](Integ scheme, double dt) {
-    CoupledRun cr;
-    const auto w0 = std::chrono::steady_clock::now();
-    ViscoelasticOptions vo;
-    vo.history = history;
-    vo.integration = scheme;
-    vo.energy_bookkeeping = false;
-    ViscoelasticStVK model(mesh, material, prony, vo);
-    const MechanicalSystem system(model, lumped_dof_mass(node_mass),
-                                  DirichletSet(mesh.num_points(), conditions),
-                                  ExternalLoads(mesh, node_mass));
-    const SolverSpec& sp = cfg0.solver;
-    StaticSolver solver(system, newton_options(sp), sp.max_cutbacks);
-    const int n = steps_of(dt);
-    VecX u = VecX::Zero(system.num_dofs()), f;
-    cr.t.push_back(0.0);
-    cr.force.push_back(0.0);
-    cr.node_driver.push_back(0.0);
-    for (int k = 1; k <= n; ++k) {
-      solver.advance((k - 1) * dt, k * dt, u);
-      model.internal_force(u, f);  // committed total force; no external loads in fig6
-      cr.t.push_back(k * dt);
-      cr.force.push_back(sign * system.bc().resultant(push_index, f).z());
-      double y = 0.0;
-      if (nodal) {
-        const std::vector<double>& X = model.committed_driver();
-        for (const auto& [t, a] : node_tets)
-          y += X[static_cast<std::size_t>(t) * 12 + 3 * static_cast<std::size_t>(a) + 2];
-      }
-      cr.node_driver.push_back(sign * y);
+/// One coupled quasi-static run: the reaction of the pushed node and its elastic part y per step.
+CoupledRun run_coupled(const LiverSetup& s, Integ scheme, double dt,
+                       const std::function<void(const std::string&)>& progress) {
+  CoupledRun cr;
+  const auto w0 = std::chrono::steady_clock::now();
+  ViscoelasticOptions vo;
+  vo.history = s.history;
+  vo.integration = scheme;
+  vo.energy_bookkeeping = false;
+  const Mesh& mesh = s.problem.mesh;
+  ViscoelasticStVK model(mesh, s.problem.material, s.problem.prony, vo);
+  const MechanicalSystem system(model, lumped_dof_mass(s.node_mass),
+                                DirichletSet(mesh.num_points(), s.conditions),
+                                ExternalLoads(mesh, s.node_mass));
+  StaticSolver solver(system, newton_options(s.solver), s.solver.max_cutbacks);
+  const int n = s.steps(dt);
+  VecX u = VecX::Zero(system.num_dofs()), f;
+  cr.t.push_back(0.0);
+  cr.force.push_back(0.0);
+  cr.node_driver.push_back(0.0);
+  for (int k = 1; k <= n; ++k) {
+    solver.advance((k - 1) * dt, k * dt, u);
+    model.internal_force(u, f);  // committed total force; no external loads in fig6
+    cr.t.push_back(k * dt);
+    cr.force.push_back(kSign * system.bc().resultant(s.push_index, f).z());
+    double y = 0.0;
+    if (s.nodal) {
+      const std::vector<double>& X = model.committed_driver();
+      for (const auto& [t, a] : s.node_tets)
+        y += X[static_cast<std::size_t>(t) * 12 + 3 * static_cast<std::size_t>(a) + 2];
     }
-    cr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
-    if (progress)
-      progress("liver " + ViscoelasticOptions::to_string(scheme) + " dt " + fmt(dt) + ": " +
-               std::to_string(n) + " steps, " + fmt(cr.seconds) + " s");
-    return cr;
-  };
-  // Values of a run at the coarsest times k dt_max.
-  auto at_coarse = [&](double dt, const std::vector<double>& v) {
-    std::vector<double> out;
-    const std::size_t stride = static_cast<std::size_t>(std::lround(dt_max / dt));
-    for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k]);
-    return out;
-  };
+    cr.node_driver.push_back(kSign * y);
+  }
+  cr.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  if (progress)
+    progress("liver " + ViscoelasticOptions::to_string(scheme) + " dt " + fmt(dt) + ": " + std::to_string(n) +
+             " steps, " + fmt(cr.seconds) + " s");
+  return cr;
+}
 
-  // ---- reference: Richardson extrapolation of fine exact_linear runs (order 2), checked with midpoint
+/// Values of a run of step dt at the coarsest times k dt_max.
+std::vector<double> at_coarse(double dt_max, double dt, const std::vector<double>& v) {
+  std::vector<double> out;
+  const std::size_t stride = static_cast<std::size_t>(std::lround(dt_max / dt));
+  for (std::size_t k = 0; k < v.size(); k += stride) out.push_back(v[k]);
+  return out;
+}
+
+/// The reference: Richardson extrapolation (order 2) of exact_linear runs at the reference pair,
+/// checked with the midpoint one. Fills t_ref, force_ref, peak_force, reference_check and
+/// richardson_correction; returns the finest exact_linear run (its path carries the isolated errors).
+CoupledRun liver_reference(const LiverSetup& s, const LiverStudyOptions& o, LiverStudy& study,
+                           const std::function<void(const std::string&)>& progress) {
   const double dtf = o.reference_dts[1], dtc = o.reference_dts[0];
-  const CoupledRun el_c = run(Integ::ExactLinear, dtc), el_f = run(Integ::ExactLinear, dtf);
-  const CoupledRun mp_c = run(Integ::Midpoint, dtc), mp_f = run(Integ::Midpoint, dtf);
-  const std::vector<double> elc = at_coarse(dtc, el_c.force), elf = at_coarse(dtf, el_f.force);
-  const std::vector<double> mpc = at_coarse(dtc, mp_c.force), mpf = at_coarse(dtf, mp_f.force);
-  study.t_ref = at_coarse(dtf, el_f.t);
+  const CoupledRun el_c = run_coupled(s, Integ::ExactLinear, dtc, progress);
+  CoupledRun el_f = run_coupled(s, Integ::ExactLinear, dtf, progress);
+  const CoupledRun mp_c = run_coupled(s, Integ::Midpoint, dtc, progress);
+  const CoupledRun mp_f = run_coupled(s, Integ::Midpoint, dtf, progress);
+  const std::vector<double> elc = at_coarse(s.dt_max, dtc, el_c.force),
+                            elf = at_coarse(s.dt_max, dtf, el_f.force);
+  const std::vector<double> mpc = at_coarse(s.dt_max, dtc, mp_c.force),
+                            mpf = at_coarse(s.dt_max, dtf, mp_f.force);
+  study.t_ref = at_coarse(s.dt_max, dtf, el_f.t);
   std::vector<double> mp_ref(elf.size());
   study.force_ref.resize(elf.size());
   for (std::size_t k = 0; k < elf.size(); ++k) {
@@ -519,83 +517,127 @@ LiverStudy liver_study(const nlohmann::json& params, const std::string& where, c
     study.richardson_correction =
         std::max(study.richardson_correction, std::abs(study.force_ref[k] - elf[k]) / study.peak_force);
   }
+  return el_f;
+}
 
-  if (!nodal) study.path_check = study.path_quadrature = nan;
-  // ---- exact history along the finest exact_linear path (the pushed node's tets only: the reaction
-  // of the node is sum over its tets of [X_e + sum_j alpha_j h_j] at the node, z)
-  const std::vector<double>& y = el_f.node_driver;
-  const std::size_t kink = static_cast<std::size_t>(std::lround(ramp / dtf));
-  std::vector<std::vector<double>> h_exact;  // per term, at every fine sample
-  if (nodal)
-    for (std::size_t j = 0; j < prony.size(); ++j)
-      h_exact.push_back(exact_path_history(y, dtf, kink, prony.tau(j)));
-  if (nodal) {
-    // the same with every other sample (spacing 2 dt_f): bounds the interpolation/differencing error
-    std::vector<double> y2;
-    for (std::size_t k = 0; k < y.size(); k += 2) y2.push_back(y[k]);
-    for (std::size_t j = 0; j < prony.size(); ++j) {
-      const std::vector<double> h2 = exact_path_history(y2, 2.0 * dtf, kink / 2, prony.tau(j));
-      for (std::size_t k = 0; k < h2.size(); ++k)
-        study.path_quadrature = std::max(
-            study.path_quadrature, prony.alpha(j) * std::abs(h2[k] - h_exact[j][2 * k]) / study.peak_force);
-    }
+/// The elastic reaction path y of the finest reference run (step dt) and the exact hereditary
+/// variable of each Prony term along it, at every sample (empty for the pk2 history).
+struct PathReference {
+  std::vector<double> y;
+  double dt = 0.0;
+  std::vector<std::vector<double>> h_exact;
+};
+
+/// The exact history along the finest exact_linear path (the pushed node's tets only: the reaction of
+/// the node is sum over its tets of [X_e + sum_j alpha_j h_j] at the node, z), and its two checks:
+/// path_check (its reaction against the reference) and path_quadrature (every other sample). NaN for
+/// the pk2 history.
+PathReference path_reference(const LiverSetup& s, std::vector<double> y, double dtf, LiverStudy& study) {
+  PathReference ref{std::move(y), dtf, {}};
+  if (!s.nodal) {
+    study.path_check = study.path_quadrature = std::numeric_limits<double>::quiet_NaN();
+    return ref;
   }
-  const int fine_stride = static_cast<int>(std::lround(dt_max / dtf));
-  for (std::size_t k = 0; nodal && k < study.t_ref.size(); ++k) {
+  const PronySeries& prony = s.problem.prony;
+  const std::size_t kink = static_cast<std::size_t>(std::lround(s.ramp / dtf));
+  for (std::size_t j = 0; j < prony.size(); ++j)
+    ref.h_exact.push_back(exact_path_history(ref.y, dtf, kink, prony.tau(j)));
+  // the same with every other sample (spacing 2 dt_f): bounds the interpolation/differencing error
+  std::vector<double> y2;
+  for (std::size_t k = 0; k < ref.y.size(); k += 2) y2.push_back(ref.y[k]);
+  for (std::size_t j = 0; j < prony.size(); ++j) {
+    const std::vector<double> h2 = exact_path_history(y2, 2.0 * dtf, kink / 2, prony.tau(j));
+    for (std::size_t k = 0; k < h2.size(); ++k)
+      study.path_quadrature = std::max(
+          study.path_quadrature, prony.alpha(j) * std::abs(h2[k] - ref.h_exact[j][2 * k]) / study.peak_force);
+  }
+  const int fine_stride = static_cast<int>(std::lround(s.dt_max / dtf));
+  for (std::size_t k = 0; k < study.t_ref.size(); ++k) {
     const std::size_t kf = k * static_cast<std::size_t>(fine_stride);
-    double exact = y[kf];
-    for (std::size_t j = 0; j < prony.size(); ++j) exact += prony.alpha(j) * h_exact[j][kf];
+    double exact = ref.y[kf];
+    for (std::size_t j = 0; j < prony.size(); ++j) exact += prony.alpha(j) * ref.h_exact[j][kf];
     study.path_check = std::max(study.path_check, std::abs(exact - study.force_ref[k]) / study.peak_force);
   }
+  return ref;
+}
 
-  // ---- the recursions at the study's dts: coupled, and isolated along the reference path
-  for (Integ scheme : {Integ::Midpoint, Integ::ExactLinear, Integ::BackwardEuler})
-    for (double dt : o.dts) {
-      const CoupledRun cr = run(scheme, dt);
-      LiverRun lr;
-      lr.scheme = ViscoelasticOptions::to_string(scheme);
-      lr.dt = dt;
-      lr.t = cr.t;
-      lr.force = cr.force;
-      lr.seconds = cr.seconds;
-      const std::vector<double> fc = at_coarse(dt, cr.force);
-      for (std::size_t k = 0; k < fc.size(); ++k)
-        lr.error = std::max(lr.error, std::abs(fc[k] - study.force_ref[k]) / study.peak_force);
-      if (!nodal) {
-        lr.isolated_error = lr.path_deviation = nan;
-        study.runs.push_back(std::move(lr));
-        continue;
-      }
-      // isolated: the recursion applied to the reference path sampled every dt
-      const std::size_t stride = static_cast<std::size_t>(std::lround(dt / dtf));
-      // how far this run's elastic reaction path is from the reference path (the coupling)
-      for (std::size_t m = 0; m < cr.node_driver.size(); ++m)
-        lr.path_deviation =
-            std::max(lr.path_deviation, std::abs(cr.node_driver[m] - y[m * stride]) / study.peak_force);
-      std::vector<double> hsum((y.size() - 1) / stride + 1, 0.0);
-      for (std::size_t j = 0; j < prony.size(); ++j) {
-        const RecursionFactors fct = recursion_factors(scheme, dt, prony.tau(j));
-        double h = 0.0;
-        for (std::size_t m = 1; m < hsum.size(); ++m) {
-          h = fct.a * h + fct.c * (y[m * stride] - y[(m - 1) * stride]);
-          hsum[m] += prony.alpha(j) * h;
-        }
-      }
-      const std::size_t coarse_stride = static_cast<std::size_t>(std::lround(dt_max / dt));
-      for (std::size_t m = 0; m < hsum.size(); m += coarse_stride) {
-        double exact = 0.0;
-        for (std::size_t j = 0; j < prony.size(); ++j) exact += prony.alpha(j) * h_exact[j][m * stride];
-        lr.isolated_error = std::max(lr.isolated_error, std::abs(hsum[m] - exact) / study.peak_force);
-      }
-      study.runs.push_back(std::move(lr));
+/// The recursion of `scheme` alone, applied to the reference path sampled every dt, against the exact
+/// history along it (max at the coarsest times, relative to the peak force).
+double isolated_error(const LiverSetup& s, Integ scheme, double dt, const PathReference& ref, double peak) {
+  const PronySeries& prony = s.problem.prony;
+  const std::size_t stride = static_cast<std::size_t>(std::lround(dt / ref.dt));
+  std::vector<double> hsum((ref.y.size() - 1) / stride + 1, 0.0);
+  for (std::size_t j = 0; j < prony.size(); ++j) {
+    const RecursionFactors fct = recursion_factors(scheme, dt, prony.tau(j));
+    double h = 0.0;
+    for (std::size_t m = 1; m < hsum.size(); ++m) {
+      h = fct.a * h + fct.c * (ref.y[m * stride] - ref.y[(m - 1) * stride]);
+      hsum[m] += prony.alpha(j) * h;
     }
+  }
+  double error = 0.0;
+  const std::size_t coarse_stride = static_cast<std::size_t>(std::lround(s.dt_max / dt));
+  for (std::size_t m = 0; m < hsum.size(); m += coarse_stride) {
+    double exact = 0.0;
+    for (std::size_t j = 0; j < prony.size(); ++j) exact += prony.alpha(j) * ref.h_exact[j][m * stride];
+    error = std::max(error, std::abs(hsum[m] - exact) / peak);
+  }
+  return error;
+}
+
+/// One run of the study: coupled error against the reference, and (nodal_force) the path deviation
+/// and the isolated recursion error.
+LiverRun liver_run(const LiverSetup& s, Integ scheme, double dt, const LiverStudy& study,
+                   const PathReference& ref, const std::function<void(const std::string&)>& progress) {
+  const CoupledRun cr = run_coupled(s, scheme, dt, progress);
+  LiverRun lr;
+  lr.scheme = ViscoelasticOptions::to_string(scheme);
+  lr.dt = dt;
+  lr.t = cr.t;
+  lr.force = cr.force;
+  lr.seconds = cr.seconds;
+  const std::vector<double> fc = at_coarse(s.dt_max, dt, cr.force);
+  for (std::size_t k = 0; k < fc.size(); ++k)
+    lr.error = std::max(lr.error, std::abs(fc[k] - study.force_ref[k]) / study.peak_force);
+  if (!s.nodal) {
+    lr.isolated_error = lr.path_deviation = std::numeric_limits<double>::quiet_NaN();
+    return lr;
+  }
+  // how far this run's elastic reaction path is from the reference path (the coupling)
+  const std::size_t stride = static_cast<std::size_t>(std::lround(dt / ref.dt));
+  for (std::size_t m = 0; m < cr.node_driver.size(); ++m)
+    lr.path_deviation =
+        std::max(lr.path_deviation, std::abs(cr.node_driver[m] - ref.y[m * stride]) / study.peak_force);
+  lr.isolated_error = isolated_error(s, scheme, dt, ref, study.peak_force);
+  return lr;
+}
+
+}  // namespace
+
+LiverStudy liver_study(const nlohmann::json& params, const std::string& where, const std::string& tmlab_root,
+                       const LiverStudyOptions& o, const std::function<void(const std::string&)>& progress) {
+  const auto wall0 = std::chrono::steady_clock::now();
+  const LiverSetup s = liver_setup(params, where, tmlab_root, o);
+  LiverStudy study;
+  study.num_tets = s.problem.mesh.num_tets();
+  study.num_nodes = s.problem.mesh.num_points();
+  study.node_tets = static_cast<int>(s.node_tets.size());
+  CoupledRun finest = liver_reference(s, o, study, progress);
+  const PathReference ref = path_reference(s, std::move(finest.node_driver), o.reference_dts[1], study);
+  for (Integ scheme : {Integ::Midpoint, Integ::ExactLinear, Integ::BackwardEuler})
+    for (double dt : o.dts) study.runs.push_back(liver_run(s, scheme, dt, study, ref, progress));
   study.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  study.describe = {{"params", where},       {"figure", "fig6"},
-                    {"node", o.node},        {"push_node_index", push_node},
-                    {"history", o.history},  {"t_end", t_end},
-                    {"ramp", ramp},          {"prony_long_term", prony.to_json()},
-                    {"dts", o.dts},          {"reference_dts", o.reference_dts},
-                    {"mesh", cfg0.mesh.file}};
+  study.describe = {{"params", where},
+                    {"figure", "fig6"},
+                    {"node", o.node},
+                    {"push_node_index", s.push_node},
+                    {"history", o.history},
+                    {"t_end", s.t_end},
+                    {"ramp", s.ramp},
+                    {"prony_long_term", s.problem.prony.to_json()},
+                    {"dts", o.dts},
+                    {"reference_dts", o.reference_dts},
+                    {"mesh", s.problem.mesh_file}};
   return study;
 }
 

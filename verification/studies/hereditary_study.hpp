@@ -72,7 +72,7 @@ class DriverHistory {
   nlohmann::json describe() const;
 
  private:
-  DriverHistory() = default;
+  DriverHistory(std::string name, Kind kind, DriverLaw law, double strain, double t_end);
   std::string name_;
   Kind kind_ = Kind::RampHold;
   DriverLaw law_ = DriverLaw::Stvk1d;

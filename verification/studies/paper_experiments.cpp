@@ -29,6 +29,42 @@ nlohmann::json base_case(const nlohmann::json& p, const std::string& scheme, con
           {"output", {{"every", 1000000}, {"plots", false}, {"vtu", false}}}};
 }
 
+/// A run of scheme `scheme` on the shared case (its loading and series still to set).
+PaperRun paper_run(const nlohmann::json& p, const std::string& scheme, const std::string& id,
+                   const std::string& label) {
+  PaperRun run;
+  run.scheme = scheme;
+  run.id = id;
+  run.label = label;
+  run.case_doc = base_case(p, scheme, id);
+  return run;
+}
+
+/// The nodes within `radius` of `center` (1 um: the one node there).
+nlohmann::json sphere(const std::vector<double>& center, double radius = 1e-6) {
+  return {{"sphere", {{"center", center}, {"radius", radius}}}};
+}
+
+/// The indentation: the node at `node` pushed `depth` down (z) along `function`.
+nlohmann::json push_condition(const std::vector<double>& node, double depth, const nlohmann::json& function) {
+  return {{"name", "push"},
+          {"nodes", sphere(node)},
+          {"components", "z"},
+          {"value", {0.0, 0.0, -depth}},
+          {"function", function}};
+}
+
+void set_axes(PaperFigure& fig, std::string title, std::string xlabel, std::string ylabel) {
+  fig.title = std::move(title);
+  fig.xlabel = std::move(xlabel);
+  fig.ylabel = std::move(ylabel);
+}
+
+/// The quasi-static solver block: `steps` steps to t_end.
+nlohmann::json static_solver(double t_end, int steps) {
+  return {{"type", "static"}, {"t_end", t_end}, {"steps", steps}};
+}
+
 }  // namespace
 
 PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, const std::string& where) {
@@ -53,9 +89,8 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
   fig.name = name;
   ConfigReader f(params.at(name), where, name);
   if (name == "fig5") {
-    fig.title = "Creep under constant force (Xu et al. 2011, Fig. 5)";
-    fig.xlabel = "time [s]";
-    fig.ylabel = "displacement of the loaded node [mm]";
+    set_axes(fig, "Creep under constant force (Xu et al. 2011, Fig. 5)", "time [s]",
+             "displacement of the loaded node [mm]");
     const auto node = f.require<std::vector<double>>("node");
     const double radius = f.positive("patch_radius");
     const auto forces = f.require<std::vector<double>>("forces");
@@ -65,14 +100,9 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     for (const auto& s : schemes)
       for (const char* where_load : {"node", "patch"})
         for (double F : forces) {
-          PaperRun run;
-          run.scheme = s;
-          run.id = s + "_" + where_load + "_" + num(F) + "N";
-          run.label = s + ", " + where_load + ", " + num(F) + " N";
-          run.case_doc = base_case(params, s, run.id);
-          const nlohmann::json sel = std::string(where_load) == "node"
-                                         ? nlohmann::json{{"sphere", {{"center", node}, {"radius", 1e-6}}}}
-                                         : nlohmann::json{{"sphere", {{"center", node}, {"radius", radius}}}};
+          PaperRun run = paper_run(params, s, s + "_" + where_load + "_" + num(F) + "N",
+                                   s + ", " + where_load + ", " + num(F) + " N");
+          const nlohmann::json sel = std::string(where_load) == "node" ? sphere(node) : sphere(node, radius);
           // The force is switched on within the first step and then held (creep test).
           run.case_doc["loads"] =
               nlohmann::json::array({{{"type", "nodal_force"},
@@ -80,8 +110,7 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
                                       {"nodes", sel},
                                       {"force", {0.0, 0.0, -F}},
                                       {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", dt}}}}});
-          run.case_doc["solver"] = {
-              {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
+          run.case_doc["solver"] = static_solver(t_end, static_cast<int>(t_end / dt + 0.5));
           run.case_doc["output"]["probes"] = nlohmann::json::array({{{"name", "node"}, {"point", node}}});
           run.x = "time";
           run.y = series_names::component(series_names::probe("node"), "z");
@@ -89,9 +118,8 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
           fig.runs.push_back(run);
         }
   } else if (name == "fig6") {
-    fig.title = "Stress relaxation after a 1 cm indentation in 1 s (Xu et al. 2011, Fig. 6)";
-    fig.xlabel = "time [s]";
-    fig.ylabel = "indentation force [N]";
+    set_axes(fig, "Stress relaxation after a 1 cm indentation in 1 s (Xu et al. 2011, Fig. 6)", "time [s]",
+             "indentation force [N]");
     const auto nodes = f.require<std::vector<std::vector<double>>>("nodes");
     const double depth = f.positive("depth"), ramp = f.positive("ramp"), hold = f.positive("hold"),
                  dt = f.positive("dt");
@@ -99,28 +127,20 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     for (const auto& s : schemes)
       for (std::size_t k = 0; k < nodes.size(); ++k) {
         if (nodes[k].size() != 3) throw f.error("nodes", "entry " + std::to_string(k) + " must be [x, y, z]");
-        PaperRun run;
-        run.scheme = s;
-        run.id = s + "_node" + std::to_string(k + 1);
-        run.label = s + ", node " + std::to_string(k + 1);
-        run.case_doc = base_case(params, s, run.id);
-        run.case_doc["boundary"].push_back({{"name", "push"},
-                                            {"nodes", {{"sphere", {{"center", nodes[k]}, {"radius", 1e-6}}}}},
-                                            {"components", "z"},
-                                            {"value", {0.0, 0.0, -depth}},
-                                            {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", ramp}}}});
+        PaperRun run =
+            paper_run(params, s, s + "_node" + std::to_string(k + 1), s + ", node " + std::to_string(k + 1));
+        run.case_doc["boundary"].push_back(
+            push_condition(nodes[k], depth, {{"type", "ramp"}, {"t0", 0.0}, {"t1", ramp}}));
         const double t_end = ramp + hold;
-        run.case_doc["solver"] = {
-            {"type", "static"}, {"t_end", t_end}, {"steps", static_cast<int>(t_end / dt + 0.5)}};
+        run.case_doc["solver"] = static_solver(t_end, static_cast<int>(t_end / dt + 0.5));
         run.x = "time";
         run.y = series_names::component(series_names::reaction("push"), "z");
         run.y_sign = -1.0;
         fig.runs.push_back(run);
       }
   } else {
-    fig.title = "Hysteresis of a load-unload cycle (Xu et al. 2011, Fig. 7)";
-    fig.xlabel = "indentation [mm]";
-    fig.ylabel = "indentation force [N]";
+    set_axes(fig, "Hysteresis of a load-unload cycle (Xu et al. 2011, Fig. 7)", "indentation [mm]",
+             "indentation force [N]");
     const auto node = f.require<std::vector<double>>("node");
     const double depth = f.positive("depth");
     const auto periods = f.require<std::vector<double>>("periods");
@@ -130,18 +150,10 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     for (const auto& s : schemes)
       for (double P : periods) {
         if (!(P > 0.0)) throw f.error("periods", "must be > 0");
-        PaperRun run;
-        run.scheme = s;
-        run.id = s + "_period" + num(P) + "s";
-        run.label = s + ", cycle " + num(P) + " s";
-        run.case_doc = base_case(params, s, run.id);
-        run.case_doc["boundary"].push_back(
-            {{"name", "push"},
-             {"nodes", {{"sphere", {{"center", node}, {"radius", 1e-6}}}}},
-             {"components", "z"},
-             {"value", {0.0, 0.0, -depth}},
-             {"function", {{"type", "table"}, {"points", {{0.0, 0.0}, {P / 2, 1.0}, {P, 0.0}}}}}});
-        run.case_doc["solver"] = {{"type", "static"}, {"t_end", P}, {"steps", steps}};
+        PaperRun run = paper_run(params, s, s + "_period" + num(P) + "s", s + ", cycle " + num(P) + " s");
+        run.case_doc["boundary"].push_back(push_condition(
+            node, depth, {{"type", "table"}, {"points", {{0.0, 0.0}, {P / 2, 1.0}, {P, 0.0}}}}));
+        run.case_doc["solver"] = static_solver(P, steps);
         run.case_doc["output"]["probes"] = nlohmann::json::array({{{"name", "node"}, {"point", node}}});
         run.x = series_names::component(series_names::probe("node"), "z");
         run.x_sign = -1e3;

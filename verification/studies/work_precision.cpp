@@ -7,13 +7,14 @@
 #include "core/base/stopwatch.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/hdf5_file.hpp"
-#include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "reference_fem/sundials/ode_references.hpp"
 #include "tensormass/solvers/explicit_dynamics.hpp"
 #include "tensormass/solvers/implicit_dynamics.hpp"
 #include "tensormass/system/lumped_mass.hpp"
+#include "verification/studies/liver_problem.hpp"
+#include "verification/studies/study_plot.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -22,8 +23,10 @@
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <map>
+#include <memory>
 #include <ostream>
 #include <sstream>
 
@@ -51,40 +54,43 @@ struct Setup {
 /// the problems end at t = T, where load, its rate and the acceleration it drives are back to 0).
 TimeFunction pulse(double T) { return TimeFunction::sine(0.5, 1.0 / T, -kPi / 2.0, 0.5); }
 
+/// The load of a problem: `force` on `nodes` as a pulse over [0, T], the problem's end; outputs every t_out.
+void add_pulse(Setup& s, const std::string& name, std::vector<Index> nodes, const Vec3& force, double T,
+               double t_out) {
+  NodalForce f;
+  f.name = name;
+  f.nodes = std::move(nodes);
+  f.force = force;
+  f.function = pulse(T);
+  s.forces.push_back(f);
+  s.t_end = T;
+  s.t_out = t_out;
+}
+
 Setup liver_setup(const std::string& root) {
   const std::string where = (std::filesystem::path(root) / "cases" / "paper" / "xu2011_liver.json").string();
   const nlohmann::json p = ConfigReader::parse_file(where);
+  LiverProblem liver = liver_problem(p, where, root);
   Setup s;
   s.name = "liver";
-  s.mesh = read_mesh((std::filesystem::path(root) / p.at("mesh").get<std::string>()).string());
-  const nlohmann::json& m = p.at("material");
-  s.material = StVenantKirchhoff::from_young_poisson(m.at("E").get<double>(), m.at("nu").get<double>());
-  s.density = m.at("density").get<double>();
-  s.prony = PronySeries::from_json(p.at("prony"), where, "prony");
-  DirichletCondition base;
-  base.name = "base";
-  base.nodes = select_nodes(s.mesh, NodeSelector::from_json(p.at("base"), where + ": base"));
-  s.bcs.push_back(base);
+  s.mesh = std::move(liver.mesh);
+  s.material = liver.material;
+  s.density = liver.density;
+  s.prony = liver.prony;
+  s.bcs.push_back(std::move(liver.base));
   const auto node = p.at("fig5").at("node").get<std::vector<double>>();
   NodeSelector patch;
   patch.kind = NodeSelector::Kind::Sphere;
   patch.center = Vec3(node.at(0), node.at(1), node.at(2));
   patch.radius = p.at("fig5").at("patch_radius").get<double>();
-  NodalForce probe;
-  probe.name = "probe";
-  probe.nodes = select_nodes(s.mesh, patch);
-  probe.force = Vec3(0.0, 0.0, -0.2);  // 0.2 N, the largest creep force of fig5
-  probe.function = pulse(0.08);
-  s.forces.push_back(probe);
-  s.t_end = 0.08;
-  s.t_out = 0.005;
+  // 0.2 N, the largest creep force of fig5, over 80 ms.
+  add_pulse(s, "probe", select_nodes(s.mesh, patch), Vec3(0.0, 0.0, -0.2), 0.08, 0.005);
   s.u_scale = 2e-3;
   s.v_scale = 0.1;
   s.z_scale = 100.0;
   std::ostringstream d;
   d << "liver (" << s.mesh.num_points() << " nodes, " << s.mesh.tets.size()
-    << " tets), E_inf = " << m.at("E").get<double>() << " Pa, nu = " << m.at("nu").get<double>()
-    << ", rho = " << s.density
+    << " tets), E_inf = " << liver.young << " Pa, nu = " << liver.poisson << ", rho = " << s.density
     << ", Prony of cases/paper/xu2011_liver.json, base fixed; 0.2 N on the nodes within "
     << patch.radius * 100 << " cm of the fig5 probe node, raised-cosine pulse over 80 ms; t_end 80 ms";
   s.description = d.str();
@@ -111,14 +117,7 @@ Setup incompressible_setup(bool quick) {
   s.bcs.push_back(clamp);
   NodeSelector tip_sel = clamp_sel;
   tip_sel.value = 0.03;
-  NodalForce tip;
-  tip.name = "tip";
-  tip.nodes = select_nodes(s.mesh, tip_sel);
-  tip.force = Vec3(0.0, 0.0, -2e-3);
-  tip.function = pulse(0.2);
-  s.forces.push_back(tip);
-  s.t_end = 0.2;
-  s.t_out = 0.02;
+  add_pulse(s, "tip", select_nodes(s.mesh, tip_sel), Vec3(0.0, 0.0, -2e-3), 0.2, 0.02);
   s.u_scale = 1e-3;
   s.v_scale = 0.01;
   s.z_scale = 100.0;
@@ -157,13 +156,54 @@ struct Instance {
 
 int outputs(const Setup& s) { return static_cast<int>(std::lround(s.t_end / s.t_out)); }
 
+/// The point of a run before it is made: what runs, with which step or tolerance.
+WorkPrecisionPoint point_of(const std::string& family, const std::string& method,
+                            const std::string& parameter, double value) {
+  WorkPrecisionPoint pt;
+  pt.family = family;
+  pt.method = method;
+  pt.parameter = parameter;
+  pt.value = value;
+  return pt;
+}
+
+/// "explicit + midpoint", "newmark + exact_linear": a fixed-step method by solver and recursion.
+std::string fixed_step_method(const std::string& solver, Integ integ) {
+  return solver + " + " + ViscoelasticOptions::to_string(integ);
+}
+
+/// The CPU and wall time of a run since `timer` started.
+void stop_clock(WorkPrecisionPoint& pt, const Stopwatch& timer) {
+  pt.cpu_seconds = timer.cpu();
+  pt.wall_seconds = timer.wall();
+}
+
+/// A fixed-step run of the point's method at dt = pt.value: the solver `make(system)` builds, started at
+/// rest and advanced by `step(solver, t, pt)` per step, u recorded at each output time into `us`; the
+/// model set-up counts in the point's time. Fills steps and the clocks.
+template <class Make, class Step>
+WorkPrecisionPoint run_fixed_step(const Setup& s, Integ integ, WorkPrecisionPoint pt, std::vector<VecX>& us,
+                                  Make&& make, Step&& step) {
+  const double dt = pt.value;
+  const Stopwatch timer;
+  Instance in(s, integ);
+  const auto solver = make(in.system);
+  const Index n = in.system.num_dofs();
+  solver->initialize(0.0, VecX::Zero(n), VecX::Zero(n));
+  const long per = std::lround(s.t_out / dt);
+  us.clear();
+  for (int k = 1; k <= outputs(s); ++k) {
+    for (long i = 0; i < per; ++i, ++pt.steps) step(*solver, pt.steps * dt, pt);
+    us.push_back(solver->displacement());
+  }
+  stop_clock(pt, timer);
+  return pt;
+}
+
 /// Runs the SUNDIALS integrator; fills `us` with u at the output times.
 WorkPrecisionPoint run_sundials(const Setup& s, OdeMethod m, LinearSolverKind k, double rtol,
                                 std::vector<VecX>& us, int order = 0) {
-  WorkPrecisionPoint pt;
-  pt.family = "sundials";
-  pt.parameter = "rtol";
-  pt.value = rtol;
+  WorkPrecisionPoint pt = point_of("sundials", "", "rtol", rtol);
   const Stopwatch timer;
   Instance in(s, Integ::ExactLinear);
   TensorMassViscoelasticOde ode(s.mesh, s.material, s.prony, Instance::options(Integ::ExactLinear),
@@ -185,8 +225,7 @@ WorkPrecisionPoint run_sundials(const Setup& s, OdeMethod m, LinearSolverKind k,
     integ.advance(t, y);
     us.push_back(ode.displacement(t, y));
   }
-  pt.cpu_seconds = timer.cpu();
-  pt.wall_seconds = timer.wall();
+  stop_clock(pt, timer);
   const IntegratorStats st = integ.stats();
   pt.steps = st.steps;
   pt.rhs_evals = st.rhs_evals + st.explicit_rhs_evals;
@@ -197,57 +236,32 @@ WorkPrecisionPoint run_sundials(const Setup& s, OdeMethod m, LinearSolverKind k,
 }
 
 WorkPrecisionPoint run_explicit(const Setup& s, Integ integ, double dt, std::vector<VecX>& us) {
-  WorkPrecisionPoint pt;
-  pt.family = "explicit";
-  pt.method = "explicit + " + ViscoelasticOptions::to_string(integ);
-  pt.parameter = "dt";
-  pt.value = dt;
-  const Stopwatch timer;
-  Instance in(s, integ);
-  CentralDifference cd(in.system, dt);
-  cd.set_displacement_limit(1.0);  // 1 m: no stable run of these centimetre-scale problems gets near it
-  const Index n = in.system.num_dofs();
-  cd.initialize(0.0, VecX::Zero(n), VecX::Zero(n));
-  const long per = std::lround(s.t_out / dt);
-  us.clear();
-  long step = 0;
-  for (int k = 1; k <= outputs(s); ++k) {
-    for (long i = 0; i < per; ++i, ++step) cd.step(step * dt, dt);
-    us.push_back(cd.displacement());
-  }
-  pt.cpu_seconds = timer.cpu();
-  pt.wall_seconds = timer.wall();
-  pt.steps = step;
-  pt.rhs_evals = step;
+  WorkPrecisionPoint pt = run_fixed_step(
+      s, integ, point_of("explicit", fixed_step_method("explicit", integ), "dt", dt), us,
+      [dt](const MechanicalSystem& system) {
+        auto cd = std::make_unique<CentralDifference>(system, dt);
+        cd->set_displacement_limit(
+            1.0);  // 1 m: no stable run of these centimetre-scale problems gets near it
+        return cd;
+      },
+      [dt](CentralDifference& cd, double t, WorkPrecisionPoint&) { cd.step(t, dt); });
+  pt.rhs_evals = pt.steps;
   return pt;
 }
 
 WorkPrecisionPoint run_implicit(const Setup& s, Integ integ, double dt, std::vector<VecX>& us) {
-  WorkPrecisionPoint pt;
-  pt.family = "implicit";
-  pt.method = "newmark + " + ViscoelasticOptions::to_string(integ);
-  pt.parameter = "dt";
-  pt.value = dt;
-  const Stopwatch timer;
-  Instance in(s, integ);
-  // Newton to 1e-10 of the force scale: far below every error measured here.
-  ImplicitDynamics im(in.system, ImplicitScheme::Newmark, NewtonOptions{40, 1e-10, 1e-15});
-  const Index n = in.system.num_dofs();
-  im.initialize(0.0, VecX::Zero(n), VecX::Zero(n));
-  const long per = std::lround(s.t_out / dt);
-  us.clear();
-  long step = 0;
-  for (int k = 1; k <= outputs(s); ++k) {
-    for (long i = 0; i < per; ++i, ++step) {
-      const NewtonResult r = im.step(step * dt, dt);
-      pt.newton_iterations += r.iterations;
-      pt.rhs_evals += 2 + r.iterations + r.backtracks;
-    }
-    us.push_back(im.displacement());
-  }
-  pt.cpu_seconds = timer.cpu();
-  pt.wall_seconds = timer.wall();
-  pt.steps = step;
+  WorkPrecisionPoint pt = run_fixed_step(
+      s, integ, point_of("implicit", fixed_step_method("newmark", integ), "dt", dt), us,
+      [](const MechanicalSystem& system) {
+        // Newton to 1e-10 of the force scale: far below every error measured here.
+        return std::make_unique<ImplicitDynamics>(system, ImplicitScheme::Newmark,
+                                                  NewtonOptions{40, 1e-10, 1e-15});
+      },
+      [dt](ImplicitDynamics& im, double t, WorkPrecisionPoint& p) {
+        const NewtonResult r = im.step(t, dt);
+        p.newton_iterations += r.iterations;
+        p.rhs_evals += 2 + r.iterations + r.backtracks;
+      });
   pt.linear_iterations = pt.newton_iterations;  // one sparse direct solve per Newton iteration
   return pt;
 }
@@ -331,18 +345,14 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
                << fixed_point(P.reference.cpu_seconds, 2) << " s, max |u| " << fmt(P.max_displacement * 1e3)
                << " mm\n";
 
-    auto record = [&](const std::function<WorkPrecisionPoint()>& run, const std::string& method,
-                      const std::string& family, const std::string& param, double value) {
+    // A run's point; a failing run keeps its plan (method, step or tolerance) and the reason.
+    auto record = [&](const std::function<WorkPrecisionPoint()>& run, const WorkPrecisionPoint& plan) {
       WorkPrecisionPoint pt;
       try {
         pt = run();
         pt.error = error_against(us, ref, P.max_displacement);
       } catch (const Error& e) {
-        pt = WorkPrecisionPoint{};
-        pt.method = method;
-        pt.family = family;
-        pt.parameter = param;
-        pt.value = value;
+        pt = plan;
         pt.failure = e.what();
       }
       log_point(opt.log, name, pt);
@@ -357,7 +367,7 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
       for (int l = 0; l < explicit_levels; ++l) {
         const double dt = s.t_out / static_cast<double>(n0 << l);
         record([&] { return run_explicit(s, integ, dt, us); },
-               "explicit + " + ViscoelasticOptions::to_string(integ), "explicit", "dt", dt);
+               point_of("explicit", fixed_step_method("explicit", integ), "dt", dt));
       }
     // Fixed-step implicit Newmark: dt = t_out / 1, 2, 4, ...
     const int implicit_levels = opt.quick ? 2 : 5;
@@ -365,7 +375,7 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
       for (int l = 0; l < implicit_levels; ++l) {
         const double dt = s.t_out / static_cast<double>(1L << l);
         record([&] { return run_implicit(s, integ, dt, us); },
-               "newmark + " + ViscoelasticOptions::to_string(integ), "implicit", "dt", dt);
+               point_of("implicit", fixed_step_method("newmark", integ), "dt", dt));
       }
     // SUNDIALS
     struct Sun {
@@ -388,10 +398,12 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
     };
     for (const Sun& su : suns)
       for (double rtol : opt.quick ? su.quick_rtols : su.rtols)
-        record([&] { return run_sundials(s, su.m, su.k, rtol, us, su.order); },
-               to_string(su.m) + (su.order > 0 ? " (max order " + std::to_string(su.order) + ")" : "") +
-                   " + " + to_string(su.k),
-               "sundials", "rtol", rtol);
+        record(
+            [&] { return run_sundials(s, su.m, su.k, rtol, us, su.order); },
+            point_of("sundials",
+                     to_string(su.m) + (su.order > 0 ? " (max order " + std::to_string(su.order) + ")" : "") +
+                         " + " + to_string(su.k),
+                     "rtol", rtol));
     results.push_back(std::move(P));
   }
   return results;
@@ -490,6 +502,46 @@ std::string work_precision_table(const std::vector<WorkPrecisionProblem>& proble
     os << "\n";
   }
   return os.str();
+}
+
+nlohmann::json write_work_precision(const std::vector<WorkPrecisionProblem>& problems,
+                                    const std::string& command_line, const std::filesystem::path& dir,
+                                    bool plots, const std::string& tmlab_root, std::ostream* warn) {
+  write_work_precision_h5(problems, (dir / "workprecision.h5").string());
+  std::ofstream(dir / "workprecision.md")
+      << "# Work-precision tables\n\n"
+      << "Command: `" << command_line << "`\n\n"
+      << "Error: max over the output times of |u - u_ref|_inf / max |u_ref|_inf;"
+      << " CPU: process CPU time of the run.\n\n"
+      << work_precision_table(problems);
+  std::string plot_status = "skipped";
+  if (plots) {
+    const ProcessStatus ps = draw_study_plot(tmlab_root, "tmlab_workprecision_plot.py", dir,
+                                             ProcessOutput::to_file(dir / "plots.log"));
+    plot_status = ps.ok() ? "ok" : "failed (see plots.log)";
+    if (!ps.ok() && warn)
+      *warn << "tmlab workprecision: warning: plotting failed (see plots.log); the numbers are in "
+               "workprecision.h5\n";
+  }
+  nlohmann::json summary = {
+      {"command", "workprecision"}, {"plots", plot_status}, {"problems", nlohmann::json::array()}};
+  for (const auto& P : problems) {
+    nlohmann::json pj = {{"name", P.name},
+                         {"ode_size", P.ode_size},
+                         {"dt_critical", P.dt_critical},
+                         {"max_displacement_m", P.max_displacement},
+                         {"reference",
+                          {{"method", P.reference.method},
+                           {"rtol", P.reference.value},
+                           {"steps", P.reference.steps},
+                           {"cpu_seconds", P.reference.cpu_seconds}}},
+                         {"runs", P.points.size()}};
+    long failed = 0;
+    for (const auto& pt : P.points) failed += pt.failure.empty() ? 0 : 1;
+    pj["failed_runs"] = failed;
+    summary["problems"].push_back(pj);
+  }
+  return summary;
 }
 
 }  // namespace tmlab::tm

@@ -12,6 +12,9 @@
 
 #include "tensormass/kernels/elastic_model.hpp"
 
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
 #include <iosfwd>
 #include <limits>
 #include <string>
@@ -66,6 +69,14 @@ void write_work_precision_h5(const std::vector<WorkPrecisionProblem>& problems, 
 /// A markdown table per problem (method, dt or rtol, error, CPU s, steps, f evals, Newton, linear, prec
 /// setups).
 std::string work_precision_table(const std::vector<WorkPrecisionProblem>& problems);
+/// The result of `tmlab workprecision` in `dir`: workprecision.h5, workprecision.md (the tables under a
+/// heading quoting `command_line`) and, when `plots`, workprecision_<problem>.png drawn by
+/// python/tmlab_workprecision_plot.py (its output in plots.log). A failing plot script is not an error
+/// (the numbers are in workprecision.h5): the summary says so and a warning goes to `warn` (may be
+/// null). Returns the summary (for summary.json).
+nlohmann::json write_work_precision(const std::vector<WorkPrecisionProblem>& problems,
+                                    const std::string& command_line, const std::filesystem::path& dir,
+                                    bool plots, const std::string& tmlab_root, std::ostream* warn);
 /// "cvode_bdf_spgmr_prec" from "CVODE BDF + spgmr+prec".
 std::string method_slug(const std::string& method);
 

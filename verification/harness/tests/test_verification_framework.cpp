@@ -1,10 +1,11 @@
-// The verification framework: case files are read strictly, measurements are judged by the case's
-// tolerances (a missing metric fails, a wrong order fails, a good finest error with a wrong order
-// fails), fitted orders are exact on power laws, and the report files are complete.
+// The verification framework: measurements are judged by the case's tolerances (a missing metric
+// fails, a wrong order fails, a good finest error with a wrong order fails), fitted orders are exact
+// on power laws, and the report files are complete. (Case files: test_case_spec.cpp.)
 #include "verification/harness/convergence.hpp"
 #include "verification/harness/evaluate.hpp"
 #include "verification/harness/report.hpp"
 #include "verification/harness/runner.hpp"
+#include "verification/harness/tests/harness_test_support.hpp"
 
 #include "core/base/error.hpp"
 
@@ -15,79 +16,10 @@
 #include <fstream>
 #include <sstream>
 
-namespace tmlab::verify {
+namespace tmlab::verify::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-class TempDir {
- public:
-  TempDir() : dir_(fs::temp_directory_path() / ("tmlab_verify_test_" + std::to_string(::getpid()))) {
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  ~TempDir() { fs::remove_all(dir_); }
-  const fs::path& path() const { return dir_; }
-
- private:
-  fs::path dir_;
-};
-
-void write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-}
-
-const char* kGoodCase = R"({
-  "title": "t", "what": "w", "reference": "r", "labels": ["kernel"], "suite": "fast",
-  "kind": "test.power_law",
-  "parameters": {"order": 2.0},
-  "checks": [{"metric": "e", "max": 1e-3, "rationale": "because"}],
-  "convergence": [{"series": "s", "expected_order": 2, "order_tolerance": 0.1, "finest_max": 1e-3,
-                   "fit_points": 3, "rationale": "P1"}]
-})";
-
-TEST(VerificationCaseSpec, ReadsAGoodCase) {
-  TempDir tmp;
-  write(tmp.path() / "c1" / "verify.json", kGoodCase);
-  write(tmp.path() / "c1" / "README.md", "# c1\n");
-  const auto c = load_case(tmp.path() / "c1");
-  EXPECT_EQ(c.name, "c1");
-  EXPECT_EQ(c.kind, "test.power_law");
-  ASSERT_EQ(c.checks.size(), 1u);
-  EXPECT_EQ(c.checks[0].limit, 1e-3);
-  ASSERT_EQ(c.convergence.size(), 1u);
-  EXPECT_EQ(c.convergence[0].fit_points, 3);
-}
-
-TEST(VerificationCaseSpec, RejectsBadCasesNamingTheKey) {
-  TempDir tmp;
-  const auto expect_error = [&](const std::string& text, const std::string& fragment, bool readme = true) {
-    fs::remove_all(tmp.path() / "bad");
-    write(tmp.path() / "bad" / "verify.json", text);
-    if (readme) write(tmp.path() / "bad" / "README.md", "x");
-    try {
-      load_case(tmp.path() / "bad");
-      ADD_FAILURE() << "no error for: " << text;
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find("verify.json"), std::string::npos) << e.what();
-    }
-  };
-  std::string s = kGoodCase;
-  expect_error(std::string(s).replace(s.find("\"rationale\": \"because\""), 22, "\"why\": 1"), "checks[0]");
-  expect_error(std::string(s).replace(s.find("\"suite\": \"fast\""), 15, "\"suite\": \"nightly\""), "suite");
-  expect_error(std::string(s).replace(s.find("\"max\": 1e-3"), 11, "\"max\": 1e-3, \"min\": 0"),
-               "exactly one");
-  expect_error(std::string(s).replace(s.find("\"labels\""), 8, "\"lables\""), "lables");
-  expect_error(std::string(s).replace(s.find("\"finest_max\": 1e-3"), 18, "\"finest_max\": -1"),
-               "finest_max");
-  expect_error("{\"title\": ", "verify.json");
-  // README.md is required
-  fs::remove_all(tmp.path() / "bad");
-  write(tmp.path() / "bad" / "verify.json", kGoodCase);
-  EXPECT_THROW(load_case(tmp.path() / "bad"), Error);
-}
 
 TEST(Convergence, FittedOrderIsExactOnAPowerLaw) {
   std::vector<double> h{0.4, 0.2, 0.1, 0.05}, e;
@@ -180,7 +112,7 @@ TEST(Runner, SelectsBySuiteNameAndLabelAndRunsWithErrorsCaught) {
   EXPECT_EQ(results[1].status, Status::Error);
   EXPECT_NE(log.str().find("[2/2] b-full"), std::string::npos);
 
-  ReportInput in{cat, results, "tmlab verify --full", "", {}};
+  ReportInput in{cat, results, "tmlab verify --full", false, {}};
   const auto j = verification_json(in);
   EXPECT_EQ(j["passed"], 1);
   EXPECT_EQ(j["errors"], 1);
@@ -206,4 +138,4 @@ TEST(Runner, SelectsBySuiteNameAndLabelAndRunsWithErrorsCaught) {
 }
 
 }  // namespace
-}  // namespace tmlab::verify
+}  // namespace tmlab::verify::test

@@ -14,14 +14,12 @@ Writes into DIR:
 Exit status 1 with a message naming the file or dataset when an input is missing.
 """
 import os
-import sys
 
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from tmlab_study_plot import fail as _fail
+from tmlab_study_plot import input_file, label_axes, save
 
 SCHEMES = ["midpoint", "exact_linear", "backward_euler"]
 COLORS = {"midpoint": "tab:red", "exact_linear": "tab:blue", "backward_euler": "tab:green"}
@@ -29,8 +27,7 @@ LABELS = {"midpoint": "midpoint (seed eq. 20)", "exact_linear": "exact_linear", 
 
 
 def fail(msg):
-    print(f"tmlab_hereditary_plot: {msg}", file=sys.stderr)
-    sys.exit(1)
+    _fail("tmlab_hereditary_plot", msg)
 
 
 def read(f, path):
@@ -61,17 +58,11 @@ def sweep_plot(f, out):
         ax.axhline(0.01, color="grey", lw=0.8, ls=":")
         ax.axhline(0.1, color="grey", lw=0.8, ls="--")
         ax.axvline(2.0, color="k", lw=0.5, ls=":")
-        ax.set_title(h)
-        ax.set_xlabel("dt / tau")
-        ax.set_ylabel("max |X_rec - X| / max |X|")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
+        label_axes(ax, h, "dt / tau", "max |X_rec - X| / max |X|", which="both")
     for j in range(n, rows * cols):
         axes[j // cols][j % cols].axis("off")
     fig.suptitle("Prony recursions against the exact hereditary integral (one term, alpha = 1)")
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "error_vs_dt_over_tau.png"), dpi=110)
-    plt.close(fig)
+    save(fig, os.path.join(out, "error_vs_dt_over_tau.png"), 110)
 
 
 def time_history_plot(f, out):
@@ -90,14 +81,8 @@ def time_history_plot(f, out):
             if g not in f:
                 continue
             ax.plot(read(f, g + "/t"), read(f, g + "/x_rec"), "o--", color=COLORS[s], ms=4, label=LABELS[s])
-        ax.set_title(f"ramp-hold (ramp over tau), dt/tau = {q}")
-        ax.set_xlabel("t / tau")
-        ax.set_ylabel("X = X_e + alpha h  (X_e / E_inf)")
-        ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "time_history.png"), dpi=110)
-    plt.close(fig)
+        label_axes(ax, f"ramp-hold (ramp over tau), dt/tau = {q}", "t / tau", "X = X_e + alpha h  (X_e / E_inf)")
+    save(fig, os.path.join(out, "time_history.png"), 110)
 
 
 def amplification_plot(f, out):
@@ -113,19 +98,11 @@ def amplification_plot(f, out):
                 label="trapezoidal (1-x/2)/(1+x/2): NOT used by tmlab")
     a1.axhline(0.0, color="k", lw=0.5)
     a1.set_ylim(-1.05, 1.05)
-    a1.set_xlabel("dt / tau")
-    a1.set_ylabel("a (decay of h per step)")
-    a1.legend(fontsize=7)
-    a1.grid(True, which="both", alpha=0.3)
+    label_axes(a1, "", "dt / tau", "a (decay of h per step)", which="both")
     a2.loglog(x, -np.expm1(-x) / x, "k:", lw=2, label="exact for linear X_e: (1-e^{-x})/x")
-    a2.set_xlabel("dt / tau")
-    a2.set_ylabel("c (weight of the increment of X_e)")
     a2.set_ylim(1e-4, 2)
-    a2.legend(fontsize=7)
-    a2.grid(True, which="both", alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "amplification.png"), dpi=110)
-    plt.close(fig)
+    label_axes(a2, "", "dt / tau", "c (weight of the increment of X_e)", which="both")
+    save(fig, os.path.join(out, "amplification.png"), 110)
 
 
 def haptic_plot(f, out):
@@ -142,14 +119,8 @@ def haptic_plot(f, out):
                 ax.loglog(tau * 1e3, read(f, p), "o-", color=COLORS[s], ms=3, label=LABELS[s])
         ax.axhline(0.01, color="grey", lw=0.8, ls=":")
         ax.axvline(0.5, color="k", lw=0.5, ls=":")
-        ax.set_title(f"{h}, dt = 1 ms")
-        ax.set_xlabel("tau [ms]")
-        ax.set_ylabel("max |X_rec - X| / max |X|")
-        ax.grid(True, which="both", alpha=0.3)
-        ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "haptic.png"), dpi=110)
-    plt.close(fig)
+        label_axes(ax, f"{h}, dt = 1 ms", "tau [ms]", "max |X_rec - X| / max |X|", which="both")
+    save(fig, os.path.join(out, "haptic.png"), 110)
 
 
 def liver_plot(f, out):
@@ -176,28 +147,14 @@ def liver_plot(f, out):
                 k = max(runs, key=lambda n: float(n[3:]))
                 a1.plot(read(f, f"{g}/{k}/t"), read(f, f"{g}/{k}/force"), "o", ms=3, color=COLORS[s],
                         label=f"{hist}, {LABELS[s]}, dt = {k[3:]} s")
-    a1.set_xlabel("t [s]")
-    a1.set_ylabel("indentation force [N]")
-    a1.set_title("liver relaxation (fig6)")
-    a1.grid(True, alpha=0.3)
-    a1.legend(fontsize=6)
-    a2.set_xlabel("dt [s]")
-    a2.set_ylabel("max |F - F_ref| / max |F_ref|")
-    a2.set_title("reaction-force error (solid: nodal_force, dashed: pk2)")
-    a2.grid(True, which="both", alpha=0.3)
-    a2.legend(fontsize=6)
-    fig.tight_layout()
-    fig.savefig(os.path.join(out, "liver_error.png"), dpi=110)
-    plt.close(fig)
+    label_axes(a1, "liver relaxation (fig6)", "t [s]", "indentation force [N]", legend_size=6)
+    label_axes(a2, "reaction-force error (solid: nodal_force, dashed: pk2)", "dt [s]",
+               "max |F - F_ref| / max |F_ref|", legend_size=6, which="both")
+    save(fig, os.path.join(out, "liver_error.png"), 110)
 
 
 def main():
-    if len(sys.argv) != 2:
-        fail("usage: tmlab_hereditary_plot.py DIR")
-    out = sys.argv[1]
-    path = os.path.join(out, "hereditary.h5")
-    if not os.path.exists(path):
-        fail(f"{path}: missing")
+    out, path = input_file("tmlab_hereditary_plot", "hereditary.h5")
     with h5py.File(path, "r") as f:
         sweep_plot(f, out)
         time_history_plot(f, out)

@@ -11,19 +11,16 @@ Exit status 1 with a message naming the file when an input is missing.
 """
 import json
 import os
-import sys
 
 import h5py
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
+from tmlab_study_plot import fail as _fail
+from tmlab_study_plot import input_file
 
 
 def fail(msg):
-    print(f"tmlab_paper_figure: {msg}", file=sys.stderr)
-    sys.exit(1)
+    _fail("tmlab_paper_figure", msg)
 
 
 def series(run_dir, name):
@@ -38,12 +35,7 @@ def series(run_dir, name):
 
 
 def main():
-    if len(sys.argv) != 2:
-        fail("usage: tmlab_paper_figure.py DIR")
-    d = sys.argv[1]
-    spec_path = os.path.join(d, "figure.json")
-    if not os.path.exists(spec_path):
-        fail(f"{spec_path}: missing")
+    d, spec_path = input_file("tmlab_paper_figure", "figure.json")
     with open(spec_path) as fh:
         spec = json.load(fh)
     name = spec["name"]
