@@ -153,14 +153,6 @@ H5File H5File::open_read(const std::string& path) {
   return H5File(id, path);
 }
 
-H5File H5File::open_read_write(const std::string& path) {
-  if (!std::filesystem::exists(path)) throw Error(path + ": no such file");
-  QuietErrors quiet;
-  const hid_t id = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
-  if (id < 0) throw h5_error(path, "", "cannot open HDF5 file for writing");
-  return H5File(id, path);
-}
-
 H5File::H5File(H5File&& other) noexcept : id_(other.id_), path_(std::move(other.path_)) { other.id_ = -1; }
 
 H5File& H5File::operator=(H5File&& other) noexcept {
@@ -312,12 +304,6 @@ void H5File::write(const std::string& dataset, const std::vector<std::int64_t>& 
   check_size<std::int64_t>(path_, dataset, data.size(), dims);
   write_impl(dataset, data.data(), dims);
 }
-void H5File::write(const std::string& dataset, const double* data, const Dims& dims) {
-  write_impl(dataset, data, dims);
-}
-void H5File::write(const std::string& dataset, const std::int32_t* data, const Dims& dims) {
-  write_impl(dataset, data, dims);
-}
 
 H5File::Dims H5File::dims(const std::string& dataset) const {
   require_open(dataset);
@@ -429,9 +415,6 @@ void H5File::append_impl(const std::string& dataset, const T* row, std::size_t w
 }
 
 void H5File::append(const std::string& dataset, double value) { append_impl(dataset, &value, 1, false); }
-void H5File::append(const std::string& dataset, std::int64_t value) {
-  append_impl(dataset, &value, 1, false);
-}
 void H5File::append_row(const std::string& dataset, const std::vector<double>& row) {
   append_impl(dataset, row.data(), row.size(), true);
 }

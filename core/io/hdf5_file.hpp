@@ -28,8 +28,6 @@ class H5File {
   static H5File create(const std::string& path);
   /// Opens an existing file read-only.
   static H5File open_read(const std::string& path);
-  /// Opens an existing file for reading and writing.
-  static H5File open_read_write(const std::string& path);
 
   H5File(H5File&& other) noexcept;
   H5File& operator=(H5File&& other) noexcept;
@@ -56,9 +54,6 @@ class H5File {
   void write(const std::string& dataset, const std::vector<double>& data, const Dims& dims);
   void write(const std::string& dataset, const std::vector<std::int32_t>& data, const Dims& dims);
   void write(const std::string& dataset, const std::vector<std::int64_t>& data, const Dims& dims);
-  /// Raw-pointer forms of write() for data already laid out contiguously (e.g. Eigen vectors).
-  void write(const std::string& dataset, const double* data, const Dims& dims);
-  void write(const std::string& dataset, const std::int32_t* data, const Dims& dims);
 
   /// Shape of an existing dataset.
   Dims dims(const std::string& dataset) const;
@@ -74,8 +69,6 @@ class H5File {
   /// Appends one row to an extendible 2-D float64 dataset of shape (n, row.size()), creating it
   /// first. Every row must have the width of the first one.
   void append_row(const std::string& dataset, const std::vector<double>& row);
-  /// Appends one value to an extendible 1-D int64 dataset.
-  void append(const std::string& dataset, std::int64_t value);
 
   /// Attributes on a group or dataset (use "/" for the file). An existing attribute is replaced.
   void set_attribute(const std::string& object, const std::string& name, const std::string& value);

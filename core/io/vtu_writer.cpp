@@ -92,12 +92,12 @@ void VtuWriter::check_new(const std::vector<Field>& fields, const std::string& n
 
 void VtuWriter::add_point_scalar(const std::string& name, const std::vector<double>& values) {
   check_new(point_fields_, name, values.size(), mesh_->points.size(), "point");
-  point_fields_.push_back(Field{name, 1, false, values, {}});
+  point_fields_.push_back(Field{name, 1, values});
 }
 
 void VtuWriter::add_point_vector(const std::string& name, const std::vector<Vec3>& values) {
   check_new(point_fields_, name, values.size(), mesh_->points.size(), "point");
-  Field f{name, 3, false, std::vector<double>(3 * values.size()), {}};
+  Field f{name, 3, std::vector<double>(3 * values.size())};
   for (std::size_t i = 0; i < values.size(); ++i) {
     for (int c = 0; c < 3; ++c) f.values[3 * i + c] = values[i][c];
   }
@@ -106,28 +106,18 @@ void VtuWriter::add_point_vector(const std::string& name, const std::vector<Vec3
 
 void VtuWriter::add_cell_scalar(const std::string& name, const std::vector<double>& values) {
   check_new(cell_fields_, name, values.size(), mesh_->tets.size(), "cell");
-  cell_fields_.push_back(Field{name, 1, false, values, {}});
-}
-
-void VtuWriter::add_cell_int(const std::string& name, const std::vector<int>& values) {
-  check_new(cell_fields_, name, values.size(), mesh_->tets.size(), "cell");
-  cell_fields_.push_back(Field{name, 1, true, {}, std::vector<std::int32_t>(values.begin(), values.end())});
+  cell_fields_.push_back(Field{name, 1, values});
 }
 
 void VtuWriter::add_cell_tensor(const std::string& name, const std::vector<Eigen::Matrix3d>& values) {
   check_new(cell_fields_, name, values.size(), mesh_->tets.size(), "cell");
-  Field f{name, 9, false, std::vector<double>(9 * values.size()), {}};
+  Field f{name, 9, std::vector<double>(9 * values.size())};
   for (std::size_t i = 0; i < values.size(); ++i) {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) f.values[9 * i + 3 * r + c] = values[i](r, c);
     }
   }
   cell_fields_.push_back(std::move(f));
-}
-
-void VtuWriter::clear_fields() {
-  point_fields_.clear();
-  cell_fields_.clear();
 }
 
 std::string VtuWriter::to_string(VtuEncoding encoding) const {
@@ -171,11 +161,7 @@ std::string VtuWriter::to_string(VtuEncoding encoding) const {
     }
     out += ">\n";
     for (const Field& f : fields) {
-      if (f.is_int) {
-        data_array(out, "Int32", f.name, f.components, f.ints.data(), f.ints.size(), encoding);
-      } else {
-        data_array(out, "Float64", f.name, f.components, f.values.data(), f.values.size(), encoding);
-      }
+      data_array(out, "Float64", f.name, f.components, f.values.data(), f.values.size(), encoding);
     }
     out += std::string("      </") + tag + ">\n";
   };

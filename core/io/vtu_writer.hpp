@@ -38,12 +38,8 @@ class VtuWriter {
   void add_point_vector(const std::string& name, const std::vector<Vec3>& values);
   /// One value per tet.
   void add_cell_scalar(const std::string& name, const std::vector<double>& values);
-  /// One integer per tet (e.g. Mesh::tet_physical), stored as Int32.
-  void add_cell_int(const std::string& name, const std::vector<int>& values);
   /// One 3x3 tensor per tet, stored as 9 components in row-major order (xx xy xz yx ... zz).
   void add_cell_tensor(const std::string& name, const std::vector<Eigen::Matrix3d>& values);
-  /// Drops all fields (positions are kept), to reuse the writer for the next step.
-  void clear_fields();
 
   /// The complete XML document.
   std::string to_string(VtuEncoding encoding = VtuEncoding::Base64) const;
@@ -54,9 +50,7 @@ class VtuWriter {
   struct Field {
     std::string name;
     int components = 1;
-    bool is_int = false;
-    std::vector<double> values;      ///< when !is_int
-    std::vector<std::int32_t> ints;  ///< when is_int
+    std::vector<double> values;
   };
   void check_new(const std::vector<Field>& fields, const std::string& name, std::size_t count,
                  std::size_t expected, const char* what) const;

@@ -48,10 +48,6 @@ class XdmfTimeSeries {
   /// flush(), then closes the HDF5 file. Idempotent. Throws tmlab::Error.
   void close();
 
-  const std::filesystem::path& xdmf_path() const { return xdmf_path_; }
-  const std::filesystem::path& h5_path() const { return h5_path_; }
-  std::size_t num_steps() const { return steps_.size(); }
-
  private:
   enum class Center { Node, Cell };
   struct FieldRef {

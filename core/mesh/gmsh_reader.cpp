@@ -379,69 +379,100 @@ class MeshBuilder {
 
 constexpr long long kMaxCount = std::numeric_limits<Index>::max();
 
-// ---- format 1 -------------------------------------------------------------------------------
+// ---- counted sections (formats 1 and 2.x) ----------------------------------------------------
+// $NOD/$ELM (format 1), $Nodes/$Elements (2.x) and $PhysicalNames (2.x, 4.1) share one layout: a
+// line with the number of records, one record per line, the end marker. read_counted_section()
+// reads that layout once for all of them; the per-record readers below differ only where the
+// formats do (the element line).
 
-void read_v1_nodes(LineSource& src, MeshBuilder& mb) {
-  src.record("NOD", "expected the number of nodes");
-  src.expect_fields(1, "$NOD header");
-  const long long n = src.integer_in(0, 0, kMaxCount, "number of nodes");
+/// Names used in the messages of one counted section.
+struct CountedSection {
+  const char* name;     ///< section name without '$': "NOD", "Nodes", ...
+  const char* end;      ///< its end marker: "$ENDNOD", "$EndNodes", ...
+  const char* records;  ///< what one record is, plural: "nodes"
+  const char* count;    ///< what the count line holds: "number of nodes"
+};
+
+constexpr CountedSection kV1Nodes{"NOD", "$ENDNOD", "nodes", "number of nodes"};
+constexpr CountedSection kV1Elements{"ELM", "$ENDELM", "elements", "number of elements"};
+constexpr CountedSection kV2Nodes{"Nodes", "$EndNodes", "nodes", "number of nodes"};
+constexpr CountedSection kV2Elements{"Elements", "$EndElements", "elements", "number of elements"};
+constexpr CountedSection kPhysicalNames{"PhysicalNames", "$EndPhysicalNames", "names",
+                                        "number of physical names"};
+
+/// Reads the count line, calls `read_record()` with each record line current, then expects the end
+/// marker. A short section, a '$' line among the records and a missing end marker each fail with
+/// the section's name and how many records were read.
+template <class ReadRecord>
+void read_counted_section(LineSource& src, const CountedSection& s, ReadRecord read_record) {
+  src.record(s.name, std::string("expected the number of ") + s.records);
+  src.expect_fields(1, std::string("$") + s.name + " header");
+  const long long n = src.integer_in(0, 0, kMaxCount, s.count);
   for (long long k = 0; k < n; ++k) {
-    src.record("NOD", count_progress("nodes", n, k));
-    src.expect_fields(4, "node");
-    const long long id = src.integer(0, "node id");
-    mb.add_node(id, Vec3(src.real(1, "node x"), src.real(2, "node y"), src.real(3, "node z")));
+    src.record(s.name, count_progress(s.records, n, k));
+    read_record();
   }
-  src.expect_marker("$ENDNOD", "after " + std::to_string(n) + " nodes");
+  src.expect_marker(s.end, "after " + std::to_string(n) + " " + s.records);
 }
 
-void read_v1_elements(LineSource& src, MeshBuilder& mb) {
-  src.record("ELM", "expected the number of elements");
-  src.expect_fields(1, "$ELM header");
-  const long long n = src.integer_in(0, 0, kMaxCount, "number of elements");
-  for (long long k = 0; k < n; ++k) {
-    src.record("ELM", count_progress("elements", n, k));
-    src.expect_min_fields(5, "element");
-    src.integer(0, "element id");
-    const long long code = src.integer(1, "element type");
-    const ElemType et = mb.check_type(code);
-    const long long phys = src.integer_in(2, 0, std::numeric_limits<int>::max(), "physical tag");
-    src.integer(3, "elementary tag");
-    const long long nn = src.integer(4, "number of element nodes");
-    if (nn != et.num_nodes) {
-      src.fail("element of type " + std::to_string(code) + " (" + et.name + ") declares " +
-               std::to_string(nn) + " nodes, expected " + std::to_string(et.num_nodes));
-    }
-    src.expect_fields(5 + static_cast<std::size_t>(et.num_nodes), "element");
-    mb.add_element(src.integer(0, "element id"), code, et, 5, static_cast<int>(phys));
-  }
-  src.expect_marker("$ENDELM", "after " + std::to_string(n) + " elements");
+/// A node line of format 1 or 2.x: "id x y z".
+void read_node_line(LineSource& src, MeshBuilder& mb) {
+  src.expect_fields(4, "node");
+  const long long id = src.integer(0, "node id");
+  mb.add_node(id, Vec3(src.real(1, "node x"), src.real(2, "node y"), src.real(3, "node z")));
 }
 
-// ---- shared by 2.x and 4.1 -----------------------------------------------------------------
-
-void read_physical_names(LineSource& src, MeshBuilder& mb) {
-  src.record("PhysicalNames", "expected the number of names");
-  src.expect_fields(1, "$PhysicalNames header");
-  const long long n = src.integer_in(0, 0, kMaxCount, "number of physical names");
-  for (long long k = 0; k < n; ++k) {
-    src.record("PhysicalNames", count_progress("names", n, k));
-    src.expect_min_fields(3, "physical name");
-    const int dim = static_cast<int>(src.integer_in(0, 0, 3, "physical name dimension"));
-    const int tag = static_cast<int>(src.integer_in(1, 1, std::numeric_limits<int>::max(), "physical tag"));
-    const std::string_view line = src.text();
-    const std::size_t open = line.find('"');
-    std::string name;
-    if (open == std::string_view::npos) {
-      if (src.size() != 3) src.fail("physical name must be quoted: " + quote(line));
-      name = std::string(src.field(2));
-    } else {
-      const std::size_t close = line.rfind('"');
-      if (close == open) src.fail("unterminated quoted physical name in " + quote(line));
-      name = std::string(line.substr(open + 1, close - open - 1));
-    }
-    mb.add_physical_name(dim, tag, std::move(name));
+/// A format 1 element line: "id type reg-phys reg-elem number-of-nodes node ...".
+void read_v1_element_line(LineSource& src, MeshBuilder& mb) {
+  src.expect_min_fields(5, "element");
+  const long long id = src.integer(0, "element id");
+  const long long code = src.integer(1, "element type");
+  const ElemType et = mb.check_type(code);
+  const long long phys = src.integer_in(2, 0, std::numeric_limits<int>::max(), "physical tag");
+  src.integer(3, "elementary tag");
+  const long long nn = src.integer(4, "number of element nodes");
+  if (nn != et.num_nodes) {
+    src.fail("element of type " + std::to_string(code) + " (" + et.name + ") declares " + std::to_string(nn) +
+             " nodes, expected " + std::to_string(et.num_nodes));
   }
-  src.expect_marker("$EndPhysicalNames", "after " + std::to_string(n) + " names");
+  src.expect_fields(5 + static_cast<std::size_t>(et.num_nodes), "element");
+  mb.add_element(id, code, et, 5, static_cast<int>(phys));
+}
+
+/// A format 2.x element line: "id type number-of-tags tag ... node ..."; the first tag is the
+/// physical group.
+void read_v2_element_line(LineSource& src, MeshBuilder& mb) {
+  src.expect_min_fields(3, "element");
+  const long long id = src.integer(0, "element id");
+  const long long code = src.integer(1, "element type");
+  const ElemType et = mb.check_type(code);
+  const long long ntags = src.integer_in(2, 0, 64, "number of element tags");
+  const std::size_t first = 3 + static_cast<std::size_t>(ntags);
+  src.expect_fields(first + static_cast<std::size_t>(et.num_nodes),
+                    std::string("element (") + et.name + ", " + std::to_string(ntags) + " tags)");
+  long long phys = 0;
+  if (ntags >= 1) phys = src.integer_in(3, 0, std::numeric_limits<int>::max(), "physical tag");
+  for (std::size_t t = 4; t < first; ++t) src.integer(t, "element tag");
+  mb.add_element(id, code, et, first, static_cast<int>(phys));
+}
+
+/// A $PhysicalNames line: "dim tag "name"" (an unquoted single-word name is accepted).
+void read_physical_name_line(LineSource& src, MeshBuilder& mb) {
+  src.expect_min_fields(3, "physical name");
+  const int dim = static_cast<int>(src.integer_in(0, 0, 3, "physical name dimension"));
+  const int tag = static_cast<int>(src.integer_in(1, 1, std::numeric_limits<int>::max(), "physical tag"));
+  const std::string_view line = src.text();
+  const std::size_t open = line.find('"');
+  std::string name;
+  if (open == std::string_view::npos) {
+    if (src.size() != 3) src.fail("physical name must be quoted: " + quote(line));
+    name = std::string(src.field(2));
+  } else {
+    const std::size_t close = line.rfind('"');
+    if (close == open) src.fail("unterminated quoted physical name in " + quote(line));
+    name = std::string(line.substr(open + 1, close - open - 1));
+  }
+  mb.add_physical_name(dim, tag, std::move(name));
 }
 
 /// Skips an unknown section up to its $End marker.
@@ -453,43 +484,6 @@ void skip_section(LineSource& src, const std::string& name) {
   }
   src.fail("unexpected end of file: " + end + " missing (section $" + name + " opened on line " +
            std::to_string(start) + ")");
-}
-
-// ---- format 2.x ------------------------------------------------------------------------------
-
-void read_v2_nodes(LineSource& src, MeshBuilder& mb) {
-  src.record("Nodes", "expected the number of nodes");
-  src.expect_fields(1, "$Nodes header");
-  const long long n = src.integer_in(0, 0, kMaxCount, "number of nodes");
-  for (long long k = 0; k < n; ++k) {
-    src.record("Nodes", count_progress("nodes", n, k));
-    src.expect_fields(4, "node");
-    const long long id = src.integer(0, "node id");
-    mb.add_node(id, Vec3(src.real(1, "node x"), src.real(2, "node y"), src.real(3, "node z")));
-  }
-  src.expect_marker("$EndNodes", "after " + std::to_string(n) + " nodes");
-}
-
-void read_v2_elements(LineSource& src, MeshBuilder& mb) {
-  src.record("Elements", "expected the number of elements");
-  src.expect_fields(1, "$Elements header");
-  const long long n = src.integer_in(0, 0, kMaxCount, "number of elements");
-  for (long long k = 0; k < n; ++k) {
-    src.record("Elements", count_progress("elements", n, k));
-    src.expect_min_fields(3, "element");
-    const long long id = src.integer(0, "element id");
-    const long long code = src.integer(1, "element type");
-    const ElemType et = mb.check_type(code);
-    const long long ntags = src.integer_in(2, 0, 64, "number of element tags");
-    const std::size_t first = 3 + static_cast<std::size_t>(ntags);
-    src.expect_fields(first + static_cast<std::size_t>(et.num_nodes),
-                      std::string("element (") + et.name + ", " + std::to_string(ntags) + " tags)");
-    long long phys = 0;
-    if (ntags >= 1) phys = src.integer_in(3, 0, std::numeric_limits<int>::max(), "physical tag");
-    for (std::size_t t = 4; t < first; ++t) src.integer(t, "element tag");
-    mb.add_element(id, code, et, first, static_cast<int>(phys));
-  }
-  src.expect_marker("$EndElements", "after " + std::to_string(n) + " elements");
 }
 
 // ---- format 4.1 ------------------------------------------------------------------------------
@@ -534,28 +528,75 @@ void read_v4_entities(LineSource& src, EntityMap& entities) {
   src.expect_marker("$EndEntities", "after the declared entities");
 }
 
+/// Names used in the messages of a 4.1 $Nodes or $Elements section.
+struct BlockSection {
+  const char* name;  ///< "Nodes"
+  const char* one;   ///< "node"
+  const char* many;  ///< "nodes"
+  const char* tag;   ///< the header's spelling: "Node" as in numNodes, minNodeTag
+};
+
+constexpr BlockSection kV4Nodes{"Nodes", "node", "nodes", "Node"};
+constexpr BlockSection kV4Elements{"Elements", "element", "elements", "Element"};
+
+/// Counts of a 4.1 block section, from its header and as its blocks are read.
+struct BlockCounts {
+  long header_line = 0;
+  long long blocks = 0;    ///< numEntityBlocks
+  long long declared = 0;  ///< numNodes / numElements
+  long long held = 0;      ///< sum of the blocks read so far
+};
+
+/// Reads "numEntityBlocks numX minXTag maxXTag".
+BlockCounts read_block_header(LineSource& src, const BlockSection& s) {
+  const std::string tag = s.tag;
+  src.record(s.name,
+             "expected numEntityBlocks num" + std::string(s.name) + " min" + tag + "Tag max" + tag + "Tag");
+  src.expect_fields(4, std::string("$") + s.name + " header");
+  BlockCounts c;
+  c.header_line = src.line();
+  c.blocks = src.integer_in(0, 0, kMaxCount, "number of " + std::string(s.one) + " blocks");
+  c.declared = src.integer_in(1, 0, kMaxCount, std::string("number of ") + s.many);
+  src.integer(2, "minimum " + std::string(s.one) + " tag");
+  src.integer(3, "maximum " + std::string(s.one) + " tag");
+  return c;
+}
+
+/// Adds a block of n entries; fails when the blocks hold more than the header declared.
+void add_block(LineSource& src, const BlockSection& s, BlockCounts& c, long long n) {
+  if (c.held + n > c.declared) {
+    src.fail(std::string(s.one) + " blocks hold more " + s.many + " than the " + std::to_string(c.declared) +
+             " declared on line " + std::to_string(c.header_line));
+  }
+  c.held += n;
+}
+
+/// Expects the end marker after the last block, then that the blocks held what the header said.
+void finish_block_section(LineSource& src, const BlockSection& s, const BlockCounts& c) {
+  const std::string end = std::string("$End") + s.name;
+  if (!src.next()) src.fail("unexpected end of file: " + end + " missing");
+  if (src.size() != 1 || src.field(0) != end) {
+    src.fail("expected " + end + " after " + std::to_string(c.blocks) + " " + s.one + " blocks, found " +
+             quote(src.text()));
+  }
+  if (c.held != c.declared) {
+    throw input_error(src.path(), c.header_line,
+                      std::string("$") + s.name + " header declares " + std::to_string(c.declared) + " " +
+                          s.many + ", but the blocks hold " + std::to_string(c.held));
+  }
+}
+
 void read_v4_nodes(LineSource& src, MeshBuilder& mb) {
-  src.record("Nodes", "expected numEntityBlocks numNodes minNodeTag maxNodeTag");
-  src.expect_fields(4, "$Nodes header");
-  const long header_line = src.line();
-  const long long nblocks = src.integer_in(0, 0, kMaxCount, "number of node blocks");
-  const long long nnodes = src.integer_in(1, 0, kMaxCount, "number of nodes");
-  src.integer(2, "minimum node tag");
-  src.integer(3, "maximum node tag");
-  long long total = 0;
+  BlockCounts counts = read_block_header(src, kV4Nodes);
   std::vector<long long> tags;
-  for (long long b = 0; b < nblocks; ++b) {
-    src.record("Nodes", count_progress("node blocks", nblocks, b));
+  for (long long b = 0; b < counts.blocks; ++b) {
+    src.record("Nodes", count_progress("node blocks", counts.blocks, b));
     src.expect_fields(4, "node block header (entityDim entityTag parametric numNodesInBlock)");
     const long long dim = src.integer_in(0, 0, 3, "entity dimension");
     src.integer(1, "entity tag");
     const long long parametric = src.integer_in(2, 0, 1, "parametric flag");
     const long long n = src.integer_in(3, 0, kMaxCount, "number of nodes in block");
-    if (total + n > nnodes) {
-      src.fail("node blocks hold more nodes than the " + std::to_string(nnodes) + " declared on line " +
-               std::to_string(header_line));
-    }
-    total += n;
+    add_block(src, kV4Nodes, counts, n);
     tags.clear();
     for (long long k = 0; k < n; ++k) {
       src.record("Nodes", count_progress("node tags in block", n, k));
@@ -571,30 +612,14 @@ void read_v4_nodes(LineSource& src, MeshBuilder& mb) {
       for (std::size_t c = 3; c < ncoord; ++c) src.real(c, "node parametric coordinate");
     }
   }
-  if (!src.next()) src.fail("unexpected end of file: $EndNodes missing");
-  if (src.size() != 1 || src.field(0) != "$EndNodes") {
-    src.fail("expected $EndNodes after " + std::to_string(nblocks) + " node blocks, found " +
-             quote(src.text()));
-  }
-  if (total != nnodes) {
-    throw input_error(src.path(), header_line,
-                      "$Nodes header declares " + std::to_string(nnodes) + " nodes, but the blocks hold " +
-                          std::to_string(total));
-  }
+  finish_block_section(src, kV4Nodes, counts);
 }
 
 void read_v4_elements(LineSource& src, MeshBuilder& mb, const EntityMap& entities, bool have_entities) {
-  src.record("Elements", "expected numEntityBlocks numElements minElementTag maxElementTag");
-  src.expect_fields(4, "$Elements header");
-  const long header_line = src.line();
-  const long long nblocks = src.integer_in(0, 0, kMaxCount, "number of element blocks");
-  const long long nelem = src.integer_in(1, 0, kMaxCount, "number of elements");
-  src.integer(2, "minimum element tag");
-  src.integer(3, "maximum element tag");
-  long long total = 0;
+  BlockCounts counts = read_block_header(src, kV4Elements);
   const std::vector<int> no_physical;
-  for (long long b = 0; b < nblocks; ++b) {
-    src.record("Elements", count_progress("element blocks", nblocks, b));
+  for (long long b = 0; b < counts.blocks; ++b) {
+    src.record("Elements", count_progress("element blocks", counts.blocks, b));
     src.expect_fields(4, "element block header (entityDim entityTag elementType numElementsInBlock)");
     const int dim = static_cast<int>(src.integer_in(0, 0, 3, "entity dimension"));
     const int tag = static_cast<int>(src.integer_in(1, 1, std::numeric_limits<int>::max(), "entity tag"));
@@ -605,11 +630,7 @@ void read_v4_elements(LineSource& src, MeshBuilder& mb, const EntityMap& entitie
                std::to_string(dim));
     }
     const long long n = src.integer_in(3, 0, kMaxCount, "number of elements in block");
-    if (total + n > nelem) {
-      src.fail("element blocks hold more elements than the " + std::to_string(nelem) + " declared on line " +
-               std::to_string(header_line));
-    }
-    total += n;
+    add_block(src, kV4Elements, counts, n);
     const std::vector<int>* phys = &no_physical;
     if (have_entities) {
       const auto it = entities.find(GroupKey{dim, tag});
@@ -632,19 +653,14 @@ void read_v4_elements(LineSource& src, MeshBuilder& mb, const EntityMap& entitie
       }
     }
   }
-  if (!src.next()) src.fail("unexpected end of file: $EndElements missing");
-  if (src.size() != 1 || src.field(0) != "$EndElements") {
-    src.fail("expected $EndElements after " + std::to_string(nblocks) + " element blocks, found " +
-             quote(src.text()));
-  }
-  if (total != nelem) {
-    throw input_error(src.path(), header_line,
-                      "$Elements header declares " + std::to_string(nelem) +
-                          " elements, but the blocks hold " + std::to_string(total));
-  }
+  finish_block_section(src, kV4Elements, counts);
 }
 
 enum class Format { V1, V2, V41 };
+
+/// The node and element sections of a format (4.1 keeps the 2.x names, with another layout).
+const CountedSection& nodes_section(Format f) { return f == Format::V1 ? kV1Nodes : kV2Nodes; }
+const CountedSection& elements_section(Format f) { return f == Format::V1 ? kV1Elements : kV2Elements; }
 
 /// Parses the $MeshFormat body and its end marker; returns the format.
 Format read_mesh_format(LineSource& src, std::string& version) {
@@ -704,46 +720,37 @@ Mesh parse(LineSource& src, GmshReadInfo* info) {
       src.fail("second $MeshFormat section");
     }
 
-    if (format == Format::V1) {
-      if (name == "NOD") {
-        if (have_nodes) src.fail("second $NOD section");
-        read_v1_nodes(src, mb);
-        have_nodes = true;
-      } else if (name == "ELM") {
-        if (!have_nodes) src.fail("$ELM before $NOD");
-        if (have_elements) src.fail("second $ELM section");
-        read_v1_elements(src, mb);
-        have_elements = true;
+    // Formats 1 and 2.x read nodes and elements with the same counted-section reader; only the
+    // section names and the element line differ. Format 4.1 has blocks per entity instead.
+    const CountedSection& nodes = nodes_section(format);
+    const CountedSection& elements = elements_section(format);
+    if (name == nodes.name) {
+      if (have_nodes) src.fail("second $" + name + " section");
+      if (format == Format::V41) {
+        read_v4_nodes(src, mb);
       } else {
-        src.fail("unexpected section $" + name + " in a format 1 file (expected $NOD or $ELM)");
+        read_counted_section(src, nodes, [&] { read_node_line(src, mb); });
       }
-      continue;
-    }
-
-    if (name == "PhysicalNames") {
-      read_physical_names(src, mb);
+      have_nodes = true;
+    } else if (name == elements.name) {
+      if (!have_nodes) src.fail("$" + name + " before $" + nodes.name);
+      if (have_elements) src.fail("second $" + name + " section");
+      if (format == Format::V41) {
+        read_v4_elements(src, mb, entities, have_entities);
+      } else {
+        const auto read_line = format == Format::V1 ? read_v1_element_line : read_v2_element_line;
+        read_counted_section(src, elements, [&] { read_line(src, mb); });
+      }
+      have_elements = true;
+    } else if (format == Format::V1) {
+      src.fail("unexpected section $" + name + " in a format 1 file (expected $NOD or $ELM)");
+    } else if (name == "PhysicalNames") {
+      read_counted_section(src, kPhysicalNames, [&] { read_physical_name_line(src, mb); });
     } else if (name == "Entities" && format == Format::V41) {
       if (have_entities) src.fail("second $Entities section");
       if (have_elements) src.fail("$Entities after $Elements");
       read_v4_entities(src, entities);
       have_entities = true;
-    } else if (name == "Nodes") {
-      if (have_nodes) src.fail("second $Nodes section");
-      if (format == Format::V41) {
-        read_v4_nodes(src, mb);
-      } else {
-        read_v2_nodes(src, mb);
-      }
-      have_nodes = true;
-    } else if (name == "Elements") {
-      if (!have_nodes) src.fail("$Elements before $Nodes");
-      if (have_elements) src.fail("second $Elements section");
-      if (format == Format::V41) {
-        read_v4_elements(src, mb, entities, have_entities);
-      } else {
-        read_v2_elements(src, mb);
-      }
-      have_elements = true;
     } else if (name.rfind("End", 0) == 0) {
       src.fail("unmatched section end marker " + quote(src.text()));
     } else {
@@ -751,10 +758,9 @@ Mesh parse(LineSource& src, GmshReadInfo* info) {
     }
   } while (src.next());
 
-  const std::string nod = format == Format::V1 ? "$NOD" : "$Nodes";
-  const std::string elm = format == Format::V1 ? "$ELM" : "$Elements";
-  if (!have_nodes) src.fail("no " + nod + " section (file truncated?)");
-  if (!have_elements) src.fail("no " + elm + " section (file truncated?)");
+  if (!have_nodes) src.fail(std::string("no $") + nodes_section(format).name + " section (file truncated?)");
+  if (!have_elements)
+    src.fail(std::string("no $") + elements_section(format).name + " section (file truncated?)");
   if (info != nullptr) info->format_version = version;
   return mb.finish(info);
 }

@@ -85,7 +85,7 @@ MeshReport analyse_mesh(const Mesh& mesh) {
     const Vec3& d = mesh.points[static_cast<std::size_t>(tet[3])];
     const double v = tet_signed_volume(a, b, c, d);
     const double l = tet_rms_edge(a, b, c, d);
-    const double q = l == 0.0 ? 0.0 : 6.0 * std::sqrt(2.0) * v / (l * l * l);
+    const double q = tet_quality(a, b, c, d);
     r.volumes.push_back(v);
     r.quality.push_back(q);
     r.total_volume += v;

@@ -123,7 +123,7 @@ void BM_TensorMassTangentAssembly(benchmark::State& state) {
 // cubes of 8^3, 16^3, 32^3 hexes x 6 = 3,072 / 24,576 / 196,608 tets
 #define TM_SIZES ->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond)
 /// Viscoelastic trial force (2 Prony terms) after one committed step: the overhead over the
-/// elastic tensor-mass force is the seed paper's "about 5 %" claim (errata "Flaws" 4).
+/// elastic tensor-mass force is the seed paper's "about 5 %" claim (docs/theory/seed-errata.md "Flaws" 4).
 void visco_force_bench(benchmark::State& state, ViscoelasticOptions::History history) {
   const Setup s = make_setup(static_cast<int>(state.range(0)));
   ViscoelasticOptions o;

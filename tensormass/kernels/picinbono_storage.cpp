@@ -1,5 +1,5 @@
 // Picinbono's mesh-level tensor storage evaluated on absolute displacements (the paper's form);
-// see picinbono_storage.hpp. Tensors are the corrected ones of seed-errata.md, eq. 3.
+// see picinbono_storage.hpp. Tensors are the corrected ones of docs/theory/seed-errata.md, eq. 3.
 #include "tensormass/kernels/picinbono_storage.hpp"
 
 #include "tensormass/kernels/tet_geometry.hpp"

@@ -1,5 +1,6 @@
 // PicinbonoAbsoluteStVK: Picinbono's original MESH-LEVEL tensor-mass storage, kept as the
-// paper-faithful variant. The corrected per-tet tensors (errata eq. 3, all four nodes, j,k,l,m = 0..3)
+// paper-faithful variant. The corrected per-tet tensors (docs/theory/seed-errata.md eq. 3, all four
+// nodes, j,k,l,m = 0..3)
 //   B_jk, C_jkl, D_jklm
 // are summed over the tets sharing the same set of mesh vertices and stored on that set:
 //   vertex p         : B_pp (sym 3x3), C_ppp, D_pppp

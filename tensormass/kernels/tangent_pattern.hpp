@@ -23,7 +23,6 @@ class TangentPattern {
   TangentPattern(Index num_nodes, const std::vector<Tet>& tets);
 
   Index num_dofs() const { return 3 * num_nodes_; }
-  std::size_t nonzeros() const { return inner_.size(); }
 
   /// True when K is compressed, num_dofs square, with this pattern's column pointers and nnz
   /// (the row indices are not compared: O(num_dofs) check).

@@ -1,5 +1,5 @@
 // Tensor-mass St VK kernels on relative displacements; equations in tensor_mass.hpp and
-// docs/theory/tensor-mass.md (corrected forms of seed-errata.md).
+// docs/theory/tensor-mass.md (corrected forms of docs/theory/seed-errata.md).
 #include "tensormass/kernels/tensor_mass.hpp"
 
 #include <cassert>

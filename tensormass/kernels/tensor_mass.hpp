@@ -1,5 +1,5 @@
 // TensorMassStVK: Picinbono's nonlinear (St Venant-Kirchhoff) tensor-mass model with the corrected
-// tensors of seed-errata.md (eqs. 2, 3, 5, 6, 7), evaluated per tet on RELATIVE displacements
+// tensors of docs/theory/seed-errata.md (eqs. 2, 3, 5, 6, 7), evaluated per tet on RELATIVE displacements
 //
 //   e_j = U_j - U_0,  j = 1..3     (exact: a_0 = -(a_1 + a_2 + a_3), so grad u = sum_{j=1..3} e_j (x) a_j)
 //

@@ -2,7 +2,7 @@
 // shape-function gradients a_j = grad N_j (j = 0..3), with sum_j a_j = 0 and sum_j P_j (x) a_j = I.
 //
 // With J = [P1-P0, P2-P0, P3-P0] (columns), V = det(J)/6, a_1..a_3 are the rows of J^{-1} and
-// a_0 = -(a_1 + a_2 + a_3). (The seed's alpha_k of eq. 6 are -6V a_k, see seed-errata.md, eq. 6.)
+// a_0 = -(a_1 + a_2 + a_3). (The seed's alpha_k of eq. 6 are -6V a_k, see docs/theory/seed-errata.md, eq. 6.)
 #pragma once
 
 #include "core/mesh/mesh.hpp"

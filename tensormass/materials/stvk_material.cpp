@@ -19,7 +19,7 @@ StVenantKirchhoff StVenantKirchhoff::from_young_poisson(double young, double poi
     throw Error(os.str());
   }
   StVenantKirchhoff m;
-  // seed eq. 4 (as printed) and eq. 5 corrected (seed-errata.md): mu = E / (2(1+nu)).
+  // seed eq. 4 (as printed) and eq. 5 corrected (docs/theory/seed-errata.md): mu = E / (2(1+nu)).
   m.lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
   m.mu = young / (2.0 * (1.0 + poisson));
   return m;

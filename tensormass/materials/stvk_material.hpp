@@ -2,7 +2,7 @@
 // with the value / gradient / hessian triad (energy_density, pk2_stress, tangent).
 //
 // Lame constants from Young's modulus and Poisson's ratio (seed eqs. 4-5, with the correction of
-// docs seed-errata.md, eq. 5): lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)).
+// docs/theory/seed-errata.md, eq. 5): lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)).
 // The printed mu = E nu / (2(1+nu)) is wrong; tests/test_printed_errors.cpp keeps the check.
 #pragma once
 

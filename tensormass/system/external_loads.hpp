@@ -58,10 +58,6 @@ class ExternalLoads {
   /// Adds -d f_ext/du (the load stiffness of follower pressure) as triplets.
   void add_load_stiffness(const VecX& u, double t, std::vector<Eigen::Triplet<double>>& triplets) const;
 
-  const std::vector<NodalForce>& nodal_forces() const { return nodal_; }
-  const std::vector<SurfacePressure>& pressures() const { return pressure_; }
-  const std::vector<Gravity>& gravity() const { return gravity_; }
-
  private:
   const Mesh* mesh_ = nullptr;
   VecX node_mass_;

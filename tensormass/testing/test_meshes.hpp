@@ -81,6 +81,21 @@ inline Eigen::VectorXd random_displacement(Index num_nodes, double scale, std::m
   return u;
 }
 
+/// The rigid-motion tests' problem: a jittered 6^3 box of 1 cm cells and a random displacement of
+/// up to a tenth of a cell, drawn from `rng` in that order.
+struct DeformedBox {
+  double h = 0.01;  ///< cell size, metres
+  Mesh mesh;
+  Eigen::VectorXd u;
+};
+
+inline DeformedBox deformed_jittered_box(std::mt19937& rng) {
+  DeformedBox b;
+  b.mesh = jittered_box(6, b.h, 0.25, rng);
+  b.u = random_displacement(b.mesh.num_points(), 0.1 * b.h, rng);
+  return b;
+}
+
 /// u(X) = G X + c at every node.
 inline Eigen::VectorXd affine_displacement(const Mesh& m, const Eigen::Matrix3d& G, const Vec3& c) {
   Eigen::VectorXd u(3 * m.num_points());

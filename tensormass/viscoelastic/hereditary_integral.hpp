@@ -3,7 +3,8 @@
 // recursions (midpoint, exact_linear, backward_euler):
 //
 //   h_j(t) = int_{t0}^t exp(-(t-s)/tau_j) X_e'(s) ds,       X(t) = X_e(t) + sum_j alpha_j h_j(t)
-//   (+ a jump X_e(t0) at t0 contributes exp(-(t-t0)/tau_j) X_e(t0) to h_j: errata eq. 11's r(t) X_e(0+))
+//   (+ a jump X_e(t0) at t0 contributes exp(-(t-t0)/tau_j) X_e(t0) to h_j: the r(t) X_e(0+) of
+//   docs/theory/seed-errata.md, eq. 11)
 //
 // X_e is a vector of any width (a scalar, one tet's stress, all tets' stresses). Two sources:
 //   * an analytic rate X_e'(s) (a callback), integrated by composite Gauss-Legendre on `panels`

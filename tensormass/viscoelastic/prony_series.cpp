@@ -1,4 +1,4 @@
-// Prony series (seed eqs. 9-10 and 24, corrected in seed-errata.md); see prony_series.hpp.
+// Prony series (seed eqs. 9-10 and 24, corrected in docs/theory/seed-errata.md); see prony_series.hpp.
 #include "tensormass/viscoelastic/prony_series.hpp"
 
 #include "core/base/error.hpp"

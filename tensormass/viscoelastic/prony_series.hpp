@@ -1,6 +1,7 @@
 // PronySeries: the normalised relaxation function of a quasi-linear viscoelastic material,
 //
-//   r(t) = E(t) / E_inf = 1 + sum_j alpha_j exp(-t / tau_j)          (seed eq. 10, errata eqs. 9-10)
+//   r(t) = E(t) / E_inf = 1 + sum_j alpha_j exp(-t / tau_j)
+//   (seed eq. 10, corrected in docs/theory/seed-errata.md, eqs. 9-10)
 //
 // alpha_j >= 0 are the LONG-TERM normalised weights (alpha_j = E_j / E_inf) and tau_j > 0 the
 // relaxation times in seconds. The instantaneous modulus is E_0 = E(0) = E_inf (1 + sum alpha).

@@ -1,5 +1,5 @@
 // Prony-series viscoelastic St VK tensor-mass model; equations in viscoelastic_model.hpp and
-// docs/theory/viscoelasticity.md (seed eqs. 9-21 as corrected in seed-errata.md).
+// docs/theory/viscoelasticity.md (seed eqs. 9-21 as corrected in docs/theory/seed-errata.md).
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include "core/base/error.hpp"

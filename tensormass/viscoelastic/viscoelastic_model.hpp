@@ -1,6 +1,6 @@
 // ViscoelasticStVK: the seed paper's quasi-linear viscoelastic tensor-mass model (Prony series,
-// seed eqs. 9-21 in the corrected form of seed-errata.md), wrapping the elastic St Venant-Kirchhoff
-// tensor-mass model of the LONG-TERM modulus E_inf, with committed and trial history.
+// seed eqs. 9-21 in the corrected form of docs/theory/seed-errata.md), wrapping the elastic St
+// Venant-Kirchhoff tensor-mass model of the LONG-TERM modulus E_inf, with committed and trial history.
 // Theory, schemes and measured consequences: docs/theory/viscoelasticity.md.
 //
 // Hereditary integral (errata eq. 11): X(t) = integral_0^t r(t-s) dX_e/ds ds with r the normalised

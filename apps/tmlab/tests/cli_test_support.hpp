@@ -1,9 +1,11 @@
 // Shared by the command-line tests: run the built `tmlab` driver (through a shell for readable
 // tests, or with an argument vector when the arguments themselves are hostile) and capture its
-// exit status and combined output, and a fixture that gives each test its own temporary directory.
+// exit status and combined output. Each test gets its own temporary directory from
+// tmlab::testing::TempDirTest (core/testing/temp_dir.hpp).
 #pragma once
 
 #include "core/base/process.hpp"
+#include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,8 +18,6 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <string>
 #include <thread>
 #include <vector>
@@ -97,25 +97,5 @@ inline int wait_exit(pid_t pid) {
   if (WIFSIGNALED(status)) return -WTERMSIG(status);
   return WEXITSTATUS(status);
 }
-
-inline std::string slurp(const std::filesystem::path& p) {
-  std::ifstream in(p);
-  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-}
-
-/// A fixture whose dir_ is a fresh temporary directory named after the process and the test.
-class TempDirTest : public ::testing::Test {
- protected:
-  explicit TempDirTest(std::string prefix) : prefix_(std::move(prefix)) {}
-  void SetUp() override {
-    dir_ = std::filesystem::temp_directory_path() /
-           (prefix_ + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    std::filesystem::create_directories(dir_);
-  }
-  void TearDown() override { std::filesystem::remove_all(dir_); }
-  std::string prefix_;
-  std::filesystem::path dir_;
-};
 
 }  // namespace tmlab::cli_test

@@ -22,9 +22,8 @@ namespace fs = std::filesystem;
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run;
 
-class Cli : public tmlab::cli_test::TempDirTest {
+class Cli : public tmlab::testing::TempDirTest {
  protected:
-  Cli() : TempDirTest("tmlab_cli_") {}
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name) << text;
     return dir_ / name;

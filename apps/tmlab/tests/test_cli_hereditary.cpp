@@ -22,10 +22,7 @@ namespace fs = std::filesystem;
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run;
 
-class CliHereditary : public tmlab::cli_test::TempDirTest {
- protected:
-  CliHereditary() : TempDirTest("tmlab_cli_hereditary_") {}
-};
+class CliHereditary : public tmlab::testing::TempDirTest {};
 
 TEST_F(CliHereditary, QuickRunWritesACompleteResult) {
   const Result r = run("hereditary --quick --results '" + dir_.string() + "'");

@@ -13,16 +13,11 @@
 namespace {
 
 namespace fs = std::filesystem;
-using tmlab::cli_test::run_argv;
-using tmlab::cli_test::slurp;
-using tmlab::cli_test::spawn;
-using tmlab::cli_test::wait_exit;
-using tmlab::cli_test::wait_for;
+using namespace tmlab::cli_test;  // run_argv, spawn, wait_for, wait_exit, Result
+using tmlab::testing::read_file;
 
-class CliResume : public tmlab::cli_test::TempDirTest {
+class CliResume : public tmlab::testing::TempDirTest {
  protected:
-  CliResume() : TempDirTest("tmlab_cli_resume_") {}
-
   /// Four cases of the fast suite, a few seconds in all (one of them ~3 s, so signals land inside
   /// a case as well as between cases).
   std::vector<std::string> suite(const fs::path& results) const {
@@ -42,7 +37,7 @@ class CliResume : public tmlab::cli_test::TempDirTest {
 
   /// verification.json without what depends on the clock (case and suite times).
   static nlohmann::json without_times(const fs::path& dir) {
-    nlohmann::json j = nlohmann::json::parse(slurp(dir / "verification" / "verification.json"));
+    nlohmann::json j = nlohmann::json::parse(read_file(dir / "verification" / "verification.json"));
     strip(j);
     return j;
   }
@@ -68,12 +63,12 @@ TEST_F(CliResume, InterruptedSuiteResumesToTheSameResult) {
     const fs::path res = dir_ / "after-first";
     const pid_t pid = spawn(suite(res), dir_ / "a.log");
     ASSERT_TRUE(wait_for(res / "verification.checkpoint" / "analytic-uniaxial-stvk.json"))
-        << slurp(dir_ / "a.log");
+        << read_file(dir_ / "a.log");
     ASSERT_EQ(::kill(pid, SIGINT), 0);
     const int rc = wait_exit(pid);
     if (rc == 128 + SIGINT) {
-      ASSERT_TRUE(fs::exists(res / "verification" / "INTERRUPTED")) << slurp(dir_ / "a.log");
-      EXPECT_NE(slurp(res / "verification" / "INTERRUPTED").find("--resume"), std::string::npos);
+      ASSERT_TRUE(fs::exists(res / "verification" / "INTERRUPTED")) << read_file(dir_ / "a.log");
+      EXPECT_NE(read_file(res / "verification" / "INTERRUPTED").find("--resume"), std::string::npos);
       EXPECT_FALSE(fs::exists(res / "verification" / "summary.json"));
       std::vector<std::string> args = suite(res);
       args.push_back("--resume");
@@ -83,7 +78,7 @@ TEST_F(CliResume, InterruptedSuiteResumesToTheSameResult) {
                 std::string::npos)
           << resumed.output;
     } else {
-      ASSERT_EQ(rc, 0) << "the suite finished before the signal arrived: " << slurp(dir_ / "a.log");
+      ASSERT_EQ(rc, 0) << "the suite finished before the signal arrived: " << read_file(dir_ / "a.log");
     }
     EXPECT_EQ(without_times(res), expected);
     EXPECT_FALSE(fs::exists(res / "verification.checkpoint")) << "a complete report leaves no checkpoint";
@@ -102,7 +97,7 @@ TEST_F(CliResume, InterruptedSuiteResumesToTheSameResult) {
     std::this_thread::sleep_for(std::chrono::milliseconds(ms));
     ::kill(pid, SIGINT);
     const int rc = wait_exit(pid);
-    ASSERT_TRUE(rc == 0 || rc == 128 + SIGINT || rc == -SIGINT) << rc << "\n" << slurp(dir_ / "r.log");
+    ASSERT_TRUE(rc == 0 || rc == 128 + SIGINT || rc == -SIGINT) << rc << "\n" << read_file(dir_ / "r.log");
     if (rc != 0) {
       std::vector<std::string> args = suite(res);
       args.push_back("--resume");
@@ -140,7 +135,7 @@ TEST_F(CliResume, ResumeWithoutCheckpointOrWithAnotherSuiteIsRefused) {
 TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
   // fig7 reduced to two short runs (two schemes, one cycle of 40 steps).
   auto params =
-      nlohmann::json::parse(slurp(fs::path(TMLAB_SOURCE_DIR) / "cases" / "paper" / "xu2011_liver.json"),
+      nlohmann::json::parse(read_file(fs::path(TMLAB_SOURCE_DIR) / "cases" / "paper" / "xu2011_liver.json"),
                             nullptr, true, /*ignore_comments=*/true);
   params["schemes"] = {"objective", "seed"};
   params["fig7"]["periods"] = {1.0};
@@ -152,7 +147,8 @@ TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
   };
   const auto full = run_argv(cmd(dir_ / "full"), dir_ / "full.log");
   ASSERT_EQ(full.status, 0) << full.output;
-  const auto expected = nlohmann::json::parse(slurp(dir_ / "full" / "paper" / "fig7" / "fig7_energy.json"));
+  const auto expected =
+      nlohmann::json::parse(read_file(dir_ / "full" / "paper" / "fig7" / "fig7_energy.json"));
   ASSERT_EQ(expected.size(), 2u);
 
   const fs::path res = dir_ / "cut", fig = res / "paper" / "fig7";
@@ -165,12 +161,13 @@ TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
         if (e.is_directory() && fs::exists(e.path() / "summary.json")) first_done = true;
     if (!first_done) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
-  ASSERT_TRUE(first_done) << slurp(dir_ / "cut.log");
+  ASSERT_TRUE(first_done) << read_file(dir_ / "cut.log");
   ::kill(pid, SIGINT);
   const int rc = wait_exit(pid);
   if (rc == 0) GTEST_SKIP() << "the figure finished before the signal";
-  ASSERT_EQ(rc, 128 + SIGINT) << slurp(dir_ / "cut.log");
-  EXPECT_NE(slurp(fig / "INTERRUPTED").find("--resume"), std::string::npos) << slurp(fig / "INTERRUPTED");
+  ASSERT_EQ(rc, 128 + SIGINT) << read_file(dir_ / "cut.log");
+  EXPECT_NE(read_file(fig / "INTERRUPTED").find("--resume"), std::string::npos)
+      << read_file(fig / "INTERRUPTED");
   EXPECT_FALSE(fs::exists(fig / "fig7.png"));
 
   std::vector<std::string> args = cmd(res);
@@ -179,7 +176,7 @@ TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
   ASSERT_EQ(resumed.status, 0) << resumed.output;
   EXPECT_NE(resumed.output.find("finished before the interruption: reused"), std::string::npos)
       << resumed.output;
-  EXPECT_EQ(nlohmann::json::parse(slurp(fig / "fig7_energy.json")), expected);
+  EXPECT_EQ(nlohmann::json::parse(read_file(fig / "fig7_energy.json")), expected);
   EXPECT_TRUE(fs::exists(fig / "summary.json"));
 
   // Nothing to resume now: refused.

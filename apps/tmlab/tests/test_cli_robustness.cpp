@@ -15,17 +15,11 @@
 namespace {
 
 namespace fs = std::filesystem;
-using tmlab::cli_test::Result;
-using tmlab::cli_test::run_argv;
-using tmlab::cli_test::slurp;
-using tmlab::cli_test::spawn;
-using tmlab::cli_test::wait_exit;
-using tmlab::cli_test::wait_for;
+using namespace tmlab::cli_test;  // run_argv, spawn, wait_for, wait_exit, Result
+using tmlab::testing::read_file;
 
-class CliRobustness : public tmlab::cli_test::TempDirTest {
+class CliRobustness : public tmlab::testing::TempDirTest {
  protected:
-  CliRobustness() : TempDirTest("tmlab_cli_rob_") {}
-
   /// A 2 x 2 x 2 box clamped at z = 0 and pulled at z = 1: a valid case in dir_.
   fs::path write_case(const std::string& name, const std::string& solver, bool plots = false) const {
     tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 2, 2, 2),
@@ -80,7 +74,7 @@ TEST_F(CliRobustness, SecondRunIntoTheSameDirectoryIsRefusedAndSigintInterruptsT
   const fs::path c = write_long_case();
   const fs::path res = dir_ / "res", dir = res / "long";
   const pid_t first = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "first.log");
-  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "first.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << read_file(dir_ / "first.log");
 
   const Result second =
       run_argv({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "second.log");
@@ -90,9 +84,9 @@ TEST_F(CliRobustness, SecondRunIntoTheSameDirectoryIsRefusedAndSigintInterruptsT
   EXPECT_FALSE(fs::exists(dir / "FAILED")) << "the refused run must not touch the first's directory";
 
   ASSERT_EQ(::kill(first, SIGINT), 0);
-  EXPECT_EQ(wait_exit(first), 128 + SIGINT) << slurp(dir_ / "first.log");
-  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED")) << slurp(dir_ / "first.log");
-  EXPECT_NE(slurp(dir / "INTERRUPTED").find("SIGINT received at t = "), std::string::npos);
+  EXPECT_EQ(wait_exit(first), 128 + SIGINT) << read_file(dir_ / "first.log");
+  ASSERT_TRUE(fs::exists(dir / "INTERRUPTED")) << read_file(dir_ / "first.log");
+  EXPECT_NE(read_file(dir / "INTERRUPTED").find("SIGINT received at t = "), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "RUNNING"));
   EXPECT_FALSE(fs::exists(dir / "FAILED"));
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
@@ -102,17 +96,17 @@ TEST_F(CliRobustness, SigtermInterruptsToo) {
   const fs::path c = write_long_case();
   const fs::path res = dir_ / "res", dir = res / "long";
   const pid_t pid = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "run.log");
-  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "run.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << read_file(dir_ / "run.log");
   ASSERT_EQ(::kill(pid, SIGTERM), 0);
-  EXPECT_EQ(wait_exit(pid), 128 + SIGTERM) << slurp(dir_ / "run.log");
-  EXPECT_NE(slurp(dir / "INTERRUPTED").find("SIGTERM"), std::string::npos);
+  EXPECT_EQ(wait_exit(pid), 128 + SIGTERM) << read_file(dir_ / "run.log");
+  EXPECT_NE(read_file(dir / "INTERRUPTED").find("SIGTERM"), std::string::npos);
 }
 
 TEST_F(CliRobustness, KilledRunLeavesAStaleMarkerThatTheNextRunReports) {
   const fs::path c = write_long_case();
   const fs::path res = dir_ / "res", dir = res / "long";
   const pid_t pid = spawn({"run", c.string(), "--no-plots", "--results", res.string()}, dir_ / "run.log");
-  ASSERT_TRUE(wait_for(dir / "RUNNING")) << slurp(dir_ / "run.log");
+  ASSERT_TRUE(wait_for(dir / "RUNNING")) << read_file(dir_ / "run.log");
   ASSERT_EQ(::kill(pid, SIGKILL), 0);
   EXPECT_EQ(wait_exit(pid), -SIGKILL);
   EXPECT_TRUE(fs::exists(dir / "RUNNING"));  // nothing could clean up after SIGKILL

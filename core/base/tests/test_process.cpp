@@ -2,36 +2,20 @@
 // are reported, output goes where asked, and a missing program is an error, not a crash.
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
+#include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
+#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
-
-#include <unistd.h>
 
 namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tmlab::testing::read_file;
 
-class ProcessTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tmlab_process_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+class ProcessTest : public tmlab::testing::TempDirTest {};
 
 TEST_F(ProcessTest, ShellMetacharactersAreNeverInterpreted) {
   // Each of these would create a file through a shell; as argv entries they are just text.
@@ -48,7 +32,7 @@ TEST_F(ProcessTest, ShellMetacharactersAreNeverInterpreted) {
   EXPECT_FALSE(fs::exists(victim));
   std::string expected;
   for (const auto& h : hostile) expected += (expected.empty() ? "" : " ") + h;
-  EXPECT_EQ(slurp(log), expected + "\n");
+  EXPECT_EQ(read_file(log), expected + "\n");
 }
 
 TEST_F(ProcessTest, ExitStatusSignalAndMissingProgram) {
@@ -78,7 +62,7 @@ TEST_F(ProcessTest, StandardErrorGoesToTheSameLog) {
   const auto st =
       tmlab::run_process({"/bin/sh", "-c", "echo out; echo err 1>&2"}, tmlab::ProcessOutput::to_file(log));
   ASSERT_TRUE(st.ok());
-  EXPECT_EQ(slurp(log), "out\nerr\n");
+  EXPECT_EQ(read_file(log), "out\nerr\n");
 }
 
 TEST(PythonInterpreter, EnvironmentOverrides) {

@@ -1,5 +1,5 @@
-// Tests of read_gmsh()/read_mesh(): every shared mesh in each Gmsh format, a write/read round trip,
-// and a table of malformed files that must each fail with "file:line: reason".
+// Tests of read_gmsh()/read_mesh(): every repository mesh in each Gmsh format (meshes/README.md), a
+// write/read round trip, and a table of malformed files that must each fail with "file:line: reason".
 #include "core/base/error.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
@@ -19,9 +19,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string shared_mesh(const std::string& rel) {
-  return std::string(TMLAB_SHARED_DIR) + "/data/meshes/" + rel;
-}
+/// A mesh of the repository's meshes/ folder (the SOFA and gmsh-made inputs are in meshes/sources/).
+std::string repo_mesh(const std::string& rel) { return std::string(TMLAB_SOURCE_DIR) + "/meshes/" + rel; }
 
 /// Writes `content` to a fresh file in the test temp directory and returns its path.
 std::string write_temp(const std::string& name, const std::string& content) {
@@ -33,7 +32,7 @@ std::string write_temp(const std::string& name, const std::string& content) {
   return path;
 }
 
-struct SharedMeshCase {
+struct RepoMeshCase {
   const char* file;
   const char* version;
   Index nodes;
@@ -43,12 +42,12 @@ struct SharedMeshCase {
   long skipped;
 };
 
-class SharedMeshes : public testing::TestWithParam<SharedMeshCase> {};
+class RepoMeshFiles : public testing::TestWithParam<RepoMeshCase> {};
 
-TEST_P(SharedMeshes, CountsMatchDataReadme) {
-  const SharedMeshCase& c = GetParam();
-  const std::string path = shared_mesh(c.file);
-  if (!fs::exists(path)) GTEST_SKIP() << "shared data not available: " << path;
+TEST_P(RepoMeshFiles, CountsMatchMeshesReadme) {
+  const RepoMeshCase& c = GetParam();
+  const std::string path = repo_mesh(c.file);
+  ASSERT_TRUE(fs::exists(path)) << "missing " << path;
   GmshReadInfo info;
   const Mesh mesh = read_gmsh(path, &info);
   EXPECT_EQ(info.format_version, c.version);
@@ -62,28 +61,29 @@ TEST_P(SharedMeshes, CountsMatchDataReadme) {
   EXPECT_EQ(mesh.triangle_physical.size(), mesh.triangles.size());
   EXPECT_EQ(mesh.source, path);
   const MeshReport report = analyse_mesh(mesh);
-  EXPECT_TRUE(report.inverted.empty()) << c.file;  // the data README: no mesh has an inverted tet
+  EXPECT_TRUE(report.inverted.empty()) << c.file;  // meshes/README.md: no mesh has an inverted tet
   EXPECT_TRUE(report.degenerate.empty()) << c.file;
   EXPECT_GT(report.q_min, 0.05) << c.file;
   EXPECT_EQ(report.num_unused_points, 0) << c.file;
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    AllFormats, SharedMeshes,
-    testing::Values(SharedMeshCase{"sofa/liver.msh", "1", 181, 596, 0, 0, 0},
-                    SharedMeshCase{"sofa/liver2.msh", "1", 507, 1493, 860, 0, 71},
-                    SharedMeshCase{"sofa/cylinder.msh", "1", 510, 2430, 0, 0, 0},
-                    SharedMeshCase{"sofa/cylinder_8x30x6.msh", "1", 1446, 6750, 0, 0, 0},
-                    SharedMeshCase{"sofa/truthcylinder1.msh", "1", 642, 2524, 706, 0, 72},
-                    SharedMeshCase{"sofa/cube_low_res.msh", "2.2", 26, 44, 0, 0, 0},
-                    SharedMeshCase{"sofa/msh4_cube.msh", "4.1", 14, 24, 24, 8, 12},
-                    SharedMeshCase{"generated/block_indentation.msh", "2.2", 759, 3120, 572, 0, 0},
-                    SharedMeshCase{"generated/cylinder_sample.msh", "2.2", 1142, 4789, 1376, 0, 0},
-                    SharedMeshCase{"generated/liver2_remesh_740n_2704t.msh", "2.2", 740, 2704, 0, 0, 0}));
+    AllFormats, RepoMeshFiles,
+    testing::Values(RepoMeshCase{"sources/sofa/liver.msh", "1", 181, 596, 0, 0, 0},
+                    RepoMeshCase{"sources/sofa/liver2.msh", "1", 507, 1493, 860, 0, 71},
+                    RepoMeshCase{"sources/sofa/cylinder.msh", "1", 510, 2430, 0, 0, 0},
+                    RepoMeshCase{"sources/sofa/cylinder_8x30x6.msh", "1", 1446, 6750, 0, 0, 0},
+                    RepoMeshCase{"sources/sofa/truthcylinder1.msh", "1", 642, 2524, 706, 0, 72},
+                    RepoMeshCase{"sources/sofa/cube_low_res.msh", "2.2", 26, 44, 0, 0, 0},
+                    RepoMeshCase{"sources/sofa/msh4_cube.msh", "4.1", 14, 24, 24, 8, 12},
+                    RepoMeshCase{"block_indentation.msh", "2.2", 759, 3120, 572, 0, 0},
+                    RepoMeshCase{"cylinder_sample.msh", "2.2", 1142, 4789, 1376, 0, 0},
+                    RepoMeshCase{"sources/generated/liver2_remesh_740n_2704t.msh", "2.2", 740, 2704, 0, 0,
+                                 0}));
 
 TEST(GmshReader, Liver2KeepsNonContiguousFileIds) {
-  const std::string path = shared_mesh("sofa/liver2.msh");
-  if (!fs::exists(path)) GTEST_SKIP();
+  const std::string path = repo_mesh("sources/sofa/liver2.msh");
+  ASSERT_TRUE(fs::exists(path)) << "missing " << path;
   const Mesh mesh = read_gmsh(path);
   ASSERT_EQ(mesh.num_points(), 507);
   EXPECT_EQ(mesh.point_file_ids.front(), 2);
@@ -97,8 +97,8 @@ TEST(GmshReader, Liver2KeepsNonContiguousFileIds) {
 }
 
 TEST(GmshReader, BlockIndentationPhysicalGroups) {
-  const std::string path = shared_mesh("generated/block_indentation.msh");
-  if (!fs::exists(path)) GTEST_SKIP();
+  const std::string path = repo_mesh("block_indentation.msh");
+  ASSERT_TRUE(fs::exists(path)) << "missing " << path;
   const Mesh mesh = read_gmsh(path);
   ASSERT_EQ(mesh.groups.size(), 3u);
   EXPECT_EQ(mesh.groups[0].dim, 2);
@@ -164,8 +164,8 @@ TEST(GmshReader, Format41PhysicalTagsFromEntities) {
 }
 
 TEST(GmshReader, WriteReadRoundTripIsExact) {
-  const std::string path = shared_mesh("generated/block_indentation.msh");
-  if (!fs::exists(path)) GTEST_SKIP();
+  const std::string path = repo_mesh("block_indentation.msh");
+  ASSERT_TRUE(fs::exists(path)) << "missing " << path;
   const Mesh a = read_gmsh(path);
   const std::string out = write_temp("roundtrip.msh", "");
   write_gmsh22(a, out);
@@ -185,10 +185,9 @@ TEST(GmshReader, WriteReadRoundTripIsExact) {
 }
 
 TEST(GmshReader, ReadMeshDispatchesOnExtension) {
-  const std::string path = shared_mesh("sofa/liver.msh");
-  if (fs::exists(path)) {
-    EXPECT_EQ(read_mesh(path).num_tets(), 596);
-  }
+  const std::string path = repo_mesh("sources/sofa/liver.msh");
+  ASSERT_TRUE(fs::exists(path)) << "missing " << path;
+  EXPECT_EQ(read_mesh(path).num_tets(), 596);
   const std::string upper = write_temp("CUBE.MSH",
                                        "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n0\n$EndNodes\n"
                                        "$Elements\n0\n$EndElements\n");
@@ -226,9 +225,9 @@ TEST(GmshReader, SkipsUnknownSectionsAndCrLf) {
 TEST(GmshReader, EveryTruncationIsAnError) {
   // Cutting a file anywhere before its final $EndElements must give tmlab::Error, never a crash or
   // a silently shorter mesh.
-  for (const char* rel : {"sofa/msh4_cube.msh", "sofa/cube_low_res.msh"}) {
-    const std::string path = shared_mesh(rel);
-    if (!fs::exists(path)) GTEST_SKIP();
+  for (const char* rel : {"sources/sofa/msh4_cube.msh", "sources/sofa/cube_low_res.msh"}) {
+    const std::string path = repo_mesh(rel);
+    ASSERT_TRUE(fs::exists(path)) << "missing " << path;
     std::ifstream in(path, std::ios::binary);
     const std::string full((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::size_t complete = full.rfind("$EndElements") + std::string("$EndElements").size();

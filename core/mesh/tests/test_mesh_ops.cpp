@@ -223,8 +223,8 @@ TEST(NodeSelector, SelectsOutwardFaces) {
 }
 
 TEST(NodeSelector, FileTrianglesOfBlockIndentationAreOrientedOutward) {
-  const std::string path = std::string(TMLAB_SHARED_DIR) + "/data/meshes/generated/block_indentation.msh";
-  if (!std::filesystem::exists(path)) GTEST_SKIP();
+  const std::string path = std::string(TMLAB_SOURCE_DIR) + "/meshes/block_indentation.msh";
+  ASSERT_TRUE(std::filesystem::exists(path)) << "missing " << path;
   const Mesh m = read_gmsh(path);
   const std::vector<Tri> top = select_faces(m, NodeSelector::from_json(json::parse(R"({"group": "top"})")));
   const std::vector<Tri> bottom = select_faces(m, NodeSelector::from_json(json::parse(R"({"group": 2})")));

@@ -4,7 +4,7 @@
 
 #include "core/base/error.hpp"
 #include "core/results/series_names.hpp"
-#include "core/results/tests/scratch_dir.hpp"
+#include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -16,9 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class RecorderTest : public tmlab::testing::ScratchDirTest {
+class RecorderTest : public tmlab::testing::TempDirTest {
  protected:
-  RecorderTest() : ScratchDirTest("tmlab_recorder_") {}
+  const std::filesystem::path& root_ = dir_;  // where each test puts its files
 };
 
 /// Two steps of a run with one condition ("base") and one probe ("tip" at node 7).

@@ -4,7 +4,7 @@
 
 #include "core/base/error.hpp"
 #include "core/results/recorder.hpp"
-#include "core/results/tests/scratch_dir.hpp"
+#include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,9 +25,9 @@ struct FakeStep {
   double energy = 0.0;
 };
 
-class ResultCompareTest : public tmlab::testing::ScratchDirTest {
+class ResultCompareTest : public tmlab::testing::TempDirTest {
  protected:
-  ResultCompareTest() : ScratchDirTest("tmlab_compare_") {}
+  const std::filesystem::path& root_ = dir_;  // where each test puts its files
 
   /// A complete result directory (summary.json, displacement.h5, timeseries.h5) of the steps.
   fs::path write_run(const std::string& name, const std::vector<std::string>& conditions,

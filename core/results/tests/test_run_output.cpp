@@ -2,13 +2,12 @@
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/results/run_output.hpp"
-#include "core/results/tests/scratch_dir.hpp"
+#include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include <sys/wait.h>
@@ -18,18 +17,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
+using tmlab::testing::read_file;
+using tmlab::testing::write_file;
 
-void spit(const fs::path& p, const std::string& text) { std::ofstream(p, std::ios::binary) << text; }
-
-class RunOutputTest : public tmlab::testing::ScratchDirTest {
+class RunOutputTest : public tmlab::testing::TempDirTest {
  protected:
-  RunOutputTest() : ScratchDirTest("tmlab_run_") {}
+  const fs::path& root_ = dir_;  // where each test puts its result directories
 };
 
 TEST_F(RunOutputTest, FinalizeMovesFilesAndWritesSummaryLast) {
@@ -40,7 +33,7 @@ TEST_F(RunOutputTest, FinalizeMovesFilesAndWritesSummaryLast) {
     EXPECT_TRUE(fs::is_directory(dir / ".incomplete"));
     const fs::path vtu = out.file("steps/step_000001.vtu");
     EXPECT_EQ(vtu, dir / ".incomplete" / "steps" / "step_000001.vtu");
-    spit(vtu, "<VTKFile/>");
+    write_file(vtu, "<VTKFile/>");
     out.write_json("manifest.json", {{"a", 1}});
     EXPECT_FALSE(fs::exists(dir / "manifest.json"));  // staged, not in place yet
     EXPECT_FALSE(fs::exists(dir / "summary.json"));
@@ -52,7 +45,7 @@ TEST_F(RunOutputTest, FinalizeMovesFilesAndWritesSummaryLast) {
   EXPECT_FALSE(fs::exists(dir / ".incomplete"));
   EXPECT_FALSE(fs::exists(dir / "RUNNING"));
   EXPECT_FALSE(fs::exists(dir / "FAILED"));
-  const auto summary = nlohmann::json::parse(slurp(dir / "summary.json"));
+  const auto summary = nlohmann::json::parse(read_file(dir / "summary.json"));
   EXPECT_EQ(summary["steps"], 12);
   EXPECT_EQ(summary["status"], "complete");
   EXPECT_EQ(summary["files"], (nlohmann::json{"manifest.json", "steps"}));
@@ -64,7 +57,7 @@ TEST_F(RunOutputTest, ExceptionBeforeFinalizeLeavesFailedAndNoSummary) {
   const fs::path dir = root_ / "diverges";
   try {
     tmlab::RunOutput out(dir);
-    spit(out.file("u.vtu"), "partial");
+    write_file(out.file("u.vtu"), "partial");
     throw tmlab::Error("step 17: element 4 inverted");
   } catch (const tmlab::Error&) {
   }
@@ -73,7 +66,7 @@ TEST_F(RunOutputTest, ExceptionBeforeFinalizeLeavesFailedAndNoSummary) {
   EXPECT_FALSE(fs::exists(dir / "u.vtu"));                 // never moved into place
   EXPECT_TRUE(fs::exists(dir / ".incomplete" / "u.vtu"));  // kept for inspection
   ASSERT_TRUE(fs::exists(dir / "FAILED"));
-  EXPECT_NE(slurp(dir / "FAILED").find("exception"), std::string::npos) << slurp(dir / "FAILED");
+  EXPECT_NE(read_file(dir / "FAILED").find("exception"), std::string::npos) << read_file(dir / "FAILED");
 }
 
 TEST_F(RunOutputTest, ExplicitFailRecordsTheMessage) {
@@ -88,7 +81,7 @@ TEST_F(RunOutputTest, ExplicitFailRecordsTheMessage) {
     }
   } catch (const tmlab::Error&) {
   }
-  EXPECT_NE(slurp(dir / "FAILED").find("mesh.msh:12: bad node"), std::string::npos);
+  EXPECT_NE(read_file(dir / "FAILED").find("mesh.msh:12: bad node"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
 }
 
@@ -96,7 +89,7 @@ TEST_F(RunOutputTest, RerunClearsPreviousResultFirst) {
   const fs::path dir = root_ / "rerun";
   {
     tmlab::RunOutput out(dir);
-    spit(out.file("old.txt"), "old");
+    write_file(out.file("old.txt"), "old");
     out.finalize();
   }
   ASSERT_TRUE(fs::exists(dir / "summary.json"));
@@ -119,7 +112,7 @@ TEST_F(RunOutputTest, RerunClearsPreviousResultFirst) {
 TEST_F(RunOutputTest, RefusesForeignDirectoryAndBadNames) {
   const fs::path dir = root_ / "home";
   fs::create_directories(dir);
-  spit(dir / "thesis.tex", "precious");
+  write_file(dir / "thesis.tex", "precious");
   EXPECT_THROW(tmlab::RunOutput out(dir), tmlab::Error);
   EXPECT_TRUE(fs::exists(dir / "thesis.tex"));
 
@@ -134,7 +127,7 @@ TEST_F(RunOutputTest, SecondWriterIsRefusedAndNamesTheFirst) {
   const fs::path dir = root_ / "busy";
   {
     tmlab::RunOutput first(dir);
-    spit(first.file("a.txt"), "first");
+    write_file(first.file("a.txt"), "first");
     try {
       tmlab::RunOutput second(dir);
       FAIL() << "a second writer was accepted";
@@ -148,7 +141,7 @@ TEST_F(RunOutputTest, SecondWriterIsRefusedAndNamesTheFirst) {
     EXPECT_FALSE(fs::exists(dir / "FAILED"));
     first.finalize();
   }
-  EXPECT_EQ(slurp(dir / "a.txt"), "first");
+  EXPECT_EQ(read_file(dir / "a.txt"), "first");
   EXPECT_FALSE(fs::exists(dir / "FAILED"));
   // Released with the first: a new run may start.
   tmlab::RunOutput again(dir);
@@ -193,8 +186,9 @@ TEST_F(RunOutputTest, StaleRunningMarkerIsReportedAndCleared) {
   // A process killed with SIGKILL leaves RUNNING and .incomplete/ but no lock.
   const fs::path dir = root_ / "stale";
   fs::create_directories(dir / ".incomplete");
-  spit(dir / "RUNNING", R"({"pid": 999999, "hostname": "gone", "started_utc": "2026-01-01T00:00:00Z"})");
-  spit(dir / ".incomplete" / "half.h5", "half");
+  write_file(dir / "RUNNING",
+             R"({"pid": 999999, "hostname": "gone", "started_utc": "2026-01-01T00:00:00Z"})");
+  write_file(dir / ".incomplete" / "half.h5", "half");
   std::ostringstream log;
   tmlab::RunOutput out(dir, &log);
   EXPECT_NE(log.str().find("stale RUNNING marker (pid 999999 on gone"), std::string::npos) << log.str();
@@ -207,7 +201,7 @@ TEST_F(RunOutputTest, InterruptLeavesInterruptedNotFailed) {
   const fs::path dir = root_ / "stopped";
   try {
     tmlab::RunOutput out(dir);
-    spit(out.file("timeseries.h5"), "partial");
+    write_file(out.file("timeseries.h5"), "partial");
     try {
       throw tmlab::Interrupted(2, "SIGINT received at t = 0.5 s (step 5 of 10)");
     } catch (const std::exception& e) {
@@ -218,7 +212,7 @@ TEST_F(RunOutputTest, InterruptLeavesInterruptedNotFailed) {
   } catch (const tmlab::Interrupted&) {
   }
   ASSERT_TRUE(fs::exists(dir / "INTERRUPTED"));
-  EXPECT_NE(slurp(dir / "INTERRUPTED").find("step 5 of 10"), std::string::npos);
+  EXPECT_NE(read_file(dir / "INTERRUPTED").find("step 5 of 10"), std::string::npos);
   EXPECT_FALSE(fs::exists(dir / "FAILED"));
   EXPECT_FALSE(fs::exists(dir / "RUNNING"));
   EXPECT_FALSE(fs::exists(dir / "summary.json"));
@@ -236,7 +230,7 @@ TEST_F(RunOutputTest, ResumeKeepsTheStagedFilesOfAnInterruptedRun) {
   EXPECT_THROW(tmlab::RunOutput(dir, nullptr, Previous::ResumeInterrupted), tmlab::Error);
   try {
     tmlab::RunOutput out(dir);
-    spit(out.file("part-1/summary.json"), "{}");
+    write_file(out.file("part-1/summary.json"), "{}");
     out.abandon(tmlab::Interrupted(2, "SIGINT received"));
   } catch (const tmlab::Interrupted&) {
   }
@@ -245,7 +239,7 @@ TEST_F(RunOutputTest, ResumeKeepsTheStagedFilesOfAnInterruptedRun) {
     tmlab::RunOutput resumed(dir, nullptr, Previous::ResumeInterrupted);
     EXPECT_FALSE(fs::exists(dir / "INTERRUPTED"));
     EXPECT_TRUE(fs::exists(resumed.file("part-1/summary.json")));  // kept for reuse
-    spit(resumed.file("part-2/summary.json"), "{}");
+    write_file(resumed.file("part-2/summary.json"), "{}");
     resumed.finalize();
   }
   EXPECT_TRUE(fs::exists(dir / "part-1" / "summary.json"));
@@ -261,7 +255,7 @@ TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
   const fs::path dir = root_ / "swap";
   {
     tmlab::RunOutput out(dir);
-    spit(out.file("x.txt"), "x");
+    write_file(out.file("x.txt"), "x");
     out.finalize();
   }
   // Only the result is left in the parent: no staging tree, no lock file.
@@ -269,7 +263,7 @@ TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
   for (const auto& e : fs::directory_iterator(root_)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"swap"}));
-  EXPECT_EQ(slurp(dir / "x.txt"), "x");
+  EXPECT_EQ(read_file(dir / "x.txt"), "x");
 }
 
 TEST(ResultNames, SafeCharactersOnly) {
@@ -287,7 +281,7 @@ TEST(ResultNames, SafeCharactersOnly) {
 
 TEST_F(RunOutputTest, ManifestRecordsBuildInputsAndTimes) {
   const fs::path input = root_ / "mesh.msh";
-  spit(input, "a");
+  write_file(input, "a");
   tmlab::ManifestInput in;
   in.command_line = tmlab::command_line(2, std::array<const char*, 2>{"tmlab", "run"}.data());
   in.config = {{"dt", 1e-3}};

@@ -1,5 +1,5 @@
-// One test per printed error of the seed paper's tensor-mass equations (seed-errata.md, eqs. 3, 5,
-// 6): each shows that the PRINTED form disagrees with the total-Lagrangian oracle (or with the
+// One test per printed error of the seed paper's tensor-mass equations (docs/theory/seed-errata.md,
+// eqs. 3, 5, 6): each shows that the PRINTED form disagrees with the total-Lagrangian oracle (or with the
 // definition of E and nu) and that the corrected form agrees. The printed forms live here, as
 // test-local code, never in the library.
 #include "tensormass/kernels/tl_oracle.hpp"

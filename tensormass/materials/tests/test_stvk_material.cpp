@@ -20,7 +20,7 @@ Mat3 random_sym(std::mt19937& rng, double s) {
 
 TEST(StVK, LameFromYoungPoissonCorrectedMu) {
   const auto m = StVenantKirchhoff::from_young_poisson(3000.0, 0.45);
-  EXPECT_NEAR(m.mu, 3000.0 / (2.0 * 1.45), 1e-12);  // errata eq. 5
+  EXPECT_NEAR(m.mu, 3000.0 / (2.0 * 1.45), 1e-12);  // docs/theory/seed-errata.md, eq. 5
   EXPECT_NEAR(m.lambda, 3000.0 * 0.45 / (1.45 * 0.1), 1e-9);
   EXPECT_NEAR(m.young(), 3000.0, 1e-9);
   EXPECT_NEAR(m.poisson(), 0.45, 1e-14);

@@ -77,8 +77,8 @@ TEST(HereditaryIntegral, ScalarConvolutionMatchesClosedFormAndHermiteHistoryIsFo
               errs[0], errs[1], errs[2], errs[3], order);
   EXPECT_NEAR(order, 4.0, 0.3);
 
-  // A history starting with a jump X_e(0+) = 1, then constant: h = exp(-t/tau) (errata eq. 11's r(t)
-  // X_e(0+)).
+  // A history starting with a jump X_e(0+) = 1, then constant: h = exp(-t/tau) (the r(t) X_e(0+) of
+  // docs/theory/seed-errata.md, eq. 11).
   StoredHistory jump(1);
   jump.add(0.0, VecX::Ones(1), VecX::Zero(1));
   jump.add(0.5, VecX::Ones(1), VecX::Zero(1));

@@ -1,5 +1,6 @@
-// PronySeries: the two conventions (seed eq. 10 long-term, eq. 24 instantaneous; errata row "10 vs 24"),
-// the relaxation function, validation messages and the strict JSON form.
+// PronySeries: the two conventions (seed eq. 10 long-term, eq. 24 instantaneous;
+// docs/theory/seed-errata.md row "10 vs 24"), the relaxation function, validation messages and the
+// strict JSON form.
 #include "core/base/error.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 

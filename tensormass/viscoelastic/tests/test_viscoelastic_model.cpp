@@ -1,7 +1,7 @@
-// ViscoelasticStVK (seed eqs. 9-21 corrected, errata "Flaws" 1-2): closed-form relaxation and creep
-// of a homogeneous cube with observed orders in dt, objectivity under a rigid rotation, volume
-// creep (full) vs none (deviatoric), trial/commit semantics, dissipation >= 0, bit-for-bit elastic
-// limit, force = d(trial potential)/du and tangent = d(force)/du. Numbers quoted in
+// ViscoelasticStVK (seed eqs. 9-21 corrected, docs/theory/seed-errata.md "Flaws" 1-2): closed-form
+// relaxation and creep of a homogeneous cube with observed orders in dt, objectivity under a rigid
+// rotation, volume creep (full) vs none (deviatoric), trial/commit semantics, dissipation >= 0,
+// bit-for-bit elastic limit, force = d(trial potential)/du and tangent = d(force)/du. Numbers quoted in
 // docs/theory/viscoelasticity.md come from the RecordProperty / printed lines of these tests.
 #include "core/base/error.hpp"
 #include "core/mesh/mesh_generator.hpp"
