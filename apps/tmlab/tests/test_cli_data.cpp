@@ -20,9 +20,8 @@ using tmlab::cli_test::slurp;
 const fs::path kPhantomA1 =
     fs::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" / "EF10_0T_A1.csv";
 
-class CliData : public tmlab::cli_test::TempDirTest {
+class CliData : public tmlab::testing::TempDirTest {
  protected:
-  CliData() : TempDirTest("tmlab_cli_data_") {}
   Result tmlab(const std::vector<std::string>& args) const { return run_argv(args, dir_ / "log.txt"); }
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name, std::ios::binary) << text;

@@ -13,10 +13,7 @@ namespace fs = std::filesystem;
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
 
-class CliRig : public tmlab::cli_test::TempDirTest {
- protected:
-  CliRig() : TempDirTest("tmlab_cli_rig_") {}
-};
+using CliRig = tmlab::testing::TempDirTest;
 
 TEST_F(CliRig, UnconfinedRigRunsAndReportsThePlatenForce) {
   const Result w =
