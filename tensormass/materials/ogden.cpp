@@ -5,6 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <sstream>
