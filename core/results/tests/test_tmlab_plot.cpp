@@ -2,6 +2,8 @@
 // clearly on a missing dataset. Skipped when no python3 with matplotlib and h5py is found.
 #include "core/io/hdf5_file.hpp"
 
+#include "core/base/process.hpp"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -16,29 +18,21 @@ namespace fs = std::filesystem;
 
 namespace {
 
-int run(const std::string& command) {
-  const int status = std::system(command.c_str());
-  return (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
-}
-
-/// The first python3 that imports matplotlib and h5py: $TMLAB_PYTHON, python3 on PATH, then the
-/// system one (a pyenv python3 on PATH may lack them). Empty when none does.
-std::string find_python() {
-  std::vector<std::string> candidates;
-  if (const char* env = std::getenv("TMLAB_PYTHON")) candidates.emplace_back(env);
-  candidates.emplace_back("python3");
-  candidates.emplace_back("/usr/bin/python3");
-  for (const std::string& py : candidates) {
-    if (run("'" + py + "' -c 'import matplotlib, h5py' >/dev/null 2>&1") == 0) return py;
-  }
-  return "";
+/// True when the python3 the plots use (tmlab::python_interpreter(), the one lookup) imports
+/// matplotlib and h5py.
+bool python_has_plotting() {
+  return tmlab::run_process({tmlab::python_interpreter(), "-c", "import matplotlib, h5py"},
+                            tmlab::ProcessOutput::discard())
+      .ok();
 }
 
 class TmlabPlotTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    python_ = find_python();
-    if (python_.empty()) GTEST_SKIP() << "no python3 with matplotlib and h5py";
+    if (!python_has_plotting()) {
+      GTEST_SKIP() << tmlab::python_interpreter()
+                   << " lacks matplotlib or h5py (apt-get install python3-matplotlib python3-h5py)";
+    }
     dir_ = fs::temp_directory_path() / ("tmlab_plot_" + std::to_string(::getpid()));
     fs::remove_all(dir_);
     fs::create_directories(dir_);
@@ -57,9 +51,10 @@ class TmlabPlotTest : public ::testing::Test {
     if (!dir_.empty()) fs::remove_all(dir_);
   }
   int plot() const {
-    const std::string script = std::string(TMLAB_SOURCE_DIR) + "/core/results/python/tmlab_plot.py";
-    return run("'" + python_ + "' '" + script + "' '" + dir_.string() + "' >'" + (dir_ / "log.txt").string() +
-               "' 2>&1");
+    const fs::path script = fs::path(TMLAB_SOURCE_DIR) / "core/results/python/tmlab_plot.py";
+    const tmlab::ProcessStatus st =
+        tmlab::run_python(script, {dir_.string()}, tmlab::ProcessOutput::to_file(dir_ / "log.txt"));
+    return st.started && st.signal == 0 ? st.exit_code : -1;
   }
   std::string log() const {
     std::ifstream in(dir_ / "log.txt");
@@ -67,7 +62,6 @@ class TmlabPlotTest : public ::testing::Test {
     ss << in.rdbuf();
     return ss.str();
   }
-  std::string python_;
   fs::path dir_;
 };
 
