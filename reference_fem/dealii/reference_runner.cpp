@@ -112,7 +112,7 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
         cfg.file +
         ": key 'material.viscoelastic': the deal.II reference implements only the objective "
         "form (history on the PK2 stress, 'history': 'pk2' or 'scheme': 'objective'); the seed's "
-        "nodal_force history is not objective (docs/seed-errata.md) and has no continuum counterpart");
+        "nodal_force history is not objective (docs/theory/seed-errata.md) and has no continuum counterpart");
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
   if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
