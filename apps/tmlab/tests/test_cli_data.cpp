@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
-using tmlab::cli_test::slurp;
+using tmlab::testing::read_file;
 
 const fs::path kPhantomA1 =
     fs::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" / "EF10_0T_A1.csv";
@@ -39,7 +39,7 @@ TEST_F(CliData, ConvertThenShowThePhantom) {
             std::string::npos)
       << c.output;
   EXPECT_NE(c.output.find("1202 samples"), std::string::npos) << c.output;
-  const std::string meta = slurp(dir_ / "conv" / "EF10_0T_A1.json");
+  const std::string meta = read_file(dir_ / "conv" / "EF10_0T_A1.json");
   EXPECT_NE(meta.find("\"license\": \"CC-BY-4.0\""), std::string::npos) << meta;
   EXPECT_NE(meta.find("Dawood A.B."), std::string::npos) << meta;
 
@@ -55,7 +55,7 @@ TEST_F(CliData, ConvertThenShowThePhantom) {
   EXPECT_NE(s.output.find("licence: CC-BY-4.0"), std::string::npos) << s.output;
   const fs::path png = dir_ / "show" / "EF10_0T_A1.png";
   ASSERT_TRUE(fs::exists(png)) << s.output;
-  EXPECT_EQ(slurp(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  EXPECT_EQ(read_file(png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   EXPECT_GT(fs::file_size(png), 10000u);
   EXPECT_FALSE(fs::exists(dir_ / "show" / "EF10_0T_A1_plot.json"));  // the plot's input is removed
 }
