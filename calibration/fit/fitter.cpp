@@ -204,7 +204,7 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
   for (std::size_t j = 0; j < ev.p(); ++j) gsl_vector_set(x, j, t0[j]);
   gsl_multifit_nlinear_init(x, &fdf, w);
   int info = 0;
-  const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), 1e-10, 1e-10, 1e-12,
+  const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), 1e-9, 1e-9, 1e-12,
                                                  gsl_callback, &g, &info, w);
   Local out;
   const gsl_vector* xf = gsl_multifit_nlinear_position(w);
@@ -440,8 +440,12 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
     res.profile.parameter = q.name;
     // The grid in the internal coordinate: the optimum +- c SE_t (SE_t capped so the grid stays finite).
     double se_t = std::sqrt(std::max(Ct(Eigen::Index(worst), Eigen::Index(worst)), 0.0));
-    if (!std::isfinite(se_t) || se_t > 5.0) se_t = 5.0;
-    if (se_t < 1e-12) se_t = 1e-12;
+    // In log/logit coordinates +-3 x 5 spans any physical range; an identity coordinate keeps its
+    // units, so a non-identifiable one gets a grid of +-3 |x| instead.
+    if (q.transform() != Transform::Identity && (!std::isfinite(se_t) || se_t > 5.0)) se_t = 5.0;
+    if (q.transform() == Transform::Identity && !std::isfinite(se_t))
+      se_t = std::max(std::abs(t[worst]), 1.0);
+    if (se_t < 1e-12 * std::max(1.0, std::abs(t[worst]))) se_t = 1e-12 * std::max(1.0, std::abs(t[worst]));
     const std::vector<double> cs = {-3, -2, -1.5, -1, -0.5, 0, 0.5, 1, 1.5, 2, 3};
     Evaluator sub = ev;
     sub.free.clear();
