@@ -135,6 +135,13 @@ TEST(Fitter, ResultsDoNotDependOnTheThreadCount) {
   }
   EXPECT_EQ(a.forward_solves, b.forward_solves);
   EXPECT_EQ(a.sse, b.sse);
+  // Geodesic acceleration reaches the same optimum.
+  FitOptions g;
+  g.geodesic = true;
+  const FitResult c = fit(p, g);
+  for (std::size_t i = 0; i < a.parameters.size(); ++i)
+    EXPECT_NEAR(c.parameters[i].value, a.parameters[i].value, 1e-4 * std::abs(a.parameters[i].value))
+        << a.parameters[i].name;
 }
 
 TEST(Fitter, RecoversMooneyRivlinFromCompressionWithBothCosts) {
