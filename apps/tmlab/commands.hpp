@@ -39,5 +39,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
 int cmd_rig(const std::vector<std::string>& args);
 // Measured data sets (cmd_data.cpp, docs/measured-data.md).
 int cmd_data(const std::vector<std::string>& args);
+// Inverse identification (cmd_fit.cpp, docs/identification.md).
+int cmd_fit(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

@@ -75,6 +75,12 @@ void print_usage(std::ostream& os) {
         "      [--steps-per-segment N] [--model M]\n"
         "                            a test rig as DIR/NAME.msh + DIR/NAME.json, an ordinary case\n"
         "                            file for tmlab run / compare (docs/rigs.md)\n"
+        "  fit DATA.csv --model SPEC [--out DIR] [--fix NAME=VALUE ...] [--weight TEST=W ...]\n"
+        "      [--cost least_squares|l1] [--starts N] [--threads N] [--seed N] [--geodesic]\n"
+        "      [--no-profile] [--no-plots] [--quiet]\n"
+        "                            fit a law to tmlab-measured/1 data with error bars; SPEC is\n"
+        "                            LAW[:N][+prony:M][,NAME=VALUE...], e.g. ogden:2,poisson=0.49;\n"
+        "                            results/fit/NAME-LAW/ (fit.json, fit.h5, PNG; docs/identification.md)\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -116,6 +122,7 @@ int main(int argc, char** argv) {
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);
+    if (cmd == "fit") return tmlab::cli::cmd_fit(args, command_line);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

@@ -1,0 +1,248 @@
+// tmlab fit DATA.csv --model SPEC: inverse identification (issue 14; docs/identification.md). Thin:
+// tmlab::fit does the work; this file reads the options, writes fit.json, fit.h5, the plots and the
+// manifest through the result protocol (a failed fit leaves FAILED, never a complete-looking result).
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "calibration/data/measured_data.hpp"
+#include "calibration/fit/fitter.hpp"
+#include "calibration/fit/surrogates.hpp"
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/base/process.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "core/results/run_output.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+/// "NAME=VALUE" of --fix / --weight.
+std::pair<std::string, double> name_value(const std::string& option, const std::string& s) {
+  const std::size_t eq = s.find('=');
+  if (eq == std::string::npos || eq == 0) throw UsageError(option + " needs NAME=VALUE, got '" + s + "'");
+  return {s.substr(0, eq), parse_double(option + " " + s.substr(0, eq), s.substr(eq + 1))};
+}
+
+/// A JSON number, or null for infinity / NaN (JSON has neither).
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fit::FitOptions& o,
+                       const fit::ModelSpec& spec) {
+  using nlohmann::json;
+  json j;
+  j["model"] = {{"spec", spec.text},
+                {"law", spec.law},
+                {"forward_model", r.model_name},
+                {"description", r.model_description}};
+  j["parameters"] = json::array();
+  for (const auto& p : r.parameters)
+    j["parameters"].push_back({{"name", p.name},
+                               {"value", p.value},
+                               {"unit", p.unit},
+                               {"fixed", p.fixed},
+                               {"transform", p.transform},
+                               {"standard_error", num(p.standard_error)},
+                               {"interval95", {num(p.lower95), num(p.upper95)}},
+                               {"identifiable", p.identifiable}});
+  j["correlation"] = {{"parameters", r.free_names}, {"matrix", r.correlation}};
+  j["cost"] = {{"kind", r.cost_name}, {"value", r.cost}};
+  j["residual_rms_N"] = r.rms;
+  j["residual_rms_percent_of_peak"] = r.rms_percent_peak;
+  j["peak_force_N"] = pr.data.peak_force;
+  j["sse_N2"] = r.sse;
+  j["samples"] = r.n;
+  j["free_parameters"] = r.k;
+  j["aic"] = r.aic;
+  j["bic"] = r.bic;
+  j["forward_solves"] = r.forward_solves;
+  j["wall_seconds"] = r.wall_seconds;
+  j["threads"] = r.threads;
+  j["local_iterations"] = r.iterations;
+  j["stop_reason"] = r.stop_reason;
+  j["global_stage"] = {{"kind", "multi-start"},
+                       {"starts", o.starts},
+                       {"local_runs", o.local_runs},
+                       {"seed", o.seed},
+                       {"start_costs", json::array()}};
+  for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(num(c));
+  j["geodesic_acceleration"] = o.geodesic;
+  j["confounded"] = json::array();
+  for (const auto& c : r.confounded)
+    j["confounded"].push_back({{"a", c.a}, {"b", c.b}, {"correlation", c.correlation}, {"note", c.note}});
+  j["notes"] = r.notes;
+  if (!r.profile.parameter.empty()) {
+    json pts = json::array();
+    for (const auto& q : r.profile.points) pts.push_back({{"value", q.value}, {"sse_N2", num(q.sse)}});
+    j["profile"] = {{"parameter", r.profile.parameter},
+                    {"points", pts},
+                    {"interval95",
+                     {r.profile.lower_found ? num(r.profile.lower95) : json(nullptr),
+                      r.profile.upper_found ? num(r.profile.upper95) : json(nullptr)}},
+                    {"criterion", "n ln(SSE/SSE_min) <= chi2_1(0.95); null: beyond the grid"}};
+  }
+  j["tests"] = json::array();
+  for (std::size_t k = 0; k < pr.data.test_ids.size(); ++k)
+    j["tests"].push_back({{"id", pr.data.test_ids[k]}, {"weight", pr.data.weights[k]}});
+  return j;
+}
+
+}  // namespace
+
+int cmd_fit(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p =
+      parse(args, {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads", "--seed"},
+            {"--geodesic", "--no-plots", "--no-profile", "--quiet"});
+  if (p.positional.size() != 1) throw UsageError("fit needs exactly one DATA.csv");
+  if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
+  const fs::path csv = p.positional[0];
+  const measured::DataSet data = measured::read_data_set(csv);
+  const fit::ModelSpec spec = fit::parse_model_spec(p.get("--model"));
+  std::vector<std::pair<std::string, double>> fixes, weights;
+  for (const auto& s : p.all("--fix")) fixes.push_back(name_value("--fix", s));
+  for (const auto& s : p.all("--weight")) weights.push_back(name_value("--weight", s));
+  fit::FitOptions o;
+  const std::string cost = p.get("--cost", "least_squares");
+  if (cost == "l1")
+    o.cost = fit::Cost::L1;
+  else if (cost != "least_squares")
+    throw UsageError("--cost must be least_squares or l1 (got '" + cost + "')");
+  auto positive_int = [&](const std::string& key, int fallback) {
+    if (!p.has(key)) return fallback;
+    const double v = parse_double(key, p.get(key));
+    if (!(v >= 1.0 && v <= 10000.0 && v == std::floor(v)))
+      throw UsageError(key + " must be a whole number 1..10000");
+    return int(v);
+  };
+  o.starts = positive_int("--starts", o.starts);
+  o.threads = positive_int("--threads", 2);
+  o.seed = (unsigned long)positive_int("--seed", 1);
+  o.geodesic = p.has("--geodesic");
+  o.profile = !p.has("--no-profile");
+  if (!p.has("--quiet"))
+    o.progress = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
+  const fit::Problem problem = fit::make_surrogate_problem(data, spec, fixes, weights);
+
+  std::string law_tag = spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
+                        (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
+  const fs::path dir = p.has("--out")
+                           ? fs::path(p.get("--out"))
+                           : fs::path(tmlab_root()) / "results" / "fit" / (data.meta.name + "-" + law_tag);
+  if (!p.has("--out")) {
+    const std::string why = result_name_problem(data.meta.name + "-" + law_tag);
+    if (!why.empty()) throw Error("fit: result name: " + why);
+  }
+  std::cout << "fit " << data.meta.name << " with " << spec.text << " (" << problem.model->description()
+            << ")\n";
+  RunOutput out(dir, &std::cerr);
+  try {
+    ManifestInput mi;
+    mi.command_line = split_words(command_line);
+    mi.config = {{"model", spec.text},   {"cost", cost},          {"starts", o.starts},
+                 {"threads", o.threads}, {"seed", o.seed},        {"geodesic", o.geodesic},
+                 {"profile", o.profile}, {"fix", p.all("--fix")}, {"weight", p.all("--weight")}};
+    mi.input_files = {csv, measured::metadata_path(csv)};
+    out.write_json("manifest.json", make_manifest(mi));
+    const fit::FitResult r = fit::fit(problem, o);
+    const nlohmann::json fj = to_json(r, problem, o, spec);
+    out.write_json("fit.json", fj);
+    {
+      H5File h5 = H5File::create(out.file("fit.h5").string());
+      std::size_t offset = 0;
+      for (std::size_t k = 0; k < data.tests.size(); ++k) {
+        const measured::Test& t = data.tests[k];
+        char g[32];
+        std::snprintf(g, sizeof g, "/tests/%03zu", k);
+        std::vector<double> model(r.prediction.begin() + long(offset),
+                                  r.prediction.begin() + long(offset + t.size()));
+        std::vector<double> res(t.size());
+        for (std::size_t i = 0; i < t.size(); ++i) res[i] = model[i] - t.force_N[i];
+        h5.write(std::string(g) + "/time_s", t.time_s, {t.size()});
+        h5.write(std::string(g) + "/displacement_m", t.displacement_m, {t.size()});
+        h5.write(std::string(g) + "/force_N", t.force_N, {t.size()});
+        h5.write(std::string(g) + "/model_force_N", model, {t.size()});
+        h5.write(std::string(g) + "/residual_N", res, {t.size()});
+        h5.set_attribute(g, "id", t.id);
+        offset += t.size();
+      }
+      if (!r.profile.points.empty()) {
+        std::vector<double> v, s;
+        for (const auto& q : r.profile.points) {
+          v.push_back(q.value);
+          s.push_back(q.sse);
+        }
+        h5.write("/profile/value", v, {v.size()});
+        h5.write("/profile/sse_N2", s, {s.size()});
+        h5.set_attribute("/profile", "parameter", r.profile.parameter);
+      }
+      std::vector<double> corr;
+      for (const auto& row : r.correlation) corr.insert(corr.end(), row.begin(), row.end());
+      if (!corr.empty()) h5.write("/correlation", corr, {r.correlation.size(), r.correlation.size()});
+      h5.close();
+    }
+    std::string plots = "skipped (--no-plots)";
+    if (!p.has("--no-plots")) {
+      const ProcessStatus ps = run_python(
+          fs::path(tmlab_root()) / "calibration" / "fit" / "python" / "tmlab_fit_plot.py",
+          {out.staging_dir().string(), data.meta.name + ": " + spec.text + " (" + r.model_name + ")"},
+          ProcessOutput::discard());
+      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+      if (!ps.ok()) std::cerr << "tmlab fit: plots " << plots << "\n";
+    }
+    // Report.
+    std::cout << std::left << std::setw(10) << "parameter" << std::right << std::setw(14) << "value"
+              << std::setw(6) << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval"
+              << "\n";
+    for (const auto& q : r.parameters)
+      std::cout << std::left << std::setw(10) << q.name << std::right << std::setw(14)
+                << significant(q.value, 6) << std::setw(6) << q.unit << std::setw(14)
+                << (q.fixed                           ? "fixed"
+                    : std::isfinite(q.standard_error) ? significant(q.standard_error, 3)
+                                                      : "inf")
+                << std::setw(30)
+                << (q.fixed ? "" : "[" + significant(q.lower95, 5) + ", " + significant(q.upper95, 5) + "]")
+                << "\n";
+    std::cout << "cost (" << r.cost_name << ") " << significant(r.cost, 6) << "; residual RMS "
+              << significant(r.rms, 4) << " N = " << significant(r.rms_percent_peak, 3) << " % of peak "
+              << significant(problem.data.peak_force, 5) << " N; AIC " << significant(r.aic, 7) << ", BIC "
+              << significant(r.bic, 7) << "\n"
+              << r.forward_solves << " forward solves on " << r.threads << " threads in "
+              << significant(r.wall_seconds, 3) << " s\n";
+    if (!r.profile.parameter.empty())
+      std::cout << "profile likelihood of " << r.profile.parameter << ": 95 % interval ["
+                << (r.profile.lower_found ? significant(r.profile.lower95, 5) : std::string("beyond grid"))
+                << ", "
+                << (r.profile.upper_found ? significant(r.profile.upper95, 5) : std::string("beyond grid"))
+                << "]\n";
+    for (const auto& c : r.confounded)
+      std::cout << "confounded: " << c.a << " and " << c.b << " (correlation "
+                << significant(c.correlation, 4) << "): " << c.note << "\n";
+    for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
+    nlohmann::json summary = {{"model", spec.text},
+                              {"forward_model", r.model_name},
+                              {"residual_rms_percent_of_peak", r.rms_percent_peak},
+                              {"aic", r.aic},
+                              {"bic", r.bic},
+                              {"forward_solves", r.forward_solves},
+                              {"plots", plots}};
+    out.finalize(summary);
+    std::cout << "written: " << out.dir().string() << "/ (fit.json, fit.h5, manifest.json, summary.json"
+              << (plots == "ok" ? ", fit_*.png" : "") << ")\n";
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  return 0;
+}
+
+}  // namespace tmlab::cli

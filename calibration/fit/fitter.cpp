@@ -1,0 +1,508 @@
+// The fitting engine (fitter.hpp has the method and the equations).
+#include "calibration/fit/fitter.hpp"
+
+#include "calibration/fit/parallel.hpp"
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+
+#include <gsl/gsl_cdf.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_multifit_nlinear.h>
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <numeric>
+#include <random>
+
+namespace tmlab::fit {
+
+std::string to_string(Cost c) { return c == Cost::L1 ? "l1" : "least_squares"; }
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Residuals of a subset of free parameters (internal coordinates) with the others held.
+struct Evaluator {
+  const Problem* problem = nullptr;
+  Cost cost = Cost::LeastSquares;
+  std::vector<std::size_t> free;  ///< indices into problem->parameters
+  std::vector<double> held;       ///< physical values of every parameter (the free ones overwritten)
+  double delta = 0.0;             ///< L1 smoothing
+  std::atomic<long>* solves = nullptr;
+
+  std::size_t n() const { return problem->data.size(); }
+  std::size_t p() const { return free.size(); }
+
+  std::vector<double> physical(const double* t) const {
+    std::vector<double> x = held;
+    for (std::size_t j = 0; j < free.size(); ++j) x[free[j]] = problem->parameters[free[j]].to_physical(t[j]);
+    return x;
+  }
+  /// Weighted force errors w (model - data); false when the model cannot be evaluated.
+  bool errors(const double* t, std::vector<double>& e, std::vector<double>* prediction = nullptr) const {
+    const std::vector<double> x = physical(t);
+    std::vector<double> f;
+    ++*solves;
+    try {
+      f = problem->model->predict(x);
+    } catch (const Error&) {
+      return false;
+    }
+    const Observations& d = problem->data;
+    if (f.size() != d.size()) throw Error("fit: the forward model returned the wrong number of forces");
+    e.resize(d.size());
+    for (std::size_t i = 0; i < d.size(); ++i) {
+      if (!std::isfinite(f[i])) return false;
+      e[i] = d.weights[d.test[i]] * (f[i] - d.force[i]);
+    }
+    if (prediction) *prediction = std::move(f);
+    return true;
+  }
+  /// The residuals the optimiser squares (e for least squares, e / sqrt(|e| + delta) for L1).
+  void to_residuals(std::vector<double>& e) const {
+    if (cost == Cost::L1)
+      for (double& v : e) v = v / std::sqrt(std::abs(v) + delta);
+  }
+  double cost_of(const std::vector<double>& e) const {
+    double c = 0.0;
+    for (const double v : e) c += cost == Cost::L1 ? std::abs(v) : v * v;
+    return c;
+  }
+  /// The residual vector used for a failed evaluation: large, so the trial step is rejected.
+  double failure_value() const { return 1e6 * (problem->data.peak_force + 1.0); }
+};
+
+struct Local {
+  std::vector<double> t;
+  double cost = kInf;
+  int iterations = 0;
+  std::string reason;
+};
+
+struct GslData {
+  const Evaluator* ev = nullptr;
+  int threads = 1;
+  std::vector<double> last_t, last_r;
+  bool last_ok = false;
+  const FitOptions* options = nullptr;
+  bool report = false;
+};
+
+int gsl_f(const gsl_vector* x, void* params, gsl_vector* f) {
+  auto* g = static_cast<GslData*>(params);
+  const Evaluator& ev = *g->ev;
+  std::vector<double> t(x->data, x->data + ev.p()), e;
+  for (std::size_t j = 0; j < ev.p(); ++j) t[j] = gsl_vector_get(x, j);
+  const bool ok = ev.errors(t.data(), e);
+  if (ok) ev.to_residuals(e);
+  for (std::size_t i = 0; i < ev.n(); ++i) gsl_vector_set(f, i, ok ? e[i] : ev.failure_value());
+  g->last_t = t;
+  g->last_r = ok ? e : std::vector<double>(ev.n(), ev.failure_value());
+  g->last_ok = ok;
+  return GSL_SUCCESS;
+}
+
+/// Forward-difference Jacobian in the internal coordinates, one column per forward solve, the
+/// columns in parallel.
+int gsl_df(const gsl_vector* x, void* params, gsl_matrix* J) {
+  auto* g = static_cast<GslData*>(params);
+  const Evaluator& ev = *g->ev;
+  std::vector<double> t(ev.p());
+  for (std::size_t j = 0; j < ev.p(); ++j) t[j] = gsl_vector_get(x, j);
+  if (t != g->last_t) {
+    gsl_vector* f = gsl_vector_alloc(ev.n());
+    gsl_f(x, params, f);
+    gsl_vector_free(f);
+  }
+  const std::vector<double> r0 = g->last_r;
+  std::vector<std::vector<double>> cols(ev.p());
+  parallel_for(ev.p(), g->threads, [&](std::size_t j) {
+    std::vector<double> tj = t, e;
+    double h = 1e-7 * std::max(1.0, std::abs(t[j]));
+    tj[j] += h;
+    if (!ev.errors(tj.data(), e)) {
+      tj[j] = t[j] - h;
+      h = -h;
+      if (!ev.errors(tj.data(), e)) {
+        cols[j].assign(ev.n(), 0.0);
+        return;
+      }
+    }
+    ev.to_residuals(e);
+    cols[j].resize(ev.n());
+    for (std::size_t i = 0; i < ev.n(); ++i) cols[j][i] = (e[i] - r0[i]) / h;
+  });
+  for (std::size_t j = 0; j < ev.p(); ++j)
+    for (std::size_t i = 0; i < ev.n(); ++i) gsl_matrix_set(J, i, j, cols[j][i]);
+  return GSL_SUCCESS;
+}
+
+/// Standard errors (physical) from J (n x p, internal) and the residuals: s^2 (J^T J)^{-1}.
+std::vector<double> quick_standard_errors(const Evaluator& ev, const gsl_matrix* J, const gsl_vector* f,
+                                          const std::vector<double>& t) {
+  const std::size_t n = J->size1, p = J->size2;
+  std::vector<double> se(p, kInf);
+  if (n <= p) return se;
+  gsl_matrix* cov = gsl_matrix_alloc(p, p);
+  gsl_multifit_nlinear_covar(J, 0.0, cov);
+  double ss = 0.0;
+  for (std::size_t i = 0; i < n; ++i) ss += gsl_vector_get(f, i) * gsl_vector_get(f, i);
+  const double s2 = ss / double(n - p);
+  for (std::size_t j = 0; j < p; ++j) {
+    const double v = gsl_matrix_get(cov, j, j) * s2;
+    se[j] = v >= 0 ? std::sqrt(v) * std::abs(ev.problem->parameters[ev.free[j]].derivative(t[j])) : kInf;
+  }
+  gsl_matrix_free(cov);
+  return se;
+}
+
+void gsl_callback(const size_t iter, void* params, const gsl_multifit_nlinear_workspace* w) {
+  auto* g = static_cast<GslData*>(params);
+  if (!g->report || !g->options->progress) return;
+  const Evaluator& ev = *g->ev;
+  const gsl_vector* x = gsl_multifit_nlinear_position(w);
+  std::vector<double> t;
+  for (std::size_t j = 0; j < ev.p(); ++j) t.push_back(gsl_vector_get(x, j));
+  const gsl_vector* f = gsl_multifit_nlinear_residual(w);
+  double c = 0.0;
+  for (std::size_t i = 0; i < ev.n(); ++i) c += gsl_vector_get(f, i) * gsl_vector_get(f, i);
+  const std::vector<double> se = quick_standard_errors(ev, gsl_multifit_nlinear_jac(w), f, t);
+  const std::vector<double> xp = ev.physical(t.data());
+  std::string line = "  iter " + std::to_string(iter) + "  cost " + significant(c, 5) + "  SE:";
+  for (std::size_t j = 0; j < ev.p(); ++j) {
+    const double v = xp[ev.free[j]];
+    line += " " + ev.problem->parameters[ev.free[j]].name + " " +
+            (std::isfinite(se[j]) && v != 0.0 ? significant(100.0 * se[j] / std::abs(v), 3) + "%" : "inf");
+  }
+  g->options->progress(line);
+}
+
+Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOptions& opt, bool report) {
+  GslData g;
+  g.ev = &ev;
+  g.threads = opt.threads;
+  g.options = &opt;
+  g.report = report;
+  gsl_multifit_nlinear_fdf fdf;
+  fdf.f = gsl_f;
+  fdf.df = gsl_df;
+  fdf.fvv = nullptr;  // geodesic acceleration: GSL's finite-difference second directional derivative
+  fdf.n = ev.n();
+  fdf.p = ev.p();
+  fdf.params = &g;
+  gsl_multifit_nlinear_parameters params = gsl_multifit_nlinear_default_parameters();
+  params.trs = opt.geodesic ? gsl_multifit_nlinear_trs_lmaccel : gsl_multifit_nlinear_trs_lm;
+  params.scale = gsl_multifit_nlinear_scale_more;
+  gsl_multifit_nlinear_workspace* w =
+      gsl_multifit_nlinear_alloc(gsl_multifit_nlinear_trust, &params, ev.n(), ev.p());
+  gsl_vector* x = gsl_vector_alloc(ev.p());
+  for (std::size_t j = 0; j < ev.p(); ++j) gsl_vector_set(x, j, t0[j]);
+  gsl_multifit_nlinear_init(x, &fdf, w);
+  int info = 0;
+  const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), 1e-9, 1e-9, 1e-12,
+                                                 gsl_callback, &g, &info, w);
+  Local out;
+  const gsl_vector* xf = gsl_multifit_nlinear_position(w);
+  for (std::size_t j = 0; j < ev.p(); ++j) out.t.push_back(gsl_vector_get(xf, j));
+  out.iterations = int(gsl_multifit_nlinear_niter(w));
+  out.reason = status == GSL_SUCCESS ? (info == 1   ? "small step (xtol)"
+                                        : info == 2 ? "small gradient (gtol)"
+                                                    : "converged")
+                                     : std::string(gsl_strerror(status));
+  gsl_vector_free(x);
+  gsl_multifit_nlinear_free(w);
+  std::vector<double> e;
+  if (ev.errors(out.t.data(), e)) out.cost = ev.cost_of(e);
+  return out;
+}
+
+double chi2_95() { return gsl_cdf_chisq_Pinv(0.95, 1.0); }
+
+}  // namespace
+
+FitResult fit(const Problem& pr, const FitOptions& opt) {
+  gsl_set_error_handler_off();  // GSL reports through status codes; its default handler aborts
+  const auto started = std::chrono::steady_clock::now();
+  std::atomic<long> solves{0};
+  FitResult res;
+  res.model_name = pr.model->name();
+  res.model_description = pr.model->description();
+  res.cost_name = to_string(opt.cost);
+  res.threads = opt.threads;
+
+  Evaluator ev;
+  ev.problem = &pr;
+  ev.cost = opt.cost;
+  ev.delta = 1e-6 * pr.data.peak_force;
+  ev.solves = &solves;
+  for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
+    ev.held.push_back(pr.parameters[i].value);
+    if (!pr.parameters[i].fixed) ev.free.push_back(i);
+  }
+  const std::size_t p = ev.p(), n = ev.n();
+  if (p == 0) throw Error("fit: every parameter is fixed");
+
+  // ---- global stage: multi-start ---------------------------------------------------------------
+  const std::size_t starts = std::size_t(std::max(1, opt.starts));
+  std::vector<std::vector<double>> cand(starts, std::vector<double>(p));
+  std::mt19937_64 rng(opt.seed);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (std::size_t c = 0; c < starts; ++c)
+    for (std::size_t j = 0; j < p; ++j) {
+      const Parameter& q = pr.parameters[ev.free[j]];
+      if (c == 0) {
+        cand[c][j] = q.to_internal(q.value);
+      } else {
+        const double a = q.to_internal(q.start_low), b = q.to_internal(q.start_high);
+        cand[c][j] = a + (b - a) * u(rng);
+      }
+    }
+  res.start_costs.assign(starts, kInf);
+  parallel_for(starts, opt.threads, [&](std::size_t c) {
+    std::vector<double> e;
+    if (ev.errors(cand[c].data(), e)) res.start_costs[c] = ev.cost_of(e);
+  });
+  std::vector<std::size_t> order(starts);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return res.start_costs[a] < res.start_costs[b]; });
+  if (!std::isfinite(res.start_costs[order[0]]))
+    throw Error("fit: the forward model '" + res.model_name + "' cannot be evaluated at any of the " +
+                std::to_string(starts) +
+                " starting points (check the data's geometry and the SPEC's fixed values)");
+  if (opt.progress)
+    opt.progress("global stage: " + std::to_string(starts) + " starts, best cost " +
+                 significant(res.start_costs[order[0]], 5) + " (start " + std::to_string(order[0]) + ")");
+
+  // ---- local stage: Levenberg-Marquardt from the best candidates -------------------------------
+  Local best;
+  const std::size_t runs = std::min<std::size_t>(starts, std::size_t(std::max(1, opt.local_runs)));
+  for (std::size_t r = 0; r < runs; ++r) {
+    if (!std::isfinite(res.start_costs[order[r]])) break;
+    if (opt.progress) opt.progress("local stage from start " + std::to_string(order[r]) + ":");
+    Local l = local_fit(ev, cand[order[r]], opt, true);
+    res.iterations += l.iterations;
+    if (l.cost < best.cost) best = std::move(l);
+  }
+  if (!std::isfinite(best.cost))
+    throw Error("fit: every local run ended where the model cannot be evaluated");
+  res.stop_reason = best.reason;
+  if (pr.canonical) {
+    // Exchangeable terms in their canonical order (the cost is the same; the reported order is not).
+    const std::vector<double> xc = pr.canonical(ev.physical(best.t.data()));
+    for (std::size_t j = 0; j < p; ++j) best.t[j] = pr.parameters[ev.free[j]].to_internal(xc[ev.free[j]]);
+  }
+  const std::vector<double>& t = best.t;
+
+  // ---- the optimum: residuals, AIC/BIC ---------------------------------------------------------
+  std::vector<double> e0;
+  ev.errors(t.data(), e0, &res.prediction);
+  res.cost = ev.cost_of(e0);
+  res.n = n;
+  res.k = p;
+  for (const double v : e0) res.sse += v * v;
+  res.rms = std::sqrt(res.sse / double(n));
+  res.rms_percent_peak = 100.0 * res.rms / pr.data.peak_force;
+  const double ssen = std::max(res.sse, 1e-300) / double(n);
+  res.aic = double(n) * std::log(ssen) + 2.0 * double(p);
+  res.bic = double(n) * std::log(ssen) + double(p) * std::log(double(n));
+
+  // ---- covariance: central-difference Jacobian of the force errors ------------------------------
+  Eigen::MatrixXd J(n, p);
+  parallel_for(p, opt.threads, [&](std::size_t j) {
+    const double h = 1e-5 * std::max(1.0, std::abs(t[j]));
+    std::vector<double> tp = t, tm = t, ep, em;
+    tp[j] += h;
+    tm[j] -= h;
+    const bool okp = ev.errors(tp.data(), ep), okm = ev.errors(tm.data(), em);
+    for (std::size_t i = 0; i < n; ++i)
+      J(Eigen::Index(i), Eigen::Index(j)) = okp && okm ? (ep[i] - em[i]) / (2 * h)
+                                            : okp      ? (ep[i] - e0[i]) / h
+                                            : okm      ? (e0[i] - em[i]) / h
+                                                       : 0.0;
+  });
+  const double s2 = n > p ? res.sse / double(n - p) : kInf;
+  // Column scaling makes the SVD's rank test independent of units; singular values below 1e-8 of
+  // the largest mark directions the data do not determine.
+  Eigen::VectorXd scale = J.colwise().norm().transpose();
+  for (Eigen::Index j = 0; j < scale.size(); ++j)
+    if (!(scale(j) > 0.0)) scale(j) = 1.0;
+  const Eigen::MatrixXd Js = J * scale.cwiseInverse().asDiagonal();
+  Eigen::JacobiSVD<Eigen::MatrixXd> svd(Js, Eigen::ComputeThinV);
+  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::MatrixXd V = svd.matrixV();
+  Eigen::VectorXd inv2(sv.size());
+  std::vector<bool> identifiable(p, true);
+  for (Eigen::Index k = 0; k < sv.size(); ++k) {
+    const double floor = 1e-8 * sv(0);
+    inv2(k) = 1.0 / std::pow(std::max(sv(k), floor), 2);
+    if (sv(k) < floor)
+      for (std::size_t j = 0; j < p; ++j)
+        if (std::abs(V(Eigen::Index(j), k)) > 0.1) identifiable[j] = false;
+  }
+  const Eigen::MatrixXd Cs = V * inv2.asDiagonal() * V.transpose();
+  const Eigen::MatrixXd Ct = s2 * scale.cwiseInverse().asDiagonal() * Cs * scale.cwiseInverse().asDiagonal();
+  const double tq = n > p ? gsl_cdf_tdist_Pinv(0.975, double(n - p)) : kInf;
+
+  std::vector<double> x = ev.physical(t.data());
+  std::size_t jfree = 0;
+  for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
+    const Parameter& q = pr.parameters[i];
+    ParameterResult r;
+    r.name = q.name;
+    r.unit = q.unit;
+    r.value = x[i];
+    r.fixed = q.fixed;
+    r.transform = to_string(q.transform());
+    if (q.fixed) {
+      r.standard_error = 0.0;
+      r.lower95 = r.upper95 = x[i];
+    } else {
+      const std::size_t j = jfree++;
+      const double d = std::abs(q.derivative(t[j]));
+      r.identifiable = identifiable[j];
+      r.standard_error =
+          identifiable[j] ? d * std::sqrt(std::max(Ct(Eigen::Index(j), Eigen::Index(j)), 0.0)) : kInf;
+      // Wald interval in physical units, clipped to the bounds (a bound is a hard constraint).
+      r.lower95 = std::max(q.lower, x[i] - tq * r.standard_error);
+      r.upper95 = std::min(q.upper, x[i] + tq * r.standard_error);
+      res.free_names.push_back(q.name);
+    }
+    res.parameters.push_back(r);
+  }
+  res.correlation.assign(p, std::vector<double>(p, 0.0));
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b) {
+      const double den =
+          std::sqrt(Cs(Eigen::Index(a), Eigen::Index(a)) * Cs(Eigen::Index(b), Eigen::Index(b)));
+      res.correlation[a][b] = den > 0 ? Cs(Eigen::Index(a), Eigen::Index(b)) / den : (a == b ? 1.0 : 0.0);
+    }
+
+  // ---- confounding report ----------------------------------------------------------------------
+  std::string fixed_list;
+  for (const auto& q : pr.parameters)
+    if (q.fixed) fixed_list += (fixed_list.empty() ? "" : ", ") + q.name + " = " + significant(q.value, 6);
+  if (!fixed_list.empty())
+    res.notes.push_back("fixed (not fitted; their uncertainty is not propagated): " + fixed_list);
+  const bool indentation = res.model_name.find("hertz") != std::string::npos ||
+                           res.model_name.find("sneddon") != std::string::npos ||
+                           res.model_name.find("lee_radok") != std::string::npos;
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = a + 1; b < p; ++b) {
+      const double c = res.correlation[a][b];
+      if (!(std::abs(c) > 0.9)) continue;
+      Confounding cf{res.free_names[a], res.free_names[b], c, ""};
+      const auto is = [&](const char* n1, const char* n2) {
+        return (cf.a == n1 && cf.b == n2) || (cf.a == n2 && cf.b == n1);
+      };
+      if (is("young", "poisson") && indentation)
+        cf.note =
+            "indentation force depends on E and nu almost only through E/(1 - nu^2): force data alone "
+            "cannot separate them. The fit did nothing about it: fix poisson (--fix poisson=...), or add "
+            "a second test type (unconfined compression) to the data";
+      else if ((cf.a == "young" && cf.b[0] == 'e') || (cf.b == "young" && cf.a[0] == 'e'))
+        cf.note =
+            "the long-term modulus E_inf trades against a Prony weight: the hold is too short to see the "
+            "relaxation end. The fit did nothing about it: lengthen the hold, fix the relaxation time, or "
+            "fit fewer Prony terms";
+      else
+        cf.note =
+            "the data determine only a combination of these two. The fit did nothing about it: fix one "
+            "(--fix) or add a test that separates them";
+      res.confounded.push_back(cf);
+    }
+  for (std::size_t j = 0; j < p; ++j)
+    if (!identifiable[j])
+      res.notes.push_back(
+          "'" + res.free_names[j] +
+          "' is not identifiable from these data (J^T J singular in its direction): standard error "
+          "reported as infinite");
+
+  // ---- profile likelihood of the worst-determined parameter ------------------------------------
+  if (opt.profile && n > p) {
+    std::size_t worst = p;
+    double worst_rel = -1.0;
+    for (std::size_t j = 0; j < p; ++j) {
+      const ParameterResult& r = res.parameters[ev.free[j]];
+      const double rel = r.identifiable ? r.standard_error / std::max(std::abs(r.value), 1e-300) : kInf;
+      if (rel > worst_rel) {
+        worst_rel = rel;
+        worst = j;
+      }
+    }
+    const std::size_t i = ev.free[worst];
+    const Parameter& q = pr.parameters[i];
+    res.profile.parameter = q.name;
+    // The grid in the internal coordinate: the optimum +- c SE_t (SE_t capped so the grid stays finite).
+    double se_t = std::sqrt(std::max(Ct(Eigen::Index(worst), Eigen::Index(worst)), 0.0));
+    // In log/logit coordinates +-3 x 5 spans any physical range; an identity coordinate keeps its
+    // units, so a non-identifiable one gets a grid of +-3 |x| instead.
+    if (q.transform() != Transform::Identity && (!std::isfinite(se_t) || se_t > 5.0)) se_t = 5.0;
+    if (q.transform() == Transform::Identity && !std::isfinite(se_t))
+      se_t = std::max(std::abs(t[worst]), 1.0);
+    if (se_t < 1e-12 * std::max(1.0, std::abs(t[worst]))) se_t = 1e-12 * std::max(1.0, std::abs(t[worst]));
+    const std::vector<double> cs = {-3, -2, -1.5, -1, -0.5, 0, 0.5, 1, 1.5, 2, 3};
+    Evaluator sub = ev;
+    sub.free.clear();
+    std::vector<double> tsub;
+    for (std::size_t j = 0; j < p; ++j)
+      if (j != worst) {
+        sub.free.push_back(ev.free[j]);
+        tsub.push_back(t[j]);
+      }
+    std::vector<ProfilePoint> pts(cs.size());
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      const double tk = t[worst] + cs[k] * se_t;
+      Evaluator sk = sub;
+      sk.held = x;
+      sk.held[i] = q.to_physical(tk);
+      sk.cost = Cost::LeastSquares;
+      pts[k].value = sk.held[i];
+      if (cs[k] == 0.0) {
+        pts[k].sse = res.sse;
+        continue;
+      }
+      std::vector<double> e;
+      if (sk.p() == 0) {
+        pts[k].sse = sk.errors(nullptr, e) ? sk.cost_of(e) : kInf;
+      } else {
+        FitOptions po = opt;
+        po.progress = nullptr;
+        const Local l = local_fit(sk, tsub, po, false);
+        pts[k].sse = std::max(l.cost, res.sse);  // the optimum is the minimum (round-off)
+      }
+    }
+    res.profile.points = pts;
+    const double thr = chi2_95();
+    const auto stat = [&](double s) { return double(n) * std::log(s / res.sse); };
+    const std::size_t mid = 5;
+    res.profile.lower95 = pts.front().value;
+    res.profile.upper95 = pts.back().value;
+    for (std::size_t k = mid; k + 1 < pts.size(); ++k)
+      if (stat(pts[k + 1].sse) > thr) {
+        const double a = stat(pts[k].sse), b = stat(pts[k + 1].sse);
+        const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
+        res.profile.upper95 = pts[k].value + f * (pts[k + 1].value - pts[k].value);
+        res.profile.upper_found = true;
+        break;
+      }
+    for (std::size_t k = mid; k > 0; --k)
+      if (stat(pts[k - 1].sse) > thr) {
+        const double a = stat(pts[k].sse), b = stat(pts[k - 1].sse);
+        const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
+        res.profile.lower95 = pts[k].value + f * (pts[k - 1].value - pts[k].value);
+        res.profile.lower_found = true;
+        break;
+      }
+  }
+  res.forward_solves = solves.load();
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return res;
+}
+
+}  // namespace tmlab::fit

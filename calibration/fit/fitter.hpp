@@ -1,0 +1,98 @@
+// The fitting engine (issue 14; docs/identification.md): a global stage (multi-start: candidate
+// starting points sampled in the transformed space, their costs computed in parallel, the best
+// refined) and a local stage (GSL gsl_multifit_nlinear, Levenberg-Marquardt with optional geodesic
+// acceleration; the Jacobian by forward differences of the forward model in the transformed space,
+// its columns computed in parallel), then the uncertainty at the optimum:
+//   covariance  C = s^2 (J^T J)^{-1},  s^2 = SSE / (n - k)  (J by central differences),
+//   physical    C_x = D C D,  D = diag(dx/dt)  (delta method through the transforms),
+//   95 % interval  x +- t_{0.975, n-k} SE,  correlations C_ij / sqrt(C_ii C_jj),
+//   a profile likelihood of the worst-determined parameter (largest SE / |x|): the others re-fitted
+//   at fixed values of it, the interval where n ln(SSE / SSE_min) <= chi2_1(0.95) = 3.84,
+//   AIC = n ln(SSE/n) + 2k, BIC = n ln(SSE/n) + k ln n,
+//   and a confounding report: every pair with |correlation| > 0.9 named, with what was done.
+// Costs: least squares on force (weighted per test), or the L1 error of Xu et al. (2011, eq. 23),
+// sum |F_model - F_data|, minimised by the same engine on the smoothed residuals
+// r = e / sqrt(|e| + delta) (r^2 -> |e| for |e| >> delta = 1e-6 peak force).
+#pragma once
+
+#include "calibration/fit/forward_model.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tmlab::fit {
+
+enum class Cost { LeastSquares, L1 };
+std::string to_string(Cost c);
+
+struct FitOptions {
+  Cost cost = Cost::LeastSquares;
+  int starts = 12;        ///< candidate starts of the global stage (the first is the parameters' values)
+  int local_runs = 3;     ///< best candidates refined by Levenberg-Marquardt
+  bool geodesic = false;  ///< geodesic acceleration (gsl_multifit_nlinear_trs_lmaccel)
+  int threads = 2;        ///< forward solves in parallel
+  unsigned long seed = 1;
+  int max_iterations = 200;
+  bool profile = true;  ///< profile likelihood of the worst-determined parameter
+  /// Called with one line of progress (iteration, cost, current standard errors); may be empty.
+  std::function<void(const std::string&)> progress;
+};
+
+struct ParameterResult {
+  std::string name, unit;
+  double value = 0.0;
+  bool fixed = false;
+  std::string transform;        ///< identity, log, logit
+  double standard_error = 0.0;  ///< physical units; +inf when not identifiable
+  double lower95 = 0.0, upper95 = 0.0;
+  bool identifiable = true;  ///< false: J^T J is singular in this parameter's direction
+};
+
+struct ProfilePoint {
+  double value = 0.0;  ///< the profiled parameter, physical
+  double sse = 0.0;    ///< the re-fitted SSE with it fixed there
+};
+
+struct Profile {
+  std::string parameter;  ///< empty when no profile was computed
+  std::vector<ProfilePoint> points;
+  double lower95 = 0.0, upper95 = 0.0;
+  bool lower_found = false, upper_found = false;  ///< false: the threshold lies beyond the grid
+};
+
+struct Confounding {
+  std::string a, b;
+  double correlation = 0.0;
+  std::string note;
+};
+
+struct FitResult {
+  std::string model_name, model_description;
+  std::string cost_name;
+  std::vector<ParameterResult> parameters;
+  std::vector<std::string> free_names;           ///< order of the correlation matrix
+  std::vector<std::vector<double>> correlation;  ///< free parameters
+  double cost = 0.0;                             ///< the minimised cost: SSE (N^2) or sum |e| (N)
+  double sse = 0.0;                              ///< weighted sum of squared force residuals, N^2
+  double rms = 0.0;                              ///< residual RMS, N
+  double rms_percent_peak = 0.0;
+  std::size_t n = 0, k = 0;
+  double aic = 0.0, bic = 0.0;
+  long forward_solves = 0;
+  double wall_seconds = 0.0;
+  int threads = 1;
+  int iterations = 0;
+  std::string stop_reason;
+  std::vector<double> start_costs;  ///< the global stage's candidate costs, in candidate order
+  std::vector<double> prediction;   ///< the model's force at the optimum, Observations order
+  Profile profile;
+  std::vector<Confounding> confounded;
+  std::vector<std::string> notes;  ///< what was fixed, what is not identifiable
+};
+
+/// Fits `problem`. Deterministic for a given seed, independent of options.threads.
+/// Throws tmlab::Error when no candidate start can be evaluated.
+FitResult fit(const Problem& problem, const FitOptions& options);
+
+}  // namespace tmlab::fit

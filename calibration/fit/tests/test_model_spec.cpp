@@ -1,0 +1,56 @@
+// Tests of the SPEC syntax and of the law built from fit parameters.
+#include "calibration/fit/model_spec.hpp"
+
+#include "core/base/error.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tmlab::fit {
+namespace {
+
+TEST(ModelSpec, ParsesLawTermsPronyAndFixedValues) {
+  const ModelSpec s = parse_model_spec("ogden:2+prony:3,poisson=0.49,tau1=0.5");
+  EXPECT_EQ(s.law, "ogden");
+  EXPECT_EQ(s.ogden_terms, 2);
+  EXPECT_EQ(s.prony_terms, 3);
+  ASSERT_EQ(s.fixed.size(), 2u);
+  EXPECT_EQ(s.fixed[0].first, "poisson");
+  EXPECT_EQ(s.fixed[1].second, 0.5);
+  EXPECT_EQ(parse_model_spec("neo_hookean").prony_terms, 0);
+}
+
+TEST(ModelSpec, RefusesBadSpecsNamingThePart) {
+  for (const char* bad : {"rubber", "neo_hookean:2", "ogden:0", "ogden:x", "stvk+maxwell:2", "stvk,poisson",
+                          "stvk,poisson=abc", "stvk,poisson=nan", "stvk+prony:"}) {
+    EXPECT_THROW(parse_model_spec(bad), Error) << bad;
+  }
+  try {
+    parse_model_spec("rubber");
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown law 'rubber'"), std::string::npos);
+  }
+}
+
+TEST(ModelSpec, EveryLawHasTheStartingSmallStrainModulus) {
+  for (const char* law :
+       {"stvk", "neo_hookean", "mooney_rivlin", "yeoh", "ogden:1", "ogden:2", "veronda_westmann"}) {
+    const ModelSpec s = parse_model_spec(law);
+    const auto params = law_parameters(s, 9000.0, 10.0);
+    EXPECT_NO_THROW(validate(params)) << law;
+    std::vector<double> x;
+    for (const auto& p : params) x.push_back(p.value);
+    const auto [young, nu] = small_strain_young_poisson(s, x);
+    // E = 2 mu0 (1 + nu) with mu0 = E_est / 3 and nu = 0.45 (young itself for stvk and neo-Hookean).
+    const double expect =
+        (std::string(law) == "stvk" || std::string(law) == "neo_hookean") ? 9000.0 : 2 * 3000.0 * 1.45;
+    EXPECT_NEAR(young, expect, 1e-9 * expect) << law;
+    EXPECT_EQ(nu, 0.45);
+    const tm::Law l = build_law(s, x);
+    EXPECT_NEAR(l.small_strain().mu, young / (2 * (1 + nu)), 1e-9 * young) << law;
+  }
+}
+
+}  // namespace
+}  // namespace tmlab::fit
