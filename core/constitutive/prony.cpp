@@ -3,7 +3,6 @@
 
 #include "core/base/enum_names.hpp"
 
-
 namespace tmlab {
 
 namespace {
