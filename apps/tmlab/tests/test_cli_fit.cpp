@@ -16,14 +16,13 @@ namespace fs = std::filesystem;
 
 using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
-using tmlab::cli_test::slurp;
+using tmlab::testing::read_file;
 
 const fs::path kPhantomA1 =
     fs::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" / "EF10_0T_A1.csv";
 
-class CliFit : public tmlab::cli_test::TempDirTest {
+class CliFit : public tmlab::testing::TempDirTest {
  protected:
-  CliFit() : TempDirTest("tmlab_cli_fit_") {}
   Result tmlab(const std::vector<std::string>& args) const { return run_argv(args, dir_ / "log.txt"); }
   fs::path convert() const {
     const Result c = tmlab({"data", "convert", kPhantomA1.string(), "--out", (dir_ / "data").string()});
@@ -41,7 +40,7 @@ TEST_F(CliFit, FitsThePhantomWithErrorBars) {
   EXPECT_NE(r.output.find("iter"), std::string::npos) << r.output;  // progress on standard error
   EXPECT_NE(r.output.find("SE:"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out / "summary.json"));
-  const nlohmann::json j = nlohmann::json::parse(slurp(out / "fit.json"));
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "fit.json"));
   ASSERT_EQ(j["parameters"].size(), 3u);
   for (const auto& p : j["parameters"]) {
     EXPECT_TRUE(p.contains("standard_error")) << p;
@@ -58,7 +57,7 @@ TEST_F(CliFit, FitsThePhantomWithErrorBars) {
   EXPECT_TRUE(fs::exists(out / "manifest.json"));
   for (const char* png : {"fit_data_vs_model.png", "fit_residuals.png", "fit_profile.png"}) {
     ASSERT_TRUE(fs::exists(out / png)) << png << "\n" << r.output;
-    EXPECT_EQ(slurp(out / png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+    EXPECT_EQ(read_file(out / png).substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
   }
 }
 
@@ -91,8 +90,8 @@ TEST_F(CliFit, BadSpecsAndDataAreRefused) {
   r = tmlab({"fit", csv.string(), "--model", "yeoh", "--cost", "l2"});
   EXPECT_EQ(r.status, 2) << r.output;
   // Data whose force is zero everywhere: refused before any result directory is made.
-  std::string text = slurp(csv);
-  std::ofstream(dir_ / "data" / "zero.json") << slurp(dir_ / "data" / "EF10_0T_A1.json");
+  std::string text = read_file(csv);
+  std::ofstream(dir_ / "data" / "zero.json") << read_file(dir_ / "data" / "EF10_0T_A1.json");
   {
     std::ofstream z(dir_ / "data" / "zero.csv");
     z << "time_s,displacement_m,force_N\n0,0,0\n1,0.001,0\n2,0.002,0\n";
