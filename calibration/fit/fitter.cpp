@@ -223,31 +223,12 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
 
 double chi2_95() { return gsl_cdf_chisq_Pinv(0.95, 1.0); }
 
-}  // namespace
-
-FitResult fit(const Problem& pr, const FitOptions& opt) {
-  gsl_set_error_handler_off();  // GSL reports through status codes; its default handler aborts
-  const auto started = std::chrono::steady_clock::now();
-  std::atomic<long> solves{0};
-  FitResult res;
-  res.model_name = pr.model->name();
-  res.model_description = pr.model->description();
-  res.cost_name = to_string(opt.cost);
-  res.threads = opt.threads;
-
-  Evaluator ev;
-  ev.problem = &pr;
-  ev.cost = opt.cost;
-  ev.delta = 1e-6 * pr.data.peak_force;
-  ev.solves = &solves;
-  for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
-    ev.held.push_back(pr.parameters[i].value);
-    if (!pr.parameters[i].fixed) ev.free.push_back(i);
-  }
-  const std::size_t p = ev.p(), n = ev.n();
-  if (p == 0) throw Error("fit: every parameter is fixed");
-
-  // ---- global stage: multi-start ---------------------------------------------------------------
+// Global stage: `starts` candidates in the internal coordinates (the given values first, then
+// uniform in each parameter's start range), their costs evaluated in parallel. Returns the
+// candidates; res.start_costs gets their costs and `order` the candidates sorted by cost.
+std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
+                                              FitResult& res, std::vector<std::size_t>& order) {
+  const std::size_t p = ev.p();
   const std::size_t starts = std::size_t(std::max(1, opt.starts));
   std::vector<std::vector<double>> cand(starts, std::vector<double>(p));
   std::mt19937_64 rng(opt.seed);
@@ -267,7 +248,7 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
     std::vector<double> e;
     if (ev.errors(cand[c].data(), e)) res.start_costs[c] = ev.cost_of(e);
   });
-  std::vector<std::size_t> order(starts);
+  order.assign(starts, 0);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return res.start_costs[a] < res.start_costs[b]; });
@@ -279,7 +260,15 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
     opt.progress("global stage: " + std::to_string(starts) + " starts, best cost " +
                  significant(res.start_costs[order[0]], 5) + " (start " + std::to_string(order[0]) + ")");
 
-  // ---- local stage: Levenberg-Marquardt from the best candidates -------------------------------
+  return cand;
+}
+
+// Local stage: Levenberg-Marquardt from the best candidates; the best run, its terms put in the
+// problem's canonical order.
+Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
+                  const std::vector<std::vector<double>>& cand, const std::vector<std::size_t>& order,
+                  FitResult& res) {
+  const std::size_t starts = cand.size(), p = ev.p();
   Local best;
   const std::size_t runs = std::min<std::size_t>(starts, std::size_t(std::max(1, opt.local_runs)));
   for (std::size_t r = 0; r < runs; ++r) {
@@ -297,9 +286,14 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
     const std::vector<double> xc = pr.canonical(ev.physical(best.t.data()));
     for (std::size_t j = 0; j < p; ++j) best.t[j] = pr.parameters[ev.free[j]].to_internal(xc[ev.free[j]]);
   }
-  const std::vector<double>& t = best.t;
 
-  // ---- the optimum: residuals, AIC/BIC ---------------------------------------------------------
+  return best;
+}
+
+// The optimum's residuals, cost, RMS and information criteria; returns the force errors.
+std::vector<double> optimum_stats(const Problem& pr, const Evaluator& ev, const std::vector<double>& t,
+                                  FitResult& res) {
+  const std::size_t p = ev.p(), n = ev.n();
   std::vector<double> e0;
   ev.errors(t.data(), e0, &res.prediction);
   res.cost = ev.cost_of(e0);
@@ -312,7 +306,21 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   res.aic = double(n) * std::log(ssen) + 2.0 * double(p);
   res.bic = double(n) * std::log(ssen) + double(p) * std::log(double(n));
 
-  // ---- covariance: central-difference Jacobian of the force errors ------------------------------
+  return e0;
+}
+
+// The covariance of the internal coordinates from a central-difference Jacobian of the force
+// errors: Cs (column-scaled, for correlations), Ct (scaled by the residual variance), the t quantile
+// of the 95 % interval and which directions the data determine.
+struct Covariance {
+  Eigen::MatrixXd Cs, Ct;
+  double tq = kInf;
+  std::vector<bool> identifiable;
+};
+
+Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vector<double>& t,
+                      const std::vector<double>& e0, const FitResult& res) {
+  const std::size_t p = ev.p(), n = ev.n();
   Eigen::MatrixXd J(n, p);
   parallel_for(p, opt.threads, [&](std::size_t j) {
     const double h = 1e-5 * std::max(1.0, std::abs(t[j]));
@@ -337,18 +345,31 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   const Eigen::VectorXd sv = svd.singularValues();
   const Eigen::MatrixXd V = svd.matrixV();
   Eigen::VectorXd inv2(sv.size());
-  std::vector<bool> identifiable(p, true);
+  Covariance c;
+  c.identifiable.assign(p, true);
   for (Eigen::Index k = 0; k < sv.size(); ++k) {
     const double floor = 1e-8 * sv(0);
     inv2(k) = 1.0 / std::pow(std::max(sv(k), floor), 2);
     if (sv(k) < floor)
       for (std::size_t j = 0; j < p; ++j)
-        if (std::abs(V(Eigen::Index(j), k)) > 0.1) identifiable[j] = false;
+        if (std::abs(V(Eigen::Index(j), k)) > 0.1) c.identifiable[j] = false;
   }
-  const Eigen::MatrixXd Cs = V * inv2.asDiagonal() * V.transpose();
-  const Eigen::MatrixXd Ct = s2 * scale.cwiseInverse().asDiagonal() * Cs * scale.cwiseInverse().asDiagonal();
-  const double tq = n > p ? gsl_cdf_tdist_Pinv(0.975, double(n - p)) : kInf;
+  c.Cs = V * inv2.asDiagonal() * V.transpose();
+  c.Ct = s2 * scale.cwiseInverse().asDiagonal() * c.Cs * scale.cwiseInverse().asDiagonal();
+  c.tq = n > p ? gsl_cdf_tdist_Pinv(0.975, double(n - p)) : kInf;
 
+  return c;
+}
+
+// The parameters in physical units (delta method through each transform, Wald intervals clipped to
+// the bounds) and their correlation matrix.
+void parameter_results(const Problem& pr, const Evaluator& ev, const std::vector<double>& t,
+                       const Covariance& c, FitResult& res) {
+  const std::size_t p = ev.p();
+  const Eigen::MatrixXd& Cs = c.Cs;
+  const Eigen::MatrixXd& Ct = c.Ct;
+  const double tq = c.tq;
+  const std::vector<bool>& identifiable = c.identifiable;
   std::vector<double> x = ev.physical(t.data());
   std::size_t jfree = 0;
   for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
@@ -382,8 +403,12 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
           std::sqrt(Cs(Eigen::Index(a), Eigen::Index(a)) * Cs(Eigen::Index(b), Eigen::Index(b)));
       res.correlation[a][b] = den > 0 ? Cs(Eigen::Index(a), Eigen::Index(b)) / den : (a == b ? 1.0 : 0.0);
     }
+}
 
-  // ---- confounding report ----------------------------------------------------------------------
+// The notes: fixed parameters, confounded pairs (|correlation| > 0.9) with what they mean, and
+// directions the data do not determine.
+void confounding_report(const Problem& pr, const std::vector<bool>& identifiable, FitResult& res) {
+  const std::size_t p = res.free_names.size();
   std::string fixed_list;
   for (const auto& q : pr.parameters)
     if (q.fixed) fixed_list += (fixed_list.empty() ? "" : ", ") + q.name + " = " + significant(q.value, 6);
@@ -422,84 +447,121 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
           "'" + res.free_names[j] +
           "' is not identifiable from these data (J^T J singular in its direction): standard error "
           "reported as infinite");
+}
 
-  // ---- profile likelihood of the worst-determined parameter ------------------------------------
-  if (opt.profile && n > p) {
-    std::size_t worst = p;
-    double worst_rel = -1.0;
-    for (std::size_t j = 0; j < p; ++j) {
-      const ParameterResult& r = res.parameters[ev.free[j]];
-      const double rel = r.identifiable ? r.standard_error / std::max(std::abs(r.value), 1e-300) : kInf;
-      if (rel > worst_rel) {
-        worst_rel = rel;
-        worst = j;
-      }
+// The profile likelihood of the worst-determined parameter: the least-squares cost re-minimised over
+// the others on a grid of +-3 standard errors, and where it crosses the chi^2(1) 95 % threshold.
+void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
+                        const std::vector<double>& t, const Covariance& c, FitResult& res) {
+  const std::size_t p = ev.p(), n = ev.n();
+  const Eigen::MatrixXd& Ct = c.Ct;
+  const std::vector<double> x = ev.physical(t.data());
+  std::size_t worst = p;
+  double worst_rel = -1.0;
+  for (std::size_t j = 0; j < p; ++j) {
+    const ParameterResult& r = res.parameters[ev.free[j]];
+    const double rel = r.identifiable ? r.standard_error / std::max(std::abs(r.value), 1e-300) : kInf;
+    if (rel > worst_rel) {
+      worst_rel = rel;
+      worst = j;
     }
-    const std::size_t i = ev.free[worst];
-    const Parameter& q = pr.parameters[i];
-    res.profile.parameter = q.name;
-    // The grid in the internal coordinate: the optimum +- c SE_t (SE_t capped so the grid stays finite).
-    double se_t = std::sqrt(std::max(Ct(Eigen::Index(worst), Eigen::Index(worst)), 0.0));
-    // In log/logit coordinates +-3 x 5 spans any physical range; an identity coordinate keeps its
-    // units, so a non-identifiable one gets a grid of +-3 |x| instead.
-    if (q.transform() != Transform::Identity && (!std::isfinite(se_t) || se_t > 5.0)) se_t = 5.0;
-    if (q.transform() == Transform::Identity && !std::isfinite(se_t))
-      se_t = std::max(std::abs(t[worst]), 1.0);
-    if (se_t < 1e-12 * std::max(1.0, std::abs(t[worst]))) se_t = 1e-12 * std::max(1.0, std::abs(t[worst]));
-    const std::vector<double> cs = {-3, -2, -1.5, -1, -0.5, 0, 0.5, 1, 1.5, 2, 3};
-    Evaluator sub = ev;
-    sub.free.clear();
-    std::vector<double> tsub;
-    for (std::size_t j = 0; j < p; ++j)
-      if (j != worst) {
-        sub.free.push_back(ev.free[j]);
-        tsub.push_back(t[j]);
-      }
-    std::vector<ProfilePoint> pts(cs.size());
-    for (std::size_t k = 0; k < cs.size(); ++k) {
-      const double tk = t[worst] + cs[k] * se_t;
-      Evaluator sk = sub;
-      sk.held = x;
-      sk.held[i] = q.to_physical(tk);
-      sk.cost = Cost::LeastSquares;
-      pts[k].value = sk.held[i];
-      if (cs[k] == 0.0) {
-        pts[k].sse = res.sse;
-        continue;
-      }
-      std::vector<double> e;
-      if (sk.p() == 0) {
-        pts[k].sse = sk.errors(nullptr, e) ? sk.cost_of(e) : kInf;
-      } else {
-        FitOptions po = opt;
-        po.progress = nullptr;
-        const Local l = local_fit(sk, tsub, po, false);
-        pts[k].sse = std::max(l.cost, res.sse);  // the optimum is the minimum (round-off)
-      }
-    }
-    res.profile.points = pts;
-    const double thr = chi2_95();
-    const auto stat = [&](double s) { return double(n) * std::log(s / res.sse); };
-    const std::size_t mid = 5;
-    res.profile.lower95 = pts.front().value;
-    res.profile.upper95 = pts.back().value;
-    for (std::size_t k = mid; k + 1 < pts.size(); ++k)
-      if (stat(pts[k + 1].sse) > thr) {
-        const double a = stat(pts[k].sse), b = stat(pts[k + 1].sse);
-        const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
-        res.profile.upper95 = pts[k].value + f * (pts[k + 1].value - pts[k].value);
-        res.profile.upper_found = true;
-        break;
-      }
-    for (std::size_t k = mid; k > 0; --k)
-      if (stat(pts[k - 1].sse) > thr) {
-        const double a = stat(pts[k].sse), b = stat(pts[k - 1].sse);
-        const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
-        res.profile.lower95 = pts[k].value + f * (pts[k - 1].value - pts[k].value);
-        res.profile.lower_found = true;
-        break;
-      }
   }
+  const std::size_t i = ev.free[worst];
+  const Parameter& q = pr.parameters[i];
+  res.profile.parameter = q.name;
+  // The grid in the internal coordinate: the optimum +- c SE_t (SE_t capped so the grid stays finite).
+  double se_t = std::sqrt(std::max(Ct(Eigen::Index(worst), Eigen::Index(worst)), 0.0));
+  // In log/logit coordinates +-3 x 5 spans any physical range; an identity coordinate keeps its
+  // units, so a non-identifiable one gets a grid of +-3 |x| instead.
+  if (q.transform() != Transform::Identity && (!std::isfinite(se_t) || se_t > 5.0)) se_t = 5.0;
+  if (q.transform() == Transform::Identity && !std::isfinite(se_t)) se_t = std::max(std::abs(t[worst]), 1.0);
+  if (se_t < 1e-12 * std::max(1.0, std::abs(t[worst]))) se_t = 1e-12 * std::max(1.0, std::abs(t[worst]));
+  const std::vector<double> cs = {-3, -2, -1.5, -1, -0.5, 0, 0.5, 1, 1.5, 2, 3};
+  Evaluator sub = ev;
+  sub.free.clear();
+  std::vector<double> tsub;
+  for (std::size_t j = 0; j < p; ++j)
+    if (j != worst) {
+      sub.free.push_back(ev.free[j]);
+      tsub.push_back(t[j]);
+    }
+  std::vector<ProfilePoint> pts(cs.size());
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const double tk = t[worst] + cs[k] * se_t;
+    Evaluator sk = sub;
+    sk.held = x;
+    sk.held[i] = q.to_physical(tk);
+    sk.cost = Cost::LeastSquares;
+    pts[k].value = sk.held[i];
+    if (cs[k] == 0.0) {
+      pts[k].sse = res.sse;
+      continue;
+    }
+    std::vector<double> e;
+    if (sk.p() == 0) {
+      pts[k].sse = sk.errors(nullptr, e) ? sk.cost_of(e) : kInf;
+    } else {
+      FitOptions po = opt;
+      po.progress = nullptr;
+      const Local l = local_fit(sk, tsub, po, false);
+      pts[k].sse = std::max(l.cost, res.sse);  // the optimum is the minimum (round-off)
+    }
+  }
+  res.profile.points = pts;
+  const double thr = chi2_95();
+  const auto stat = [&](double s) { return double(n) * std::log(s / res.sse); };
+  const std::size_t mid = 5;
+  res.profile.lower95 = pts.front().value;
+  res.profile.upper95 = pts.back().value;
+  for (std::size_t k = mid; k + 1 < pts.size(); ++k)
+    if (stat(pts[k + 1].sse) > thr) {
+      const double a = stat(pts[k].sse), b = stat(pts[k + 1].sse);
+      const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
+      res.profile.upper95 = pts[k].value + f * (pts[k + 1].value - pts[k].value);
+      res.profile.upper_found = true;
+      break;
+    }
+  for (std::size_t k = mid; k > 0; --k)
+    if (stat(pts[k - 1].sse) > thr) {
+      const double a = stat(pts[k].sse), b = stat(pts[k - 1].sse);
+      const double f = std::isfinite(b) ? (thr - a) / (b - a) : 0.0;
+      res.profile.lower95 = pts[k].value + f * (pts[k - 1].value - pts[k].value);
+      res.profile.lower_found = true;
+      break;
+    }
+}
+
+}  // namespace
+
+FitResult fit(const Problem& pr, const FitOptions& opt) {
+  gsl_set_error_handler_off();  // GSL reports through status codes; its default handler aborts
+  const auto started = std::chrono::steady_clock::now();
+  std::atomic<long> solves{0};
+  FitResult res;
+  res.model_name = pr.model->name();
+  res.model_description = pr.model->description();
+  res.cost_name = to_string(opt.cost);
+  res.threads = opt.threads;
+
+  Evaluator ev;
+  ev.problem = &pr;
+  ev.cost = opt.cost;
+  ev.delta = 1e-6 * pr.data.peak_force;
+  ev.solves = &solves;
+  for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
+    ev.held.push_back(pr.parameters[i].value);
+    if (!pr.parameters[i].fixed) ev.free.push_back(i);
+  }
+  if (ev.p() == 0) throw Error("fit: every parameter is fixed");
+
+  std::vector<std::size_t> order;
+  const std::vector<std::vector<double>> cand = global_stage(pr, opt, ev, res, order);
+  const std::vector<double> t = local_stage(pr, opt, ev, cand, order, res).t;
+  const std::vector<double> e0 = optimum_stats(pr, ev, t, res);
+  const Covariance c = covariance(opt, ev, t, e0, res);
+  parameter_results(pr, ev, t, c, res);
+  confounding_report(pr, c.identifiable, res);
+  if (opt.profile && ev.n() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res);
   res.forward_solves = solves.load();
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return res;
