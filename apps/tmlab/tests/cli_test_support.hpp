@@ -98,4 +98,17 @@ inline int wait_exit(pid_t pid) {
   return WEXITSTATUS(status);
 }
 
+/// One of the silicone phantom files in the repository (calibration/data/phantom/).
+inline std::filesystem::path phantom_a1() {
+  return std::filesystem::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" /
+         "EF10_0T_A1.csv";
+}
+
+/// Fixture: a temporary directory per test and `tmlab(args)`, the driver run with an argument vector
+/// whose output is kept in dir_/log.txt.
+class CliTest : public tmlab::testing::TempDirTest {
+ protected:
+  Result tmlab(const std::vector<std::string>& args) const { return run_argv(args, dir_ / "log.txt"); }
+};
+
 }  // namespace tmlab::cli_test

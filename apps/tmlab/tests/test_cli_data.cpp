@@ -17,12 +17,10 @@ using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
 using tmlab::testing::read_file;
 
-const fs::path kPhantomA1 =
-    fs::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" / "EF10_0T_A1.csv";
+const fs::path kPhantomA1 = tmlab::cli_test::phantom_a1();
 
-class CliData : public tmlab::testing::TempDirTest {
+class CliData : public tmlab::cli_test::CliTest {
  protected:
-  Result tmlab(const std::vector<std::string>& args) const { return run_argv(args, dir_ / "log.txt"); }
   fs::path write(const std::string& name, const std::string& text) const {
     std::ofstream(dir_ / name, std::ios::binary) << text;
     return dir_ / name;

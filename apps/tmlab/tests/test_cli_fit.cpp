@@ -18,12 +18,10 @@ using tmlab::cli_test::Result;
 using tmlab::cli_test::run_argv;
 using tmlab::testing::read_file;
 
-const fs::path kPhantomA1 =
-    fs::path(TMLAB_SOURCE_DIR) / "calibration" / "data" / "phantom" / "EF10_0T" / "EF10_0T_A1.csv";
+const fs::path kPhantomA1 = tmlab::cli_test::phantom_a1();
 
-class CliFit : public tmlab::testing::TempDirTest {
+class CliFit : public tmlab::cli_test::CliTest {
  protected:
-  Result tmlab(const std::vector<std::string>& args) const { return run_argv(args, dir_ / "log.txt"); }
   fs::path convert() const {
     const Result c = tmlab({"data", "convert", kPhantomA1.string(), "--out", (dir_ / "data").string()});
     EXPECT_EQ(c.status, 0) << c.output;

@@ -4,6 +4,7 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
+#include "core/testing/small_meshes.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
@@ -34,18 +35,7 @@ TEST(BoxMesh, AllTetsPositiveAndConforming) {
   const Mesh m = make_box_mesh(Vec3(-1, -1, -1), Vec3(1, 1, 1), 3, 3, 3);
   for (Index t = 0; t < m.num_tets(); ++t) EXPECT_GT(tet_signed_volume(m, t), 0.0) << t;
   // Each face is shared by at most two tets; boundary faces exactly cover the six box faces.
-  std::map<Tri, int> uses;
-  for (const Tet& t : m.tets) {
-    for (int skip = 0; skip < 4; ++skip) {
-      Tri f{};
-      int k = 0;
-      for (int v = 0; v < 4; ++v) {
-        if (v != skip) f[static_cast<std::size_t>(k++)] = t[static_cast<std::size_t>(v)];
-      }
-      std::sort(f.begin(), f.end());
-      ++uses[f];
-    }
-  }
+  const std::map<Tri, int> uses = testing::face_uses(m);
   int boundary = 0;
   for (const auto& entry : uses) {
     EXPECT_LE(entry.second, 2);
@@ -106,7 +96,7 @@ TEST(BoxMesh, RejectsBadArguments) {
 
 TEST(WriteGmsh22, RoundTripOfBoxMesh) {
   const Mesh a = make_box_mesh(Vec3(0.1, 0.2, 0.3), Vec3(1.1, 1.7, 0.9), 3, 2, 5);
-  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "tmlab_mesh_generator";
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "tmlab_mesh_generator";
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "box.msh").string();
   write_gmsh22(a, path);

@@ -3,6 +3,7 @@
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
 #include "core/mesh/sample_meshes.hpp"
+#include "core/testing/small_meshes.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
@@ -17,23 +18,6 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 }  // namespace
 namespace {
-
-// Number of tets using each face: conformity means no face is used more than twice.
-std::map<Tri, int> face_uses(const Mesh& m) {
-  std::map<Tri, int> uses;
-  for (const Tet& t : m.tets) {
-    for (int skip = 0; skip < 4; ++skip) {
-      Tri f{};
-      int k = 0;
-      for (int v = 0; v < 4; ++v) {
-        if (v != skip) f[static_cast<std::size_t>(k++)] = t[static_cast<std::size_t>(v)];
-      }
-      std::sort(f.begin(), f.end());
-      ++uses[f];
-    }
-  }
-  return uses;
-}
 
 double triangle_area(const Mesh& m, const Tri& f) {
   return 0.5 * (m.points[f[1]] - m.points[f[0]]).cross(m.points[f[2]] - m.points[f[0]]).norm();
@@ -117,7 +101,7 @@ TEST(CylinderMesh, ConformingPositiveAndExactVolume) {
     // Conforming: every face used at most twice, and the boundary faces are exactly the tagged
     // triangles whose areas add up to the polygon's top, bottom and side.
     int boundary = 0;
-    for (const auto& [face, n] : face_uses(m)) {
+    for (const auto& [face, n] : testing::face_uses(m)) {
       ASSERT_LE(n, 2);
       boundary += n == 1 ? 1 : 0;
     }
