@@ -6,6 +6,7 @@
 #include "cli_args.hpp"
 
 #include "calibration/data/measured_data.hpp"
+#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
@@ -70,12 +71,30 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
   j["threads"] = r.threads;
   j["local_iterations"] = r.iterations;
   j["stop_reason"] = r.stop_reason;
-  j["global_stage"] = {{"kind", "multi-start"},
-                       {"starts", o.starts},
+  j["global_stage"] = {{"kind", r.global_stage},
+                       {"model", r.global_model_name},
+                       {"surrogate_solves", r.global_solves},
+                       {"starts", o.global == fit::GlobalStage::Siman ? 1 : o.starts},
                        {"local_runs", o.local_runs},
                        {"seed", o.seed},
-                       {"start_costs", json::array()}};
+                       {"start_costs", json::array()},
+                       {"surrogate_costs", json::array()}};
+  if (o.global == fit::GlobalStage::Siman)
+    j["global_stage"]["siman"] = {{"evaluations", o.siman_evaluations},
+                                  {"iters_per_temperature", o.siman_iters_per_temperature},
+                                  {"step", o.siman_step},
+                                  {"t_initial", o.siman_t_initial},
+                                  {"t_min", o.siman_t_min},
+                                  {"energy", "ln(cost)"}};
   for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(num(c));
+  for (const double c : r.global_costs) j["global_stage"]["surrogate_costs"].push_back(num(c));
+  j["priors"] = json::array();
+  for (const auto& q : pr.priors)
+    j["priors"].push_back({{"parameter", q.parameter}, {"mean", q.mean}, {"sd", q.sd}});
+  if (!pr.priors.empty()) {
+    j["noise_sigma_N"] = r.noise_sigma;
+    j["prior_cost_N2"] = r.prior_cost;
+  }
   j["geodesic_acceleration"] = o.geodesic;
   j["confounded"] = json::array();
   for (const auto& c : r.confounded)
@@ -100,9 +119,11 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p =
-      parse(args, {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads", "--seed"},
-            {"--geodesic", "--no-plots", "--no-profile", "--quiet"});
+  const Parsed p = parse(
+      args,
+      {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads", "--seed", "--forward",
+       "--global", "--prior", "--noise", "--mesh", "--substeps", "--local-runs", "--siman-evaluations"},
+      {"--geodesic", "--no-plots", "--no-profile", "--quiet"});
   if (p.positional.size() != 1) throw UsageError("fit needs exactly one DATA.csv");
   if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
   const fs::path csv = p.positional[0];
@@ -131,7 +152,64 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   o.profile = !p.has("--no-profile");
   if (!p.has("--quiet"))
     o.progress = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
-  const fit::Problem problem = fit::make_surrogate_problem(data, spec, fixes, weights);
+  o.local_runs = positive_int("--local-runs", o.local_runs);
+  o.siman_evaluations = positive_int("--siman-evaluations", o.siman_evaluations);
+  const std::string global = p.get("--global", "multistart");
+  if (global == "siman")
+    o.global = fit::GlobalStage::Siman;
+  else if (global != "multistart")
+    throw UsageError("--global must be multistart or siman (got '" + global + "')");
+  std::vector<fit::Prior> priors;
+  for (const auto& s : p.all("--prior")) {
+    // NAME=MEAN:SD
+    const std::size_t eq = s.find('='), colon = s.find(':', eq == std::string::npos ? 0 : eq);
+    if (eq == std::string::npos || eq == 0 || colon == std::string::npos)
+      throw UsageError("--prior needs NAME=MEAN:SD, got '" + s + "'");
+    fit::Prior q;
+    q.parameter = s.substr(0, eq);
+    q.mean = parse_double("--prior " + q.parameter + " mean", s.substr(eq + 1, colon - eq - 1));
+    q.sd = parse_double("--prior " + q.parameter + " sd", s.substr(colon + 1));
+    if (!(q.sd > 0.0)) throw UsageError("--prior " + q.parameter + ": the sd must be positive");
+    priors.push_back(q);
+  }
+  fit::FeRigOptions fe;
+  if (p.has("--mesh")) {
+    const std::string m = p.get("--mesh");
+    const std::size_t comma = m.find(',');
+    if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
+    const double c = parse_double("--mesh cells", m.substr(0, comma)),
+                 l = parse_double("--mesh layers", m.substr(comma + 1));
+    if (!(c >= 2 && c <= 400 && c == std::floor(c) && l >= 1 && l <= 400 && l == std::floor(l)))
+      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
+    fe.mesh.cells = int(c);
+    fe.mesh.layers = int(l);
+  }
+  fe.substeps = positive_int("--substeps", fe.substeps);
+  // closed_form by default: an FE-rig fit can take minutes, so it is asked for, not fallen into.
+  const std::string forward = p.get("--forward", "closed_form");
+  if (forward != "auto" && forward != "closed_form" && forward != "fe_rig")
+    throw UsageError("--forward must be auto, closed_form or fe_rig (got '" + forward + "')");
+  fit::Problem problem;
+  std::string why_closed_form;
+  if (forward == "closed_form") {
+    problem = fit::make_surrogate_problem(data, spec, fixes, weights);
+  } else if (forward == "fe_rig") {
+    problem = fit::make_fe_rig_problem(data, spec, fixes, weights, fe, &why_closed_form);
+  } else {
+    // auto: the closed form when it covers the data and the law, else the FE rig.
+    try {
+      problem = fit::make_surrogate_problem(data, spec, fixes, weights);
+    } catch (const Error& e) {
+      why_closed_form = e.what();
+      problem = fit::make_fe_rig_problem(data, spec, fixes, weights, fe);
+      std::cout << "no closed form (" << why_closed_form << "): the FE rig forward model\n";
+    }
+  }
+  problem.priors = priors;
+  if (p.has("--noise")) {
+    problem.noise_sigma = parse_double("--noise", p.get("--noise"));
+    if (!(problem.noise_sigma > 0.0)) throw UsageError("--noise must be positive (N)");
+  }
 
   std::string law_tag = spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
                         (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
@@ -144,13 +222,29 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   }
   std::cout << "fit " << data.meta.name << " with " << spec.text << " (" << problem.model->description()
             << ")\n";
+  if (problem.global_model)
+    std::cout << "global stage (" << global << ") on the closed form: " << problem.global_model->description()
+              << "; local stage and every reported number: " << problem.model->name() << "\n";
+  else if (forward == "fe_rig" && !why_closed_form.empty())
+    std::cout << "global stage on the FE rig itself (no closed form: " << why_closed_form << ")\n";
   RunOutput out(dir, &std::cerr);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
-    mi.config = {{"model", spec.text},   {"cost", cost},          {"starts", o.starts},
-                 {"threads", o.threads}, {"seed", o.seed},        {"geodesic", o.geodesic},
-                 {"profile", o.profile}, {"fix", p.all("--fix")}, {"weight", p.all("--weight")}};
+    mi.config = {{"model", spec.text},
+                 {"cost", cost},
+                 {"starts", o.starts},
+                 {"threads", o.threads},
+                 {"seed", o.seed},
+                 {"geodesic", o.geodesic},
+                 {"profile", o.profile},
+                 {"fix", p.all("--fix")},
+                 {"weight", p.all("--weight")},
+                 {"forward", forward},
+                 {"global", global},
+                 {"prior", p.all("--prior")},
+                 {"mesh", {fe.mesh.cells, fe.mesh.layers}},
+                 {"substeps", fe.substeps}};
     mi.input_files = {csv, measured::metadata_path(csv)};
     out.write_json("manifest.json", make_manifest(mi));
     const fit::FitResult r = fit::fit(problem, o);
@@ -216,8 +310,12 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
               << significant(r.rms, 4) << " N = " << significant(r.rms_percent_peak, 3) << " % of peak "
               << significant(problem.data.peak_force, 5) << " N; AIC " << significant(r.aic, 7) << ", BIC "
               << significant(r.bic, 7) << "\n"
-              << r.forward_solves << " forward solves on " << r.threads << " threads in "
-              << significant(r.wall_seconds, 3) << " s\n";
+              << r.forward_solves << " forward solves (" << r.model_name << ")"
+              << (r.global_solves ? " + " + std::to_string(r.global_solves) + " (" + r.global_model_name +
+                                        ", " + r.global_stage + " global stage)"
+                                  : std::string(" (") + r.global_stage + " global stage)")
+              << " on " << r.threads << " threads in " << significant(r.wall_seconds, 3) << " s\n"
+              << "the numbers above are from the forward model '" << r.model_name << "'\n";
     if (!r.profile.parameter.empty())
       std::cout << "profile likelihood of " << r.profile.parameter << ": 95 % interval ["
                 << (r.profile.lower_found ? significant(r.profile.lower95, 5) : std::string("beyond grid"))
@@ -234,6 +332,9 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
                               {"aic", r.aic},
                               {"bic", r.bic},
                               {"forward_solves", r.forward_solves},
+                              {"global_stage", r.global_stage},
+                              {"surrogate_solves", r.global_solves},
+                              {"wall_seconds", r.wall_seconds},
                               {"plots", plots}};
     out.finalize(summary);
     std::cout << "written: " << out.dir().string() << "/ (fit.json, fit.h5, manifest.json, summary.json"

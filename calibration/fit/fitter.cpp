@@ -8,6 +8,8 @@
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
 #include <gsl/gsl_multifit_nlinear.h>
+#include <gsl/gsl_rng.h>
+#include <gsl/gsl_siman.h>
 #include <Eigen/Dense>
 
 #include <algorithm>
@@ -17,10 +19,22 @@
 #include <limits>
 #include <numeric>
 #include <random>
+#include <tuple>
 
 namespace tmlab::fit {
 
 std::string to_string(Cost c) { return c == Cost::L1 ? "l1" : "least_squares"; }
+std::string to_string(GlobalStage g) { return g == GlobalStage::Siman ? "siman" : "multistart"; }
+
+double noise_sigma(const Observations& d) {
+  std::vector<double> a;
+  for (std::size_t i = 1; i + 1 < d.size(); ++i)
+    if (d.test[i - 1] == d.test[i] && d.test[i + 1] == d.test[i])
+      a.push_back(std::abs(d.force[i + 1] - 2.0 * d.force[i] + d.force[i - 1]));
+  if (a.empty()) return 0.0;
+  std::nth_element(a.begin(), a.begin() + long(a.size() / 2), a.end());
+  return a[a.size() / 2] / (0.6744897501960817 * std::sqrt(6.0));
+}
 
 namespace {
 
@@ -29,13 +43,18 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Residuals of a subset of free parameters (internal coordinates) with the others held.
 struct Evaluator {
   const Problem* problem = nullptr;
+  const ForwardModel* model = nullptr;  ///< the problem's model, or its global-stage surrogate
   Cost cost = Cost::LeastSquares;
+  /// Priors: (parameter index, mean, sd) and the force scale sigma of their residuals.
+  std::vector<std::tuple<std::size_t, double, double>> priors;
+  double sigma = 0.0;
   std::vector<std::size_t> free;  ///< indices into problem->parameters
   std::vector<double> held;       ///< physical values of every parameter (the free ones overwritten)
   double delta = 0.0;             ///< L1 smoothing
   std::atomic<long>* solves = nullptr;
 
-  std::size_t n() const { return problem->data.size(); }
+  std::size_t n_data() const { return problem->data.size(); }
+  std::size_t n() const { return problem->data.size() + priors.size(); }
   std::size_t p() const { return free.size(); }
 
   std::vector<double> physical(const double* t) const {
@@ -49,16 +68,20 @@ struct Evaluator {
     std::vector<double> f;
     ++*solves;
     try {
-      f = problem->model->predict(x);
+      f = model->predict(x);
     } catch (const Error&) {
       return false;
     }
     const Observations& d = problem->data;
     if (f.size() != d.size()) throw Error("fit: the forward model returned the wrong number of forces");
-    e.resize(d.size());
+    e.resize(n());
     for (std::size_t i = 0; i < d.size(); ++i) {
       if (!std::isfinite(f[i])) return false;
       e[i] = d.weights[d.test[i]] * (f[i] - d.force[i]);
+    }
+    for (std::size_t k = 0; k < priors.size(); ++k) {
+      const auto& [i, mean, sd] = priors[k];
+      e[d.size() + k] = sigma * (x[i] - mean) / sd;
     }
     if (prediction) *prediction = std::move(f);
     return true;
@@ -66,13 +89,16 @@ struct Evaluator {
   /// The residuals the optimiser squares (e for least squares, e / sqrt(|e| + delta) for L1).
   void to_residuals(std::vector<double>& e) const {
     if (cost == Cost::L1)
-      for (double& v : e) v = v / std::sqrt(std::abs(v) + delta);
+      for (std::size_t i = 0; i < n_data(); ++i) e[i] = e[i] / std::sqrt(std::abs(e[i]) + delta);
   }
   double cost_of(const std::vector<double>& e) const {
     double c = 0.0;
-    for (const double v : e) c += cost == Cost::L1 ? std::abs(v) : v * v;
+    for (std::size_t i = 0; i < e.size(); ++i)
+      c += cost == Cost::L1 && i < n_data() ? std::abs(e[i]) : e[i] * e[i];
     return c;
   }
+  /// The forward-difference step of the Jacobian in internal coordinate t.
+  double jacobian_step(double t) const { return model->jacobian_step() * std::max(1.0, std::abs(t)); }
   /// The residual vector used for a failed evaluation: large, so the trial step is rejected.
   double failure_value() const { return 1e6 * (problem->data.peak_force + 1.0); }
 };
@@ -123,7 +149,7 @@ int gsl_df(const gsl_vector* x, void* params, gsl_matrix* J) {
   std::vector<std::vector<double>> cols(ev.p());
   parallel_for(ev.p(), g->threads, [&](std::size_t j) {
     std::vector<double> tj = t, e;
-    double h = 1e-7 * std::max(1.0, std::abs(t[j]));
+    double h = ev.jacobian_step(t[j]);
     tj[j] += h;
     if (!ev.errors(tj.data(), e)) {
       tj[j] = t[j] - h;
@@ -223,13 +249,86 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
 
 double chi2_95() { return gsl_cdf_chisq_Pinv(0.95, 1.0); }
 
+// Simulated annealing (GSL gsl_siman) in the internal coordinates. The energy is ln(cost), so the
+// temperature is a ratio of costs whatever their units (T = 1: a step that multiplies the cost by e
+// is accepted with probability 1/e); a step moves every free coordinate by step_size times its start
+// range times a uniform number in [-1, 1]. The state is a fixed-size, trivially copyable struct
+// (gsl_siman copies it with memcpy) that carries a pointer to its context, since gsl_siman's
+// callbacks get no user data.
+constexpr std::size_t kSimanMax = 64;
+struct SimanContext {
+  const Evaluator* ev = nullptr;
+  std::vector<double> width;  ///< start range per free coordinate (internal)
+  double failure_energy = 0.0;
+};
+struct SimanState {
+  const SimanContext* ctx;
+  double t[kSimanMax];
+};
+
+double siman_energy(void* xp) {
+  const auto* s = static_cast<const SimanState*>(xp);
+  std::vector<double> e;
+  if (!s->ctx->ev->errors(s->t, e)) return s->ctx->failure_energy;
+  return std::log(std::max(s->ctx->ev->cost_of(e), 1e-300));
+}
+void siman_step(const gsl_rng* r, void* xp, double step_size) {
+  auto* s = static_cast<SimanState*>(xp);
+  for (std::size_t j = 0; j < s->ctx->ev->p(); ++j)
+    s->t[j] += step_size * s->ctx->width[j] * (2.0 * gsl_rng_uniform(r) - 1.0);
+}
+double siman_distance(void* a, void* b) {
+  const auto* x = static_cast<const SimanState*>(a);
+  const auto* y = static_cast<const SimanState*>(b);
+  double d = 0.0;
+  for (std::size_t j = 0; j < x->ctx->ev->p(); ++j) d += (x->t[j] - y->t[j]) * (x->t[j] - y->t[j]);
+  return std::sqrt(d);
+}
+
+/// Anneals from `t0`; returns the best state gsl_siman visited. Serial (one forward solve per
+/// trial), reproducible for a seed: gsl_rng_mt19937 seeded with options.seed.
+std::vector<double> anneal(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
+                           const std::vector<double>& t0) {
+  const std::size_t p = ev.p();
+  if (p > kSimanMax) throw Error("fit: --global siman handles at most 64 free parameters");
+  SimanContext ctx;
+  ctx.ev = &ev;
+  for (std::size_t j = 0; j < p; ++j) {
+    const Parameter& q = pr.parameters[ev.free[j]];
+    ctx.width.push_back(std::max(std::abs(q.to_internal(q.start_high) - q.to_internal(q.start_low)), 1e-3));
+  }
+  std::vector<double> e;
+  const double e0 = ev.errors(t0.data(), e) ? std::log(std::max(ev.cost_of(e), 1e-300)) : 0.0;
+  ctx.failure_energy = e0 + 50.0;  // far above any evaluated state near the start
+  SimanState st{};
+  st.ctx = &ctx;
+  std::copy(t0.begin(), t0.end(), st.t);
+  // Temperatures T_k = t_initial / mu^k down to t_min, iters_fixed_T trials at each: the budget of
+  // opt.siman_evaluations trials fixes mu.
+  gsl_siman_params_t sp;
+  sp.n_tries = 1;  // unused by gsl_siman_solve
+  sp.iters_fixed_T = std::max(1, opt.siman_iters_per_temperature);
+  sp.step_size = opt.siman_step;
+  sp.k = 1.0;
+  sp.t_initial = opt.siman_t_initial;
+  sp.t_min = opt.siman_t_min;
+  const double temperatures = std::max(2.0, double(opt.siman_evaluations) / sp.iters_fixed_T);
+  sp.mu_t = std::exp(std::log(sp.t_initial / sp.t_min) / temperatures);
+  gsl_rng* rng = gsl_rng_alloc(gsl_rng_mt19937);
+  gsl_rng_set(rng, opt.seed);
+  gsl_siman_solve(rng, &st, siman_energy, siman_step, siman_distance, nullptr, nullptr, nullptr, nullptr,
+                  sizeof(SimanState), sp);
+  gsl_rng_free(rng);
+  return std::vector<double>(st.t, st.t + p);
+}
+
 // Global stage: `starts` candidates in the internal coordinates (the given values first, then
 // uniform in each parameter's start range), their costs evaluated in parallel. Returns the
 // candidates; res.start_costs gets their costs and `order` the candidates sorted by cost.
 std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
                                               FitResult& res, std::vector<std::size_t>& order) {
   const std::size_t p = ev.p();
-  const std::size_t starts = std::size_t(std::max(1, opt.starts));
+  std::size_t starts = opt.global == GlobalStage::Siman ? 1 : std::size_t(std::max(1, opt.starts));
   std::vector<std::vector<double>> cand(starts, std::vector<double>(p));
   std::mt19937_64 rng(opt.seed);
   std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -243,6 +342,14 @@ std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOption
         cand[c][j] = a + (b - a) * u(rng);
       }
     }
+  if (opt.global == GlobalStage::Siman) {
+    // Annealing from the parameters' values; the local stage then starts from its best state and
+    // from the values themselves.
+    cand.resize(2);
+    cand[1] = cand[0];
+    cand[0] = anneal(pr, opt, ev, cand[1]);
+    starts = cand.size();
+  }
   res.start_costs.assign(starts, kInf);
   parallel_for(starts, opt.threads, [&](std::size_t c) {
     std::vector<double> e;
@@ -257,7 +364,8 @@ std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOption
                 std::to_string(starts) +
                 " starting points (check the data's geometry and the SPEC's fixed values)");
   if (opt.progress)
-    opt.progress("global stage: " + std::to_string(starts) + " starts, best cost " +
+    opt.progress("global stage (" + to_string(opt.global) + ", " + ev.model->name() +
+                 "): " + std::to_string(starts) + " candidates, best cost " +
                  significant(res.start_costs[order[0]], 5) + " (start " + std::to_string(order[0]) + ")");
 
   return cand;
@@ -293,13 +401,14 @@ Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
 // The optimum's residuals, cost, RMS and information criteria; returns the force errors.
 std::vector<double> optimum_stats(const Problem& pr, const Evaluator& ev, const std::vector<double>& t,
                                   FitResult& res) {
-  const std::size_t p = ev.p(), n = ev.n();
+  const std::size_t p = ev.p(), n = ev.n_data();
   std::vector<double> e0;
   ev.errors(t.data(), e0, &res.prediction);
   res.cost = ev.cost_of(e0);
   res.n = n;
   res.k = p;
-  for (const double v : e0) res.sse += v * v;
+  for (std::size_t i = 0; i < n; ++i) res.sse += e0[i] * e0[i];
+  for (std::size_t i = n; i < e0.size(); ++i) res.prior_cost += e0[i] * e0[i];
   res.rms = std::sqrt(res.sse / double(n));
   res.rms_percent_peak = 100.0 * res.rms / pr.data.peak_force;
   const double ssen = std::max(res.sse, 1e-300) / double(n);
@@ -316,14 +425,15 @@ struct Covariance {
   Eigen::MatrixXd Cs, Ct;
   double tq = kInf;
   std::vector<bool> identifiable;
+  std::vector<double> data_only_variance;  ///< internal, per free parameter, without the prior rows
 };
 
 Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vector<double>& t,
                       const std::vector<double>& e0, const FitResult& res) {
-  const std::size_t p = ev.p(), n = ev.n();
+  const std::size_t p = ev.p(), n = ev.n(), nd = ev.n_data();
   Eigen::MatrixXd J(n, p);
   parallel_for(p, opt.threads, [&](std::size_t j) {
-    const double h = 1e-5 * std::max(1.0, std::abs(t[j]));
+    const double h = std::max(1e-5, 10.0 * ev.model->jacobian_step()) * std::max(1.0, std::abs(t[j]));
     std::vector<double> tp = t, tm = t, ep, em;
     tp[j] += h;
     tm[j] -= h;
@@ -334,7 +444,7 @@ Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vec
                                             : okm      ? (e0[i] - em[i]) / h
                                                        : 0.0;
   });
-  const double s2 = n > p ? res.sse / double(n - p) : kInf;
+  const double s2 = nd > p ? res.sse / double(nd - p) : kInf;
   // Column scaling makes the SVD's rank test independent of units; singular values below 1e-8 of
   // the largest mark directions the data do not determine.
   Eigen::VectorXd scale = J.colwise().norm().transpose();
@@ -356,7 +466,25 @@ Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vec
   }
   c.Cs = V * inv2.asDiagonal() * V.transpose();
   c.Ct = s2 * scale.cwiseInverse().asDiagonal() * c.Cs * scale.cwiseInverse().asDiagonal();
-  c.tq = n > p ? gsl_cdf_tdist_Pinv(0.975, double(n - p)) : kInf;
+  c.tq = nd > p ? gsl_cdf_tdist_Pinv(0.975, double(nd - p)) : kInf;
+  if (n > nd) {
+    // The data alone (the prior rows dropped): what the priors changed in the standard errors.
+    const Eigen::MatrixXd Jd = J.topRows(Eigen::Index(nd));
+    const Eigen::MatrixXd A = Jd.transpose() * Jd;
+    Eigen::JacobiSVD<Eigen::MatrixXd> sd(A, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    const Eigen::VectorXd w = sd.singularValues();
+    Eigen::VectorXd wi(w.size());
+    for (Eigen::Index k = 0; k < w.size(); ++k) wi(k) = w(k) > 1e-14 * w(0) ? 1.0 / w(k) : kInf;
+    c.data_only_variance.assign(p, kInf);
+    for (std::size_t j = 0; j < p; ++j) {
+      double v = 0.0;
+      for (Eigen::Index k = 0; k < w.size(); ++k) {
+        const double vk = sd.matrixV()(Eigen::Index(j), k);
+        if (vk != 0.0) v += vk * vk * wi(k);
+      }
+      c.data_only_variance[j] = s2 * v;
+    }
+  }
 
   return c;
 }
@@ -414,7 +542,8 @@ void confounding_report(const Problem& pr, const std::vector<bool>& identifiable
     if (q.fixed) fixed_list += (fixed_list.empty() ? "" : ", ") + q.name + " = " + significant(q.value, 6);
   if (!fixed_list.empty())
     res.notes.push_back("fixed (not fitted; their uncertainty is not propagated): " + fixed_list);
-  const bool indentation = res.model_name.find("hertz") != std::string::npos ||
+  const bool indentation = res.model_description.find("indentation") != std::string::npos ||
+                           res.model_name.find("hertz") != std::string::npos ||
                            res.model_name.find("sneddon") != std::string::npos ||
                            res.model_name.find("lee_radok") != std::string::npos;
   for (std::size_t a = 0; a < p; ++a)
@@ -439,6 +568,15 @@ void confounding_report(const Problem& pr, const std::vector<bool>& identifiable
         cf.note =
             "the data determine only a combination of these two. The fit did nothing about it: fix one "
             "(--fix) or add a test that separates them";
+      for (const Prior& q : pr.priors)
+        if (q.parameter == cf.a || q.parameter == cf.b) {
+          const std::size_t at = cf.note.find("The fit did nothing about it");
+          const std::string did = "The fit regularised it with the prior on " + q.parameter + " (mean " +
+                                  significant(q.mean, 6) + ", sd " + significant(q.sd, 4) +
+                                  "): the reported value of " + q.parameter + " rests on that prior";
+          cf.note = at == std::string::npos ? cf.note + ". " + did : cf.note.substr(0, at) + did;
+          break;
+        }
       res.confounded.push_back(cf);
     }
   for (std::size_t j = 0; j < p; ++j)
@@ -453,9 +591,10 @@ void confounding_report(const Problem& pr, const std::vector<bool>& identifiable
 // the others on a grid of +-3 standard errors, and where it crosses the chi^2(1) 95 % threshold.
 void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
                         const std::vector<double>& t, const Covariance& c, FitResult& res) {
-  const std::size_t p = ev.p(), n = ev.n();
+  const std::size_t p = ev.p(), n = ev.n_data();
   const Eigen::MatrixXd& Ct = c.Ct;
   const std::vector<double> x = ev.physical(t.data());
+  const double smin = res.sse + res.prior_cost;  // the least-squares objective at the optimum
   std::size_t worst = p;
   double worst_rel = -1.0;
   for (std::size_t j = 0; j < p; ++j) {
@@ -494,7 +633,7 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
     sk.cost = Cost::LeastSquares;
     pts[k].value = sk.held[i];
     if (cs[k] == 0.0) {
-      pts[k].sse = res.sse;
+      pts[k].sse = smin;
       continue;
     }
     std::vector<double> e;
@@ -504,12 +643,12 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
       FitOptions po = opt;
       po.progress = nullptr;
       const Local l = local_fit(sk, tsub, po, false);
-      pts[k].sse = std::max(l.cost, res.sse);  // the optimum is the minimum (round-off)
+      pts[k].sse = std::max(l.cost, smin);  // the optimum is the minimum (round-off)
     }
   }
   res.profile.points = pts;
   const double thr = chi2_95();
-  const auto stat = [&](double s) { return double(n) * std::log(s / res.sse); };
+  const auto stat = [&](double s) { return double(n) * std::log(s / smin); };
   const std::size_t mid = 5;
   res.profile.lower95 = pts.front().value;
   res.profile.upper95 = pts.back().value;
@@ -531,6 +670,31 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
     }
 }
 
+// What each prior did: its share of the cost, and the standard error with the prior beside the
+// one the data alone give.
+void prior_notes(const Problem& pr, const Evaluator& ev, const Covariance& c, FitResult& res) {
+  for (std::size_t k = 0; k < pr.priors.size(); ++k) {
+    const Prior& q = pr.priors[k];
+    const std::size_t i = std::get<0>(ev.priors[k]);
+    const std::size_t j = std::size_t(std::find(ev.free.begin(), ev.free.end(), i) - ev.free.begin());
+    const ParameterResult& r = res.parameters[i];
+    double without = kInf;
+    if (j < c.data_only_variance.size() && std::isfinite(c.data_only_variance[j]))
+      without = std::sqrt(std::max(c.data_only_variance[j], 0.0)) *
+                std::abs(pr.parameters[i].derivative(pr.parameters[i].to_internal(r.value)));
+    const double z = (r.value - q.mean) / q.sd;
+    res.notes.push_back(
+        "prior on " + r.name + ": Gaussian, mean " + significant(q.mean, 6) + ", sd " + significant(q.sd, 4) +
+        " " + r.unit + " (weighed against the noise sigma " + significant(ev.sigma, 4) +
+        " N); the estimate lies " + significant(z, 3) + " sd from the mean; standard error " +
+        significant(r.standard_error, 3) + " with the prior, " +
+        (std::isfinite(without) ? significant(without, 3) : std::string("inf")) + " from the data alone" +
+        (!std::isfinite(without) || r.standard_error < 0.5 * without
+             ? ": the prior, not the data, determines this parameter"
+             : ""));
+  }
+}
+
 }  // namespace
 
 FitResult fit(const Problem& pr, const FitOptions& opt) {
@@ -545,6 +709,7 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
 
   Evaluator ev;
   ev.problem = &pr;
+  ev.model = pr.model.get();
   ev.cost = opt.cost;
   ev.delta = 1e-6 * pr.data.peak_force;
   ev.solves = &solves;
@@ -553,16 +718,65 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
     if (!pr.parameters[i].fixed) ev.free.push_back(i);
   }
   if (ev.p() == 0) throw Error("fit: every parameter is fixed");
+  if (!pr.priors.empty()) {
+    if (opt.cost != Cost::LeastSquares) throw Error("fit: priors need the least-squares cost");
+    ev.sigma = pr.noise_sigma > 0.0 ? pr.noise_sigma : noise_sigma(pr.data);
+    if (!(ev.sigma > 0.0))
+      throw Error(
+          "fit: a prior needs the noise level of the data, which cannot be estimated from these "
+          "samples (give it: --noise SIGMA_N)");
+    for (const Prior& q : pr.priors) {
+      const std::size_t i = index_of(pr.parameters, q.parameter);
+      if (pr.parameters[i].fixed) throw Error("fit: a prior on '" + q.parameter + "', which is fixed");
+      if (!(q.sd > 0.0) || !std::isfinite(q.sd) || !std::isfinite(q.mean))
+        throw Error("fit: the prior on '" + q.parameter + "' needs a finite mean and a positive sd");
+      ev.priors.emplace_back(i, q.mean, q.sd);
+    }
+    res.noise_sigma = ev.sigma;
+  }
+  res.global_stage = to_string(opt.global);
+  std::atomic<long> global_solves{0};
+  Evaluator gev = ev;  // the global stage's evaluator: the surrogate when the problem has one
+  if (pr.global_model) {
+    gev.model = pr.global_model.get();
+    gev.solves = &global_solves;
+  }
+  res.global_model_name = gev.model->name();
 
   std::vector<std::size_t> order;
-  const std::vector<std::vector<double>> cand = global_stage(pr, opt, ev, res, order);
+  std::vector<std::vector<double>> cand = global_stage(pr, opt, gev, res, order);
+  if (pr.global_model) {
+    // The surrogate's costs rank the candidates; the local stage's starts are re-costed with the
+    // final model (a candidate it cannot evaluate is skipped).
+    const std::size_t runs = std::min<std::size_t>(cand.size(), std::size_t(std::max(1, opt.local_runs)));
+    std::vector<std::vector<double>> best;
+    std::vector<double> costs;
+    for (std::size_t r = 0; r < runs; ++r) best.push_back(cand[order[r]]);
+    costs.assign(best.size(), kInf);
+    parallel_for(best.size(), opt.threads, [&](std::size_t c) {
+      std::vector<double> e;
+      if (ev.errors(best[c].data(), e)) costs[c] = ev.cost_of(e);
+    });
+    res.global_costs = res.start_costs;
+    res.start_costs = costs;
+    cand = best;
+    order.assign(cand.size(), 0);
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
+    if (!std::isfinite(costs[order[0]]))
+      throw Error("fit: the forward model '" + res.model_name +
+                  "' cannot be evaluated at the global stage's best candidates");
+  }
   const std::vector<double> t = local_stage(pr, opt, ev, cand, order, res).t;
   const std::vector<double> e0 = optimum_stats(pr, ev, t, res);
   const Covariance c = covariance(opt, ev, t, e0, res);
   parameter_results(pr, ev, t, c, res);
   confounding_report(pr, c.identifiable, res);
-  if (opt.profile && ev.n() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res);
+  if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res);
   res.forward_solves = solves.load();
+  res.global_solves = pr.global_model ? global_solves.load() : 0;
+  if (!pr.priors.empty()) prior_notes(pr, ev, c, res);
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return res;
 }

@@ -25,6 +25,10 @@ namespace tmlab::fit {
 
 enum class Cost { LeastSquares, L1 };
 std::string to_string(Cost c);
+/// The global stage: multi-start (candidates sampled uniformly in the start ranges, costed in
+/// parallel) or simulated annealing (GSL gsl_siman from the parameters' values, serial).
+enum class GlobalStage { MultiStart, Siman };
+std::string to_string(GlobalStage g);
 
 struct FitOptions {
   Cost cost = Cost::LeastSquares;
@@ -33,6 +37,13 @@ struct FitOptions {
   bool geodesic = false;  ///< geodesic acceleration (gsl_multifit_nlinear_trs_lmaccel)
   int threads = 2;        ///< forward solves in parallel
   unsigned long seed = 1;
+  GlobalStage global = GlobalStage::MultiStart;
+  // Simulated annealing (GlobalStage::Siman): energy ln(cost), temperatures from t_initial down to
+  // t_min geometrically, iters_per_temperature trials at each, about `siman_evaluations` trials.
+  int siman_evaluations = 3000;
+  int siman_iters_per_temperature = 20;
+  double siman_step = 0.2;  ///< step, as a fraction of each parameter's start range (internal)
+  double siman_t_initial = 1.0, siman_t_min = 1e-3;
   int max_iterations = 200;
   bool profile = true;  ///< profile likelihood of the worst-determined parameter
   /// Called with one line of progress (iteration, cost, current standard errors); may be empty.
@@ -73,19 +84,27 @@ struct FitResult {
   std::vector<ParameterResult> parameters;
   std::vector<std::string> free_names;           ///< order of the correlation matrix
   std::vector<std::vector<double>> correlation;  ///< free parameters
-  double cost = 0.0;                             ///< the minimised cost: SSE (N^2) or sum |e| (N)
-  double sse = 0.0;                              ///< weighted sum of squared force residuals, N^2
-  double rms = 0.0;                              ///< residual RMS, N
+  double cost = 0.0;  ///< the minimised cost: SSE (+ prior terms) (N^2) or sum |e| (N)
+  double sse = 0.0;   ///< weighted sum of squared force residuals, N^2
+  double rms = 0.0;   ///< residual RMS, N
   double rms_percent_peak = 0.0;
   std::size_t n = 0, k = 0;
   double aic = 0.0, bic = 0.0;
-  long forward_solves = 0;
+  long forward_solves = 0;           ///< solves of the model of the final numbers (model_name)
+  std::string global_stage;          ///< "multistart" or "siman"
+  std::string global_model_name;     ///< the global stage's model (the surrogate, or model_name)
+  long global_solves = 0;            ///< solves of the surrogate (0 without one)
+  std::vector<double> global_costs;  ///< the surrogate's costs of the global candidates (with a surrogate)
+  double prior_cost = 0.0;           ///< the priors' share of the least-squares cost, N^2
+  double noise_sigma = 0.0;          ///< the noise level the priors were weighed against, N (0: no priors)
   double wall_seconds = 0.0;
   int threads = 1;
   int iterations = 0;
   std::string stop_reason;
-  std::vector<double> start_costs;  ///< the global stage's candidate costs, in candidate order
-  std::vector<double> prediction;   ///< the model's force at the optimum, Observations order
+  /// The costs of the local stage's candidate starts, in candidate order (the global stage's, or,
+  /// with a surrogate, the final model's costs of the surrogate's best candidates).
+  std::vector<double> start_costs;
+  std::vector<double> prediction;  ///< the model's force at the optimum, Observations order
   Profile profile;
   std::vector<Confounding> confounded;
   std::vector<std::string> notes;  ///< what was fixed, what is not identifiable

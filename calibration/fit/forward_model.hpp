@@ -33,6 +33,19 @@ class ForwardModel {
   /// Forces at every sample (Observations order) for physical parameter values `x`. Throws
   /// tmlab::Error when the model cannot be evaluated there (the fit treats it as a rejected trial).
   virtual std::vector<double> predict(const std::vector<double>& x) const = 0;
+  /// The relative step of the forward-difference Jacobian in the internal coordinates: small for
+  /// closed forms (round-off only), larger for iterative solvers whose forces carry the solver's
+  /// tolerance (the difference must stand well above it).
+  virtual double jacobian_step() const { return 1e-7; }
+};
+
+/// A Gaussian prior on one parameter (regularisation, docs/identification.md): the residual
+/// sigma (x - mean) / sd is appended to the force residuals, sigma the noise standard deviation of
+/// the data (N), so that least squares minimises SSE / sigma^2 + ((x - mean) / sd)^2, the negative
+/// log posterior of Gaussian noise and this prior.
+struct Prior {
+  std::string parameter;
+  double mean = 0.0, sd = 0.0;  ///< physical units, sd > 0
 };
 
 /// Everything a fit needs: the parameters (with the SPEC's and the command line's fixed values
@@ -45,6 +58,19 @@ struct Problem {
   /// sorted by relaxation time): exchangeable terms would otherwise be reported in whichever order
   /// the optimiser happened to find them. Empty: the identity.
   std::function<std::vector<double>(std::vector<double>)> canonical;
+  /// The model of the global stage (a closed-form surrogate of `model`); null: `model` itself. The
+  /// local stage and every reported number use `model`.
+  std::unique_ptr<ForwardModel> global_model;
+  std::vector<Prior> priors;
+  /// The noise standard deviation the priors are weighed against, N; 0: estimated from the data
+  /// (noise_sigma() below).
+  double noise_sigma = 0.0;
 };
+
+/// The noise standard deviation of the measured forces from their second differences within each
+/// test: for a smooth curve sampled densely, y_{i+1} - 2 y_i + y_{i-1} is mostly noise, of variance
+/// 6 sigma^2; the median absolute value (robust against the kinks of a ramp-hold history) gives
+/// sigma = median|d2| / (0.6745 sqrt 6). 0 when no test has 3 samples.
+double noise_sigma(const Observations& data);
 
 }  // namespace tmlab::fit

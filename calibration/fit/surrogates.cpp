@@ -181,9 +181,9 @@ std::function<std::vector<double>(std::vector<double>)> canonical_order(
 
 }  // namespace
 
-Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
-                               const std::vector<std::pair<std::string, double>>& fixes,
-                               const std::vector<std::pair<std::string, double>>& weights) {
+Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
+                          const std::vector<std::pair<std::string, double>>& fixes,
+                          const std::vector<std::pair<std::string, double>>& weights) {
   const std::string& name = d.meta.name;
   if (d.tests.empty()) throw Error(name + ": the data set has no tests");
   Problem pr;
@@ -221,13 +221,9 @@ Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
   if (m.test == TestType::indentation) {
     if (!m.indenter) throw Error(name + ": indentation data without an indenter");
     if (m.indenter->shape == IndenterShape::cylinder)
-      throw Error(name +
-                  ": no closed form for a cylinder indenter on its side (use a sphere or a flat punch)");
-    if (spec.law != "stvk" && spec.law != "neo_hookean")
-      throw Error(name +
-                  ": the closed-form indentation models are linear elastic and see only the small-strain "
-                  "modulus; fit 'stvk' or 'neo_hookean' (E, nu and Prony terms) to indentation data (law '" +
-                  spec.law + "' needs the FE rig forward model, not available yet)");
+      throw Error(
+          name +
+          ": no closed form or rig for a cylinder indenter on its side (use a sphere or a flat punch)");
     const bool sphere = m.indenter->shape == IndenterShape::sphere;
     const double r = m.indenter->radius_m;
     for (std::size_t k = 0; k < d.tests.size(); ++k) {
@@ -244,29 +240,8 @@ Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
       const double estar =
           sphere ? 3.0 * fp / (4.0 * std::sqrt(r) * dp * std::sqrt(dp)) : fp / (2.0 * r * dp);
       modulus = std::max(modulus, estar * (1.0 - 0.45 * 0.45));
-      if (spec.prony_terms > 0)
-        for (std::size_t i = 1; i < t.size(); ++i)
-          if (t.displacement_m[i] < t.displacement_m[i - 1] && t.displacement_m[i - 1] > 0.0)
-            throw Error(sample_where(d, k, i) +
-                        ": the depth decreases while in contact; the Lee-Radok closed form needs loading and "
-                        "hold only "
-                        "(drop the unloading samples, or fit without Prony terms)");
-      if (sphere && m.sample.shape != SampleShape::half_space) {
-        const double h = m.sample.shape == SampleShape::block ? m.sample.size_m[2] : m.sample.height_m;
-        const double dmax = *std::max_element(t.displacement_m.begin(), t.displacement_m.end());
-        if (std::sqrt(r * dmax) > h)
-          throw Error(test_name(d, k) +
-                      ": contact radius sqrt(R d) = " + significant(std::sqrt(r * dmax) * 1e3, 4) +
-                      " mm exceeds the layer thickness " + significant(h * 1e3, 4) +
-                      " mm: outside the finite-layer closed form (shallower data or the FE rig)");
-      }
     }
-    pr.model = std::make_unique<IndentationModel>(d, spec);
   } else {
-    if (spec.prony_terms > 0)
-      throw Error(
-          name + ": Prony terms on " + to_string(m.test) +
-          " data need the FE rig forward model (not available yet); the homogeneous closed form is elastic");
     const Sample& s = m.sample;
     double height = 0.0, area = 0.0;
     if (s.shape == SampleShape::cylinder) {
@@ -307,7 +282,6 @@ Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
     if (!(modulus > 0.0)) modulus = pr.data.peak_force / area / std::max(emax, 1e-12);
     if (!(modulus > 0.0))
       throw Error(name + ": the force does not rise with the displacement (check the sign convention)");
-    pr.model = std::make_unique<PlatenModel>(d, spec, height, area);
   }
   pr.parameters = law_parameters(spec, modulus, duration);
   for (const auto& [k, v] : spec.fixed) fix(pr.parameters, k, v);
@@ -319,6 +293,69 @@ Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
   if (pr.data.size() <= free)
     throw Error(name + ": " + std::to_string(pr.data.size()) + " samples for " + std::to_string(free) +
                 " free parameters: more samples than parameters are needed");
+  return pr;
+}
+
+std::unique_ptr<ForwardModel> make_surrogate_model(const DataSet& d, const ModelSpec& spec) {
+  const std::string& name = d.meta.name;
+  const Metadata& m = d.meta;
+  if (m.test == TestType::indentation) {
+    if (!m.indenter) throw Error(name + ": indentation data without an indenter");
+    if (m.indenter->shape == IndenterShape::cylinder)
+      throw Error(name +
+                  ": no closed form for a cylinder indenter on its side (use a sphere or a flat punch)");
+    if (spec.law != "stvk" && spec.law != "neo_hookean")
+      throw Error(name +
+                  ": the closed-form indentation models are linear elastic and see only the small-strain "
+                  "modulus; fit 'stvk' or 'neo_hookean' (E, nu and Prony terms) to indentation data with "
+                  "the closed forms, or law '" +
+                  spec.law + "' with the FE rig (--forward fe_rig)");
+    const bool sphere = m.indenter->shape == IndenterShape::sphere;
+    const double r = m.indenter->radius_m;
+    for (std::size_t k = 0; k < d.tests.size(); ++k) {
+      const Test& t = d.tests[k];
+      if (spec.prony_terms > 0)
+        for (std::size_t i = 1; i < t.size(); ++i)
+          if (t.displacement_m[i] < t.displacement_m[i - 1] && t.displacement_m[i - 1] > 0.0)
+            throw Error(sample_where(d, k, i) +
+                        ": the depth decreases while in contact; the Lee-Radok closed form needs loading and "
+                        "hold only (drop the unloading samples, fit without Prony terms, or use the FE rig)");
+      if (sphere && m.sample.shape != SampleShape::half_space) {
+        const double h = m.sample.shape == SampleShape::block ? m.sample.size_m[2] : m.sample.height_m;
+        const double dmax = *std::max_element(t.displacement_m.begin(), t.displacement_m.end());
+        if (std::sqrt(r * dmax) > h)
+          throw Error(test_name(d, k) +
+                      ": contact radius sqrt(R d) = " + significant(std::sqrt(r * dmax) * 1e3, 4) +
+                      " mm exceeds the layer thickness " + significant(h * 1e3, 4) +
+                      " mm: outside the finite-layer closed form (shallower data or the FE rig)");
+      }
+    }
+    return std::make_unique<IndentationModel>(d, spec);
+  }
+  if (spec.prony_terms > 0)
+    throw Error(
+        name + ": Prony terms on " + to_string(m.test) +
+        " data need the FE rig forward model (--forward fe_rig); the homogeneous closed form is elastic");
+  const Sample& s = m.sample;
+  double height = 0.0, area = 0.0;
+  if (s.shape == SampleShape::cylinder) {
+    height = s.height_m;
+    area = kPi * s.radius_m * s.radius_m;
+  } else if (s.shape == SampleShape::block) {
+    height = s.size_m[2];
+    area = s.size_m[0] * s.size_m[1];
+  } else {
+    throw Error(name + ": a " + to_string(m.test) +
+                " test needs a finite sample (block or cylinder), not a half-space");
+  }
+  return std::make_unique<PlatenModel>(d, spec, height, area);
+}
+
+Problem make_surrogate_problem(const DataSet& d, const ModelSpec& spec,
+                               const std::vector<std::pair<std::string, double>>& fixes,
+                               const std::vector<std::pair<std::string, double>>& weights) {
+  Problem pr = make_data_problem(d, spec, fixes, weights);
+  pr.model = make_surrogate_model(d, spec);
   return pr;
 }
 

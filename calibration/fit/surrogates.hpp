@@ -15,11 +15,24 @@
 #include "calibration/fit/forward_model.hpp"
 #include "calibration/fit/model_spec.hpp"
 
+#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
 
 namespace tmlab::fit {
+
+/// The problem of `data` and `spec` without a forward model: the observations (with per-test
+/// `weights`, test id -> weight, default 1), the law's parameters with start values from a modulus
+/// estimate of the data, the SPEC's fixed values and then `fixes` applied. tmlab::Error for data
+/// that cannot be fitted (no tests, zero force, non-finite samples, fewer samples than parameters).
+Problem make_data_problem(const measured::DataSet& data, const ModelSpec& spec,
+                          const std::vector<std::pair<std::string, double>>& fixes = {},
+                          const std::vector<std::pair<std::string, double>>& weights = {});
+
+/// The closed-form surrogate of the data's rig; tmlab::Error naming what it cannot do (a law other
+/// than stvk/neo_hookean on indentation, Prony terms on platen data, unloading under Lee-Radok ...).
+std::unique_ptr<ForwardModel> make_surrogate_model(const measured::DataSet& data, const ModelSpec& spec);
 
 /// Builds the problem for `data` and `spec`: the observations (with per-test `weights`, test id ->
 /// weight, default 1), the law's parameters with the SPEC's fixed values and then `fixes` applied,

@@ -14,5 +14,6 @@ void register_analytic_checks(CheckRegistry& registry);
 void register_model_checks(CheckRegistry& registry);
 void register_sundials_checks(CheckRegistry& registry);
 void register_reference_checks(CheckRegistry& registry);  ///< no-op without deal.II
+void register_fit_checks(CheckRegistry& registry);        ///< identification (calibration/fit)
 
 }  // namespace tmlab::verify

@@ -9,6 +9,7 @@
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "calibration/fit/tests/synthetic_data.hpp"
+#include "core/base/error.hpp"
 
 #include <gtest/gtest.h>
 
@@ -165,6 +166,76 @@ TEST(Fitter, RecoversMooneyRivlinFromCompressionWithBothCosts) {
       EXPECT_EQ(r.profile.points.size(), 11u);
     }
   }
+}
+
+TEST(Fitter, SimulatedAnnealingIsReproducibleAndReachesTheMultiStartOptimum) {
+  measured::DataSet d = testing::indentation_data({1e-3, 2e-3}, 10.0);
+  const std::string spec = "stvk+prony:1,poisson=0.45";
+  std::vector<double> f = truth_forces(d, spec, {{"young", 3000.0}, {"e1", 1500.0}, {"tau1", 1.0}});
+  std::mt19937_64 rng(5);
+  add_noise(f, 0.01, rng);
+  testing::set_forces(d, f);
+  const Problem p = make_surrogate_problem(d, parse_model_spec(spec));
+  FitOptions ms, sa;
+  sa.global = GlobalStage::Siman;
+  sa.siman_evaluations = 1500;
+  const FitResult a = fit(p, ms), b = fit(p, sa), c = fit(p, sa);
+  EXPECT_EQ(b.global_stage, "siman");
+  EXPECT_EQ(b.start_costs.size(), 2u);  // the annealed state and the start values
+  EXPECT_LE(b.start_costs[0], b.start_costs[1]);
+  for (std::size_t i = 0; i < a.parameters.size(); ++i) {
+    EXPECT_EQ(b.parameters[i].value, c.parameters[i].value) << "same seed, same result";
+    EXPECT_NEAR(b.parameters[i].value, a.parameters[i].value, 1e-4 * std::abs(a.parameters[i].value))
+        << a.parameters[i].name;
+  }
+  EXPECT_EQ(b.forward_solves, c.forward_solves);
+}
+
+TEST(Fitter, NoiseSigmaFromSecondDifferences) {
+  measured::DataSet d = testing::indentation_data({1e-3, 2e-3}, 20.0);
+  std::vector<double> f =
+      truth_forces(d, "stvk+prony:1,poisson=0.45", {{"young", 3000.0}, {"e1", 1500.0}, {"tau1", 3.0}});
+  std::mt19937_64 rng(11);
+  std::normal_distribution<double> n(0.0, 2e-4);
+  for (double& v : f) v += n(rng);
+  testing::set_forces(d, f);
+  const Problem p = make_surrogate_problem(d, parse_model_spec("stvk"));
+  EXPECT_NEAR(noise_sigma(p.data), 2e-4, 0.2 * 2e-4);
+}
+
+TEST(Fitter, AGaussianPriorRegularisesTheConfoundedPoissonRatio) {
+  // Hertz on a half-space sees E/(1 - nu^2) only; a prior nu ~ N(0.45, 0.02) makes the pair
+  // determined, and the report says the prior, not the data, determines nu.
+  measured::DataSet h = testing::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0);
+  std::vector<double> g = truth_forces(h, "stvk", {{"young", 5000.0}, {"poisson", 0.45}});
+  std::mt19937_64 rng(9);
+  add_noise(g, 0.01, rng);
+  testing::set_forces(h, g);
+  Problem p = make_surrogate_problem(h, parse_model_spec("stvk"));
+  p.priors.push_back({"poisson", 0.45, 0.02});
+  const FitResult r = fit(p, FitOptions{});
+  const ParameterResult& nu = find(r, "poisson");
+  const ParameterResult& e = find(r, "young");
+  std::cout << "prior: nu = " << nu.value << " +- " << nu.standard_error << ", E = " << e.value << " +- "
+            << e.standard_error << "\n";
+  EXPECT_NEAR(nu.value, 0.45, 0.03);
+  EXPECT_LT(nu.standard_error, 0.021);  // no more precise than the prior itself
+  EXPECT_NEAR(e.value, 5000.0, 0.1 * 5000.0);
+  EXPECT_GT(r.noise_sigma, 0.0);
+  EXPECT_GE(r.prior_cost, 0.0);
+  bool noted = false;
+  for (const auto& n : r.notes)
+    noted = noted || n.find("the prior, not the data, determines") != std::string::npos;
+  EXPECT_TRUE(noted);
+  for (const auto& c : r.confounded)
+    EXPECT_NE(c.note.find("regularised it with the prior on poisson"), std::string::npos);
+  // A prior on a fixed parameter or with the L1 cost is refused.
+  Problem q = make_surrogate_problem(h, parse_model_spec("stvk,poisson=0.45"));
+  q.priors.push_back({"poisson", 0.45, 0.02});
+  EXPECT_THROW(fit(q, FitOptions{}), Error);
+  FitOptions l1;
+  l1.cost = Cost::L1;
+  EXPECT_THROW(fit(p, l1), Error);
 }
 
 }  // namespace
