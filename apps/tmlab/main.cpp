@@ -76,6 +76,8 @@ void print_usage(std::ostream& os) {
         "                            a test rig as DIR/NAME.msh + DIR/NAME.json, an ordinary case\n"
         "                            file for tmlab run / compare (docs/rigs.md)\n"
         "  fit DATA.csv --model SPEC [--out DIR] [--fix NAME=VALUE ...] [--weight TEST=W ...]\n"
+        "      [--forward closed_form|fe_rig|auto] [--mesh C,L] [--substeps N] [--global multistart|siman]\n"
+        "      [--prior NAME=MEAN:SD ...] [--noise SIGMA] [--local-runs N] [--siman-evaluations N]\n"
         "      [--cost least_squares|l1] [--starts N] [--threads N] [--seed N] [--geodesic]\n"
         "      [--no-profile] [--no-plots] [--quiet]\n"
         "                            fit a law to tmlab-measured/1 data with error bars; SPEC is\n"

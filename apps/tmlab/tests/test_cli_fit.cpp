@@ -59,6 +59,28 @@ TEST_F(CliFit, FitsThePhantomWithErrorBars) {
   }
 }
 
+TEST_F(CliFit, AnnealingAndAPriorAreReported) {
+  // Neo-Hookean on frictionless platens: nu barely moves the force, so a prior on it decides it.
+  const fs::path csv = convert();
+  const fs::path out = dir_ / "siman";
+  const Result r =
+      tmlab({"fit", csv.string(), "--model", "neo_hookean", "--global", "siman", "--siman-evaluations", "300",
+             "--prior", "poisson=0.45:0.02", "--out", out.string(), "--no-plots", "--no-profile", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("siman global stage"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("note: prior on poisson"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("from the forward model 'platen_unconfined'"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "fit.json"));
+  EXPECT_EQ(j["global_stage"]["kind"], "siman");
+  EXPECT_EQ(j["priors"][0]["parameter"], "poisson");
+  EXPECT_GT(j["noise_sigma_N"].get<double>(), 0.0);
+  // Bad values of the new options are usage errors.
+  EXPECT_EQ(tmlab({"fit", csv.string(), "--model", "neo_hookean", "--global", "annealing"}).status, 2);
+  EXPECT_EQ(tmlab({"fit", csv.string(), "--model", "neo_hookean", "--prior", "poisson=0.45"}).status, 2);
+  EXPECT_EQ(tmlab({"fit", csv.string(), "--model", "neo_hookean", "--forward", "fem"}).status, 2);
+  EXPECT_EQ(tmlab({"fit", csv.string(), "--model", "neo_hookean", "--mesh", "6"}).status, 2);
+}
+
 TEST_F(CliFit, AFitThatCannotRunLeavesFailed) {
   const fs::path csv = convert();
   // An Ogden term with alpha = 0 is not a law: no start can be evaluated, the fit fails inside.
