@@ -6,6 +6,7 @@
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
+#include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
 #include "core/testing/temp_dir.hpp"
 #include "tensormass/runner/case_runner.hpp"
@@ -106,6 +107,17 @@ TEST_F(ContactRunnerTest, StaticPlatenGivesTheUniaxialForceAndWritesTheContactOu
   std::ifstream vtu(fs::path(r.dir) / "vtu" / "step_00004.vtu");
   const std::string text((std::istreambuf_iterator<char>(vtu)), std::istreambuf_iterator<char>());
   EXPECT_NE(text.find("contact_pressure"), std::string::npos);
+
+  // tmlab compare reports the contact force agreement per body: nil against itself, the relative
+  // difference of a 10 % deeper platen otherwise.
+  json again = platen(d, {{"type", "static"}, {"steps", 4}});
+  again["name"] = "again";
+  EXPECT_EQ(compare_results(r.dir, run(again).dir)["rel_diff_contact_force"].get<double>(), 0.0);
+  json deeper = platen(1.1 * d, {{"type", "static"}, {"steps", 4}});
+  deeper["name"] = "deeper";
+  const json c = compare_results(run(deeper).dir, r.dir);
+  EXPECT_NEAR(c["contact"]["top"]["rel_diff_force"].get<double>(),
+              (uniaxial_force(1.1 * d) - uniaxial_force(d)) / uniaxial_force(d), 1e-6);
 }
 
 TEST_F(ContactRunnerTest, ViscoelasticPlatenMatchesThePrescribedDisplacementHistory) {
