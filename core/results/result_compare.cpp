@@ -107,6 +107,45 @@ void compare_reactions(const fs::path& a, const H5File& ha, const H5File& hb, st
   cs.rel_reaction = rel_reac;
 }
 
+/// The force on each rigid contact body of run b (series contact_<body>_force_{x,y,z}), step by
+/// step: |F_a - F_b| / max_t |F_b| per body; run a must have the same bodies.
+void compare_contact(const fs::path& a, const H5File& ha, const H5File& hb, std::size_t n,
+                     nlohmann::json& out) {
+  const std::string pre = "contact_", suf = "_force_x";
+  nlohmann::json per = nlohmann::json::object();
+  double worst = 0.0;
+  for (const auto& name : hb.list("/series")) {
+    if (name.rfind(pre, 0) != 0 || name.size() <= pre.size() + suf.size() ||
+        name.compare(name.size() - suf.size(), suf.size(), suf) != 0)
+      continue;
+    const std::string body = name.substr(pre.size(), name.size() - pre.size() - suf.size());
+    std::array<std::vector<double>, 3> A, B;
+    for (int k = 0; k < 3; ++k) {
+      const std::string ds = "/series/" + series_names::component(series_names::contact(body) + "_force",
+                                                                  series_names::kComponents[k]);
+      if (!ha.exists(ds))
+        throw Error((a / "timeseries.h5").string() + ": no " + ds + " (different contact bodies?)");
+      A[k] = ha.read_double(ds);
+      B[k] = hb.read_double(ds);
+    }
+    double scale = 0.0, w = 0.0;
+    for (std::size_t s = 0; s < n; ++s)
+      scale = std::max(scale, std::sqrt(B[0][s] * B[0][s] + B[1][s] * B[1][s] + B[2][s] * B[2][s]));
+    if (scale == 0.0) scale = 1.0;
+    for (std::size_t s = 0; s < n; ++s) {
+      const double dx = A[0][s] - B[0][s], dy = A[1][s] - B[1][s], dz = A[2][s] - B[2][s];
+      w = std::max(w, std::sqrt(dx * dx + dy * dy + dz * dz) / scale);
+    }
+    per[body] = {{"rel_diff_force", w},
+                 {"final_a_N", {A[0].back(), A[1].back(), A[2].back()}},
+                 {"final_b_N", {B[0].back(), B[1].back(), B[2].back()}}};
+    worst = std::max(worst, w);
+  }
+  if (per.empty()) return;
+  out["contact"] = per;
+  out["rel_diff_contact_force"] = worst;
+}
+
 /// Elastic energy, step by step: |W_a - W_b| / max_t |W_b|.
 void compare_energy(const H5File& ha, const H5File& hb, std::size_t n, nlohmann::json& out,
                     ComparisonSeries& cs) {
@@ -140,6 +179,7 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     cs.step_time = tb;
     compare_reactions(a, ha, hb, n, out, cs);
     compare_energy(ha, hb, n, out, cs);
+    compare_contact(a, ha, hb, n, out);
   }
   if (series) *series = std::move(cs);
   return out;

@@ -1,0 +1,368 @@
+// Contact verification checks (kind "contact.*", docs/contact.md): rigid indenters pressed into a
+// quarter block by the fast model's augmented-Lagrangian contact (ContactStaticSolver, IC-CG
+// linear solver), against the closed forms of calibration/closed_forms/indentation.hpp.
+//
+//   contact.hertz          rigid sphere on a large block: force and contact radius vs Hertz,
+//                          under mesh refinement (observed order, finest error)
+//   contact.sneddon        rigid flat punch: force vs Sneddon
+//   contact.lee_radok      sphere, ramp-and-hold into a Prony material: force history vs the exact
+//                          Lee-Radok hereditary integral
+//   contact.finite_layer   sphere on a bonded layer of thickness h: F / F_Hertz against the factor
+//                          of Dimitriadis et al. (2002) as a function of a/h
+//
+// Geometry: quarter model [0, W]^2 x [-D, 0] (symmetry planes x = 0: u_x = 0, y = 0: u_y = 0,
+// bottom clamped, outer sides free); the indenter touches the top z = 0 at the origin at t = 0 and
+// moves down by d(t). Mesh: make_box_mesh of the unit cube, each axis mapped by
+// s(xi) = L xi / t_a for xi <= t_a (uniform: N t_a cells over the length L, the patch holding the
+// contact) and L + (L / t_a)(exp(k (xi - t_a)) - 1)/k beyond (C1, k from s(1) = W); the depth axis
+// the same with D, or uniform over a layer. Forces are 4x the quarter's.
+#include "verification/checks/builtin_checks.hpp"
+#include "verification/checks/check_support.hpp"
+
+#include "calibration/closed_forms/indentation.hpp"
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/mesh/mesh_generator.hpp"
+#include "tensormass/contact/contact_solver.hpp"
+#include "tensormass/kernels/tensor_mass.hpp"
+#include "tensormass/materials/stvk_material.hpp"
+#include "tensormass/system/dirichlet.hpp"
+#include "tensormass/system/external_loads.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/prony_series.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace tmlab::verify {
+
+namespace {
+
+namespace cf = closed_forms;
+using tm::VecX;
+
+constexpr double kPi = 3.14159265358979323846;
+
+std::string fmt(double v, int digits = 3) { return scientific(v, digits); }
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// k with L + (L/t_a)(e^{k(1 - t_a)} - 1)/k = W (bisection; the left side grows with k).
+double grading_rate(double W_over_L, double t_a) {
+  auto g = [&](double k) { return 1.0 + (std::expm1(k * (1.0 - t_a)) / k) / t_a - W_over_L; };
+  double lo = 1e-9, hi = 1.0;
+  while (g(hi) < 0.0) hi *= 2.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (g(mid) < 0.0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+/// The graded map of [0, 1] onto [0, W]: uniform over [0, L] (fraction t_a of the cells).
+double graded(double xi, double L, double t_a, double k) {
+  return xi <= t_a ? L * xi / t_a : L + (L / t_a) * std::expm1(k * (xi - t_a)) / k;
+}
+
+struct BlockSpec {
+  double L = 1.0;          ///< patch length (uniform cells), m
+  double W_over_L = 30.0;  ///< block width / L
+  double t_a = 0.5;        ///< fraction of the cells in the patch
+  int N = 8;               ///< cells per axis
+  double layer = 0.0;      ///< > 0: a layer of this thickness (uniform in z, layer_cells cells)
+  int layer_cells = 0;
+};
+
+/// The quarter block [0, W]^2 x [-D, 0] (D = W, or the layer thickness).
+Mesh block_mesh(const BlockSpec& b) {
+  const int nz = b.layer > 0.0 ? b.layer_cells : b.N;
+  Mesh mesh = make_box_mesh(Vec3(0, 0, -1), Vec3(1, 1, 0), b.N, b.N, nz);
+  const double k = grading_rate(b.W_over_L, b.t_a);
+  for (Vec3& x : mesh.points) {
+    x.x() = graded(x.x(), b.L, b.t_a, k);
+    x.y() = graded(x.y(), b.L, b.t_a, k);
+    x.z() = b.layer > 0.0 ? x.z() * b.layer : -graded(-x.z(), b.L, b.t_a, k);
+  }
+  return mesh;
+}
+
+/// An indentation of the quarter block: the indenter, its depth history d(t) = depth * f(t), the
+/// model; one ContactStaticSolver advanced over the given times.
+struct Indentation {
+  const Mesh& mesh;
+  tm::MechanicalSystem system;
+  std::unique_ptr<tm::ContactStaticSolver> contact;
+  VecX u;
+
+  static tm::DirichletSet supports(const Mesh& mesh) {
+    double zmin = 0.0;
+    for (const Vec3& x : mesh.points) zmin = std::min(zmin, x.z());
+    const double tol = 1e-12 * std::abs(zmin);
+    tm::DirichletCondition sx{"symmetry_x", {}, {true, false, false}, Vec3::Zero(), TimeFunction::constant()};
+    tm::DirichletCondition sy{"symmetry_y", {}, {false, true, false}, Vec3::Zero(), TimeFunction::constant()};
+    tm::DirichletCondition bottom{"bottom", {}, {true, true, true}, Vec3::Zero(), TimeFunction::constant()};
+    for (Index i = 0; i < mesh.num_points(); ++i) {
+      const Vec3& x = mesh.points[static_cast<std::size_t>(i)];
+      if (std::abs(x.x()) <= tol) sx.nodes.push_back(i);
+      if (std::abs(x.y()) <= tol) sy.nodes.push_back(i);
+      if (std::abs(x.z() - zmin) <= tol) bottom.nodes.push_back(i);
+    }
+    return tm::DirichletSet(mesh.num_points(), {sx, sy, bottom});
+  }
+
+  Indentation(const Mesh& m, tm::ElasticModel& model, const tm::RigidBody& body, double newton_rtol)
+      : mesh(m),
+        system(model, tm::lumped_dof_mass(tm::lumped_node_mass(m, 1000.0)), supports(m),
+               tm::ExternalLoads(m, tm::lumped_node_mass(m, 1000.0))),
+        u(VecX::Zero(3 * m.num_points())) {
+    tm::NewtonOptions o;
+    o.rtol = newton_rtol;
+    o.atol = 0.0;
+    o.max_iterations = 30;
+    contact = std::make_unique<tm::ContactStaticSolver>(system, m, std::vector<tm::RigidBody>{body},
+                                                        tm::ContactOptions{}, o, 0.0, u, 6);
+    contact->set_linear_solver(tm::ConstrainedLinearSolver::Kind::ConjugateGradient, 0.1 * newton_rtol);
+  }
+  void advance(double t0, double t1) { contact->advance(t0, t1, u); }
+  /// Full-model force pushing the indenter up (N) and area-equivalent contact radius (m).
+  double force() const { return 4.0 * contact->state().front().force.z(); }
+  double radius() const { return std::sqrt(4.0 * contact->state().front().area / kPi); }
+};
+
+tm::RigidBody sphere_body(double R, double depth) {
+  tm::RigidBody b = tm::RigidBody::sphere("sphere", Vec3(0, 0, R), R);
+  b.displacement = Vec3(0, 0, -depth);
+  b.function = TimeFunction::ramp(0.0, 1.0);
+  return b;
+}
+
+BlockSpec read_block(ConfigReader& p, double L) {
+  BlockSpec b;
+  b.L = L;
+  b.W_over_L = p.positive("block_over_patch");
+  b.t_a = p.positive("patch_fraction");
+  if (b.t_a >= 1.0) throw p.error("patch_fraction", "must be < 1");
+  return b;
+}
+
+std::vector<int> cell_list(ConfigReader& p, const std::string& key) {
+  const auto v = p.require<std::vector<int>>(key);
+  if (v.empty()) throw p.error(key, "must not be empty");
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (v[i] < 2 || (i > 0 && v[i] <= v[i - 1])) throw p.error(key, "must be >= 2 and increase strictly");
+  return v;
+}
+
+/// Static indentation to `depth` in `increments` equal steps; returns (force, radius) at the end.
+std::pair<double, double> indent(const Mesh& mesh, const tm::StVenantKirchhoff& mat,
+                                 const tm::RigidBody& body, int increments, double rtol) {
+  tm::TensorMassStVK model(mesh, mat);
+  Indentation run(mesh, model, body, rtol);
+  for (int i = 0; i < increments; ++i) run.advance(double(i) / increments, double(i + 1) / increments);
+  return {run.force(), run.radius()};
+}
+
+// ---- Hertz ---------------------------------------------------------------------------------------
+Measurements hertz(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const double E = p.positive("E"), nu = p.require<double>("nu");
+  const auto mat = tm::StVenantKirchhoff::from_young_poisson(E, nu);
+  const double R = p.positive("radius");
+  const double d = p.positive("depth_over_radius") * R;
+  const double a = cf::hertz_contact_radius(R, d);
+  BlockSpec block = read_block(p, p.positive("patch_over_contact_radius") * a);
+  const auto levels = cell_list(p, "cells");
+  const int increments = p.require<int>("increments");
+  const double rtol = p.positive("newton_rtol", 1e-9);
+  p.finish();
+  const double F_h = cf::hertz_force(E, nu, R, d);
+  Measurements m;
+  Series force, radius;
+  force.x_label = radius.x_label = "h = patch / cells in the patch [m]";
+  force.y_label = "|F_h - F_Hertz| / F_Hertz";
+  radius.y_label = "|a_h - a_Hertz| / a_Hertz";
+  nlohmann::json rows = nlohmann::json::array();
+  for (int N : levels) {
+    const auto t0 = std::chrono::steady_clock::now();
+    block.N = N;
+    const Mesh mesh = block_mesh(block);
+    const auto [F, ra] = indent(mesh, mat, sphere_body(R, d), increments, rtol);
+    const double h = block.L / (N * block.t_a);
+    force.x.push_back(h);
+    force.y.push_back(std::abs(F - F_h) / F_h);
+    radius.x.push_back(h);
+    radius.y.push_back(std::abs(ra - a) / a);
+    rows.push_back({{"cells", N}, {"h", h}, {"tets", mesh.num_tets()}, {"force", F}, {"radius", ra}});
+    ctx.log << "  N = " << N << " (" << mesh.num_tets() << " tets, h = a/" << fmt(a / h, 3) << "): F/F_Hertz "
+            << fmt(F / F_h, 6) << ", a/a_Hertz " << fmt(ra / a, 4) << " (" << fmt(seconds_since(t0), 2)
+            << " s)\n";
+  }
+  m.series["force_rel_error"] = force;
+  m.series["radius_rel_error"] = radius;
+  m.set("finest_force_rel_error", force.y.back());
+  m.set("finest_radius_rel_error", radius.y.back());
+  m.data["levels"] = rows;
+  m.notes.push_back("Hertz: F = " + fmt(F_h, 6) + " N, a = " + fmt(a, 6) + " m at d/R = " + fmt(d / R, 3));
+  return m;
+}
+
+// ---- Sneddon -------------------------------------------------------------------------------------
+Measurements sneddon(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const double E = p.positive("E"), nu = p.require<double>("nu");
+  const auto mat = tm::StVenantKirchhoff::from_young_poisson(E, nu);
+  const double a = p.positive("punch_radius");
+  const double d = p.positive("depth_over_radius") * a;
+  BlockSpec block = read_block(p, p.positive("patch_over_punch_radius") * a);
+  const auto levels = cell_list(p, "cells");
+  const int increments = p.require<int>("increments");
+  const double rtol = p.positive("newton_rtol", 1e-9);
+  p.finish();
+  const double F_s = cf::sneddon_force(E, nu, a, d);
+  tm::RigidBody punch = tm::RigidBody::punch("punch", Vec3::Zero(), -Vec3::UnitZ(), a);
+  punch.displacement = Vec3(0, 0, -d);
+  punch.function = TimeFunction::ramp(0.0, 1.0);
+  Measurements m;
+  Series force;
+  force.x_label = "h = patch / cells in the patch [m]";
+  force.y_label = "|F_h - F_Sneddon| / F_Sneddon";
+  nlohmann::json rows = nlohmann::json::array();
+  for (int N : levels) {
+    const auto t0 = std::chrono::steady_clock::now();
+    block.N = N;
+    const Mesh mesh = block_mesh(block);
+    const double F = indent(mesh, mat, punch, increments, rtol).first;
+    const double h = block.L / (N * block.t_a);
+    force.x.push_back(h);
+    force.y.push_back(std::abs(F - F_s) / F_s);
+    rows.push_back({{"cells", N}, {"h", h}, {"tets", mesh.num_tets()}, {"force", F}});
+    ctx.log << "  N = " << N << " (" << mesh.num_tets() << " tets, h = a/" << fmt(a / h, 3)
+            << "): F/F_Sneddon " << fmt(F / F_s, 6) << " (" << fmt(seconds_since(t0), 2) << " s)\n";
+  }
+  m.series["force_rel_error"] = force;
+  m.set("finest_force_rel_error", force.y.back());
+  m.data["levels"] = rows;
+  m.notes.push_back("Sneddon: F = 2 a E d / (1 - nu^2) = " + fmt(F_s, 6) + " N");
+  return m;
+}
+
+// ---- Lee-Radok -----------------------------------------------------------------------------------
+Measurements lee_radok(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const double E = p.positive("E"), nu = p.require<double>("nu");
+  const auto mat = tm::StVenantKirchhoff::from_young_poisson(E, nu);
+  const double R = p.positive("radius");
+  const double d = p.positive("depth_over_radius") * R;
+  const double a = cf::hertz_contact_radius(R, d);
+  BlockSpec block = read_block(p, p.positive("patch_over_contact_radius") * a);
+  block.N = p.require<int>("cells");
+  const double alpha = p.positive("alpha"), tau = p.positive("tau");
+  const double t_ramp = p.positive("ramp_time"), t_end = p.positive("t_end");
+  const int steps = p.require<int>("steps");
+  const double rtol = p.positive("newton_rtol", 1e-9);
+  p.finish();
+  if (t_end <= t_ramp)
+    throw Error(ctx.vcase.spec_file().string() + ": parameters.t_end must exceed ramp_time");
+  const Mesh mesh = block_mesh(block);
+  tm::ViscoelasticOptions vo;
+  vo.energy_bookkeeping = false;
+  tm::ViscoelasticStVK model(mesh, mat, tm::PronySeries::from_long_term({alpha}, {tau}), vo);
+  tm::RigidBody body = sphere_body(R, d);
+  body.function = TimeFunction::ramp(0.0, t_ramp);
+  Indentation run(mesh, model, body, rtol);
+  std::vector<double> times{0.0}, forces{0.0};
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int s = 0; s < steps; ++s) {
+    const double ta = t_end * s / steps, tb = t_end * (s + 1) / steps;
+    run.advance(ta, tb);
+    times.push_back(tb);
+    forces.push_back(run.force());
+  }
+  // The elastic run on the same mesh gives the discretisation error of the spatial problem alone.
+  const double F_el = indent(mesh, mat, sphere_body(R, d), 4, rtol).first;
+  const cf::RelaxationModulus mod{E, {alpha * E}, {tau}};
+  const std::vector<double> ref = cf::lee_radok_sphere(mod, nu, R, cf::ramp_hold(d, t_ramp, times));
+  double peak = 0.0, err = 0.0, err_norm = 0.0;
+  const double mesh_factor = F_el / cf::hertz_force(E, nu, R, d);
+  for (std::size_t i = 0; i < times.size(); ++i) peak = std::max(peak, ref[i]);
+  for (std::size_t i = 1; i < times.size(); ++i) {
+    err = std::max(err, std::abs(forces[i] - ref[i]) / peak);
+    err_norm = std::max(err_norm, std::abs(forces[i] / mesh_factor - ref[i]) / peak);
+  }
+  ctx.log << "  " << mesh.num_tets() << " tets, " << steps << " steps (" << fmt(seconds_since(t0), 2)
+          << " s): max |F - F_LR| / peak " << fmt(err) << ", after dividing by the elastic mesh factor "
+          << fmt(mesh_factor, 6) << ": " << fmt(err_norm) << "\n";
+  Measurements m;
+  m.set("max_force_rel_error", err);
+  m.set("max_force_rel_error_mesh_corrected", err_norm);
+  m.set("elastic_mesh_factor_error", std::abs(mesh_factor - 1.0));
+  m.data["times"] = times;
+  m.data["force"] = forces;
+  m.data["lee_radok"] = ref;
+  return m;
+}
+
+// ---- Finite layer --------------------------------------------------------------------------------
+Measurements finite_layer(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const double E = p.positive("E"), nu = p.require<double>("nu");
+  const auto mat = tm::StVenantKirchhoff::from_young_poisson(E, nu);
+  const double R = p.positive("radius");
+  const double d = p.positive("depth_over_radius") * R;
+  const double a = cf::hertz_contact_radius(R, d);
+  BlockSpec block = read_block(p, p.positive("patch_over_contact_radius") * a);
+  block.N = p.require<int>("cells");
+  const auto a_over_h = p.require<std::vector<double>>("a_over_h");
+  const int layer_cells_per_a = p.require<int>("layer_cells_per_contact_radius");
+  const int increments = p.require<int>("increments");
+  const double rtol = p.positive("newton_rtol", 1e-9);
+  p.finish();
+  // The half-space run on the same lateral mesh: F_half / F_Hertz carries the mesh error, which
+  // the ratio F_layer / F_half removes to first order.
+  const Mesh half = block_mesh(block);
+  const double F_half = indent(half, mat, sphere_body(R, d), increments, rtol).first;
+  const double F_h = cf::hertz_force(E, nu, R, d);
+  ctx.log << "  half-space: F/F_Hertz " << fmt(F_half / F_h, 6) << "\n";
+  Measurements m;
+  double worst = 0.0;
+  nlohmann::json rows = nlohmann::json::array();
+  for (double chi : a_over_h) {
+    const auto t0 = std::chrono::steady_clock::now();
+    BlockSpec lb = block;
+    lb.layer = a / chi;
+    lb.layer_cells = std::max(2, static_cast<int>(std::ceil(layer_cells_per_a / chi)));
+    const Mesh mesh = block_mesh(lb);
+    const double F = indent(mesh, mat, sphere_body(R, d), increments, rtol).first;
+    const double factor = F / F_half;
+    const double ref = cf::finite_layer_factor(nu, R, d, lb.layer, cf::LayerSupport::Bonded);
+    const double e = std::abs(factor - ref) / ref;
+    worst = std::max(worst, e);
+    rows.push_back({{"a_over_h", chi}, {"factor", factor}, {"dimitriadis", ref}, {"rel_error", e}});
+    ctx.log << "  a/h = " << chi << " (" << mesh.num_tets() << " tets): F/F_half " << fmt(factor, 5)
+            << ", Dimitriadis " << fmt(ref, 5) << ", rel. error " << fmt(e) << " ("
+            << fmt(seconds_since(t0), 2) << " s)\n";
+  }
+  m.set("max_factor_rel_error", worst);
+  m.set("half_space_force_rel_error", std::abs(F_half - F_h) / F_h);
+  m.data["layers"] = rows;
+  return m;
+}
+
+}  // namespace
+
+void register_contact_checks(CheckRegistry& registry) {
+  registry.add({{"contact.hertz", hertz},
+                {"contact.sneddon", sneddon},
+                {"contact.lee_radok", lee_radok},
+                {"contact.finite_layer", finite_layer}});
+}
+
+}  // namespace tmlab::verify
