@@ -132,6 +132,17 @@ void CentralDifference::step(double t, double dt) {
   }
 }
 
+void CentralDifference::restore(double t, long steps, const VecX& u, const VecX& v_half, const VecX& v) {
+  const Index n = system_.num_dofs();
+  if (u.size() != n || v_half.size() != n || v.size() != n)
+    throw Error("checkpoint: explicit state of the wrong size (a checkpoint of another mesh?)");
+  t_ = t;
+  n_ = steps;
+  u_ = u;
+  v_half_ = v_half;
+  v_ = v;
+}
+
 double CentralDifference::kinetic_energy() const { return 0.5 * v_.dot(system_.mass().cwiseProduct(v_)); }
 
 }  // namespace tmlab::tm
