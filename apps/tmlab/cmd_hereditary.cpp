@@ -77,7 +77,7 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
     if (o.liver) inputs.push_back(o.params_file);
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     const nlohmann::json summary = tm::write_hereditary_study(o, out.staging_dir());
-    fs::remove(o.checkpoint);  // a complete result holds no checkpoint
+    remove_checkpoint(o.checkpoint);  // a complete result holds no checkpoint
     out.finalize(summary);
   } catch (const std::exception& e) {
     out.abandon(e);

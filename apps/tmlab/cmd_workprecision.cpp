@@ -59,7 +59,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
                   fs::path(opt.tmlab_root) / "cases" / "paper" / "xu2011_liver.json"};
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     const std::vector<tm::WorkPrecisionProblem> results = tm::run_work_precision(opt);
-    fs::remove(opt.checkpoint);  // a complete result holds no checkpoint
+    remove_checkpoint(opt.checkpoint);  // a complete result holds no checkpoint
     out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.has("--no-plots"),
                                           opt.tmlab_root, &std::cerr));
     std::cout << tm::work_precision_table(results) << "results     " << dir.string()

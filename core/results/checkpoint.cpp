@@ -209,6 +209,14 @@ CheckpointData read_checkpoint(const fs::path& path, const std::string& kind,
   return data;
 }
 
+void remove_checkpoint(const fs::path& path) noexcept {
+  std::error_code ignored;
+  fs::remove(path, ignored);
+  fs::path tmp = path;
+  tmp += ".tmp";
+  fs::remove(tmp, ignored);
+}
+
 std::string fingerprint_mismatch(const nlohmann::json& stored, const nlohmann::json& current) {
   if (stored == current) return "";
   const nlohmann::json patch = nlohmann::json::diff(stored, current);

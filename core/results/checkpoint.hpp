@@ -72,6 +72,9 @@ void write_checkpoint(const std::filesystem::path& path, const std::string& kind
 CheckpointData read_checkpoint(const std::filesystem::path& path, const std::string& kind,
                                const nlohmann::json& fingerprint);
 
+/// Removes the checkpoint and a temporary left by a write that was killed half-way (never throws).
+void remove_checkpoint(const std::filesystem::path& path) noexcept;
+
 /// "" when `stored` and `current` are equal, else the differing keys (dotted paths, at most 5)
 /// with both values: "solver.dt: the checkpoint has 0.001, this run 0.002".
 std::string fingerprint_mismatch(const nlohmann::json& stored, const nlohmann::json& current);

@@ -505,10 +505,7 @@ class RunCheckpoint {
            ": continue with the same command and --resume";
   }
   /// The run is complete: its result directory holds no checkpoint.
-  void remove() const {
-    std::error_code ignored;
-    fs::remove(path_, ignored);
-  }
+  void remove() const { remove_checkpoint(path_); }
 
  private:
   static std::vector<double> as_std(const VecX& x) { return {x.data(), x.data() + x.size()}; }

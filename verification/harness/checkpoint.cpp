@@ -150,8 +150,8 @@ SuiteCheckpoint::SuiteCheckpoint(fs::path file, const json& suite, bool resume)
     }
     return;
   }
+  remove_checkpoint(file_);
   std::error_code ignored;
-  fs::remove(file_, ignored);
   fs::remove_all(legacy, ignored);
 }
 
@@ -173,10 +173,7 @@ void SuiteCheckpoint::store(const CaseResult& r) {
   write_checkpoint(file_, kKind, suite_, d);
 }
 
-void SuiteCheckpoint::remove() const {
-  std::error_code ignored;
-  fs::remove(file_, ignored);
-}
+void SuiteCheckpoint::remove() const { remove_checkpoint(file_); }
 
 std::size_t SuiteCheckpoint::stored() const { return done_.size(); }
 

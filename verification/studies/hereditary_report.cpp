@@ -47,6 +47,7 @@ class StudyCheckpoint {
 
   SweepResult sweep(const std::string& key, const std::function<SweepResult()>& run) {
     if (d_.has(key + ".head")) {
+      if (o_.log) o_.log(key + ": from the checkpoint of the interrupted study");
       const nlohmann::json names = nlohmann::json::parse(d_.text(key + ".names"));
       SweepResult r;
       r.history = names.at(0), r.scheme = names.at(1);
@@ -85,6 +86,7 @@ class StudyCheckpoint {
 
   LiverStudy liver(const std::string& key, const std::function<LiverStudy()>& run) {
     if (d_.has(key + ".head")) {
+      if (o_.log) o_.log(key + ": from the checkpoint of the interrupted study");
       LiverStudy ls;
       const auto& h = d_.doubles(key + ".head");
       ls.reference_check = h.at(0), ls.richardson_correction = h.at(1), ls.path_check = h.at(2);

@@ -424,6 +424,8 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
           throw Error(opt.resume->source() + ": run " + key + " is " + done->method + " at " +
                       fmt(done->value) + ", this study's is " + plan.method + " at " + fmt(plan.value) +
                       "; run without --resume");
+        if (opt.log)
+          *opt.log << "[workprecision] " << name << ": from the checkpoint of the interrupted study:\n";
         log_point(opt.log, name, *done);
         P.points.push_back(*done);
         return;

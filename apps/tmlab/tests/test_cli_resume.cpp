@@ -467,6 +467,8 @@ bool check_study(const fs::path& tmp, const std::vector<std::string>& args, cons
     EXPECT_NE(marker.find("--resume"), std::string::npos) << marker;
     const auto resumed = run_argv(with(cut, true), tmp / (sub + "-resumed.log"));
     EXPECT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("from the checkpoint of the interrupted study"), std::string::npos)
+        << resumed.output;
   }
   EXPECT_FALSE(fs::exists(cut / sub / "checkpoint.h5"));
   EXPECT_EQ(h5_differences_except(ref / sub / h5, cut / sub / h5, {"cpu_seconds", "wall_seconds"}), "");
