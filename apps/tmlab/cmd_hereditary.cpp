@@ -32,7 +32,7 @@ std::vector<std::string> split_list(const std::string& s) {
 
 int cmd_hereditary(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p = parse(args, {"--histories", "--results", "--params", "--seed", "--liver-history"},
-                         {"--liver", "--no-liver", "--quick", "--no-plots"});
+                         {"--liver", "--no-liver", "--quick", "--no-plots", "--resume"});
   if (!p.positional.empty()) throw UsageError("hereditary takes no positional arguments");
   if (p.has("--liver") && p.has("--no-liver")) throw UsageError("give --liver or --no-liver, not both");
   tm::HereditaryRunOptions o;
@@ -61,16 +61,24 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   const fs::path dir =
       fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "hereditary";
 
-  RunOutput out(dir);
+  const nlohmann::json config = {{"histories", groups},    {"quick", o.study.quick},
+                                 {"liver", o.liver},       {"liver_history", o.liver_histories},
+                                 {"alpha", o.study.alpha}, {"tau", o.study.tau},
+                                 {"seed", o.study.seed},   {"params", o.params_file}};
+  // Checkpoint after every sweep and liver study (docs/robustness.md); --resume reads it before the
+  // result directory is touched, so a refused resume leaves the interrupted study as it was.
+  o.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
+  o.fingerprint = config;
+  if (p.has("--resume")) o.resume = read_checkpoint(o.checkpoint, "hereditary", config);
+  RunOutput out(dir, nullptr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
-    const nlohmann::json config = {{"histories", groups},    {"quick", o.study.quick},
-                                   {"liver", o.liver},       {"liver_history", o.liver_histories},
-                                   {"alpha", o.study.alpha}, {"tau", o.study.tau},
-                                   {"seed", o.study.seed},   {"params", o.params_file}};
     std::vector<fs::path> inputs;
     if (o.liver) inputs.push_back(o.params_file);
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
-    out.finalize(tm::write_hereditary_study(o, out.staging_dir()));
+    const nlohmann::json summary = tm::write_hereditary_study(o, out.staging_dir());
+    remove_checkpoint(o.checkpoint);  // a complete result holds no checkpoint
+    out.finalize(summary);
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

@@ -86,6 +86,19 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
   opt.plots = !p.has("--no-plots");
   opt.log = &std::cerr;
   const std::string model = p.get("--model", to_string(cfg.model));
+  // Checkpoints and --resume (docs/robustness.md): the tensor-mass runner's.
+  opt.resume = p.has("--resume");
+  if (p.has("--checkpoint-every")) {
+    try {
+      opt.checkpoints = CheckpointSchedule::parse(p.get("--checkpoint-every"));
+    } catch (const Error& e) {
+      throw UsageError(e.what());
+    }
+  }
+  if ((opt.resume || p.has("--checkpoint-every")) && model == "reference")
+    throw UsageError(
+        "--resume and --checkpoint-every are for the tensor-mass models (tensor_mass, tl_oracle); "
+        "the deal.II reference has no checkpoints");
   int degree = 1;
   if (p.has("--degree")) {
     const std::string d = p.get("--degree");
@@ -117,7 +130,8 @@ int cmd_demo(const std::vector<std::string>& args, const std::string& command_li
 }
 
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line) {
-  Parsed p = parse(args, {"--results", "--model", "--degree", "--time-integration"}, {"--no-plots"});
+  Parsed p = parse(args, {"--results", "--model", "--degree", "--time-integration", "--checkpoint-every"},
+                   {"--no-plots", "--resume"});
   if (p.positional.size() != 1) throw UsageError("run needs exactly one case name or case file");
   CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
   if (p.has("--model")) {

@@ -84,8 +84,8 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     // Checkpoint: each finished case's result, beside the result directory (which a new run
     // empties), so that an interrupted suite continues with --resume (docs/robustness.md).
     // The suite's identity is its configuration: the cases dir, --full and the cases in order.
-    const verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint", config,
-                                             p.has("--resume"));
+    verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint.h5", config,
+                                       p.has("--resume"));
     if (p.has("--resume"))
       std::cerr << "tmlab verify: resuming: " << checkpoint.stored() << " of " << cases.size()
                 << " case(s) finished before the interruption\n";
@@ -96,7 +96,7 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     } catch (const Interrupted& e) {
       throw Interrupted(e.signal(), std::string(e.what()) + "; " + std::to_string(checkpoint.stored()) +
                                         " of " + std::to_string(cases.size()) +
-                                        " case(s) are checkpointed in " + checkpoint.dir().string() +
+                                        " case(s) are checkpointed in " + checkpoint.file().string() +
                                         ": continue with the same command and --resume");
     }
     fs::remove_all(settings.work_root);

@@ -17,7 +17,8 @@ namespace tmlab::cli {
 namespace fs = std::filesystem;
 
 int cmd_workprecision(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--problem", "--results", "--reference-rtol"}, {"--quick", "--no-plots"});
+  const Parsed p =
+      parse(args, {"--problem", "--results", "--reference-rtol"}, {"--quick", "--no-plots", "--resume"});
   if (!p.positional.empty())
     throw UsageError("workprecision takes no positional argument (got '" + p.positional[0] + "')");
   tm::WorkPrecisionOptions opt;
@@ -39,12 +40,18 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
   const fs::path dir =
       fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "workprecision";
 
-  RunOutput out(dir);
+  const nlohmann::json config = {{"problems", opt.problems},
+                                 {"quick", opt.quick},
+                                 {"reference_rtol", opt.reference_rtol},
+                                 {"tmlab_root", opt.tmlab_root}};
+  // Checkpoint after every run (docs/robustness.md); --resume reads it before the result directory
+  // is touched, so a refused resume leaves the interrupted study as it was.
+  opt.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
+  opt.fingerprint = config;
+  if (p.has("--resume")) opt.resume = read_checkpoint(opt.checkpoint, "workprecision", config);
+  RunOutput out(dir, nullptr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
-    const nlohmann::json config = {{"problems", opt.problems},
-                                   {"quick", opt.quick},
-                                   {"reference_rtol", opt.reference_rtol},
-                                   {"tmlab_root", opt.tmlab_root}};
     std::vector<fs::path> inputs;
     for (const auto& name : opt.problems)
       if (name == "liver")
@@ -52,6 +59,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
                   fs::path(opt.tmlab_root) / "cases" / "paper" / "xu2011_liver.json"};
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     const std::vector<tm::WorkPrecisionProblem> results = tm::run_work_precision(opt);
+    remove_checkpoint(opt.checkpoint);  // a complete result holds no checkpoint
     out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.has("--no-plots"),
                                           opt.tmlab_root, &std::cerr));
     std::cout << tm::work_precision_table(results) << "results     " << dir.string()

@@ -31,6 +31,14 @@ Recorder::Recorder(std::vector<std::string> conditions, std::vector<std::string>
                 std::to_string(probe_nodes_.size()) + " probe nodes");
 }
 
+void Recorder::restore_series(SeriesTable table) {
+  table_ = std::move(table);
+  min_volume_ratio_ = 1.0;  // as constructed, then the same std::min sequence record() took
+  for (const auto& s : table_.series())
+    if (s.name == sn::kMinVolumeRatio)
+      for (const double v : s.values) min_volume_ratio_ = std::min(min_volume_ratio_, v);
+}
+
 void Recorder::record(const StepValues& v) {
   min_volume_ratio_ = std::min(min_volume_ratio_, v.min_volume_ratio);
   table_.add(sn::kTime, "s", v.time);

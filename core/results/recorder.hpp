@@ -88,6 +88,10 @@ class Recorder {
   /// final_reactions_N (per condition) and probes (node and final displacement per probe).
   nlohmann::json summary_blocks() const;
 
+  /// Checkpoints: sets the series recorded so far (and the smallest volume ratio over them); the
+  /// field frames are restored by calling add_field_frame() again for each.
+  void restore_series(SeriesTable table);
+
   const SeriesTable& table() const { return table_; }
   double min_volume_ratio() const { return min_volume_ratio_; }  ///< over all recorded steps
   int field_frames() const { return field_frames_; }

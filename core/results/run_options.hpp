@@ -2,6 +2,8 @@
 // where results go and how verbose to be; the result directory and its summary.
 #pragma once
 
+#include "core/results/checkpoint.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <ostream>
@@ -16,6 +18,10 @@ struct RunOptions {
   std::vector<std::string> command_line;
   bool plots = true;
   std::ostream* log = nullptr;  ///< progress and a short report (nullptr: silent)
+  /// Continue an interrupted run from its checkpoint (the tensor-mass runner; issue 12).
+  bool resume = false;
+  /// When the tensor-mass runner writes checkpoints besides at a stop request (--checkpoint-every).
+  CheckpointSchedule checkpoints;
 };
 
 struct RunResult {

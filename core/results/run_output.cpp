@@ -217,16 +217,20 @@ RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
 
   // ---- Clear the previous result (we hold the lock: any RUNNING marker is stale). ----
   {
-    if (fs::exists(dir_ / kRunning)) {
+    const bool keep_staging = previous == Previous::ResumeInterrupted;
+    const bool stale = fs::exists(dir_ / kRunning);
+    if (stale) {
       if (log) {
         const std::string who = describe_writer(dir_ / kRunning);
         *log << "tmlab: " << dir_.string() << ": a stale RUNNING marker"
              << (who.empty() ? std::string() : " (" + who + ")")
-             << " was left by a run whose process is gone; its partial output is discarded\n";
+             << " was left by a run whose process is gone; "
+             << (keep_staging ? "resuming from its staged files" : "its partial output is discarded") << "\n";
       }
     }
-    const bool keep_staging = previous == Previous::ResumeInterrupted;
-    if (keep_staging && (!fs::exists(dir_ / kInterrupted) || !fs::is_directory(staging_dir()))) {
+    // Resumable: a run stopped by a signal (INTERRUPTED), or one whose process died (a stale
+    // RUNNING: SIGKILL, a crash), with its staged files; the command then finds its checkpoint there.
+    if (keep_staging && (!(fs::exists(dir_ / kInterrupted) || stale) || !fs::is_directory(staging_dir()))) {
       ::close(lock_fd_);
       lock_fd_ = -1;
       throw Error(dir_.string() +

@@ -83,8 +83,10 @@ class RunOutput {
   explicit RunOutput(std::filesystem::path dir, std::ostream* log = nullptr);
   /// What to do with the previous contents: discard them (the constructor above), or, to resume
   /// an interrupted command, keep its staged files (.incomplete/) so that the finished parts can
-  /// be reused; the INTERRUPTED marker is cleared. Resuming a directory without an INTERRUPTED
-  /// marker and staged files is refused (tmlab::Error: nothing to resume).
+  /// be reused; the INTERRUPTED marker is cleared. A run whose process died (a stale RUNNING
+  /// marker: SIGKILL, a crash) resumes the same way from its last scheduled checkpoint. Resuming a
+  /// directory without one of these markers and staged files is refused (tmlab::Error: nothing to
+  /// resume).
   enum class Previous { Discard, ResumeInterrupted };
   RunOutput(std::filesystem::path dir, std::ostream* log, Previous previous);
   /// When neither finalize() nor fail() ran: writes FAILED (never throws). Releases the lock.

@@ -6,10 +6,14 @@
 // equilibrium is f_int(u) = f_ext.
 #pragma once
 
+#include "core/base/error.hpp"
 #include "core/mesh/mesh.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+
+#include <string>
+#include <vector>
 
 namespace tmlab::tm {
 
@@ -48,6 +52,20 @@ class ElasticModel {
   virtual void begin_step(double /*dt*/) {}
   /// Accepts the step ending at displacement u: advances the committed history.
   virtual void commit_step(const VecX& /*u*/) {}
+
+  // ---- Checkpoints (--resume, core/results/checkpoint.hpp). ----
+  /// The committed state as one flat array (empty for a model without history); restoring it
+  /// after a commit gives a model whose later results are identical bit for bit.
+  virtual std::vector<double> committed_state() const { return {}; }
+  /// Sets the committed state saved by committed_state() (the trial step is reset to dt = 0, as
+  /// after commit_step). Throws tmlab::Error when the array has the wrong size.
+  virtual void restore_committed_state(const std::vector<double>& state);
 };
+
+inline void ElasticModel::restore_committed_state(const std::vector<double>& state) {
+  if (!state.empty())
+    throw Error("checkpoint: a committed model state of " + std::to_string(state.size()) +
+                " values for a model without history (a checkpoint of another model?)");
+}
 
 }  // namespace tmlab::tm

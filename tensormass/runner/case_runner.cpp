@@ -10,6 +10,7 @@
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
+#include "core/results/checkpoint.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/series_names.hpp"
@@ -36,6 +37,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 namespace tmlab::tm {
@@ -86,6 +88,8 @@ class NewtonLog {
     roundoff_.push_back(at_roundoff);
     history_.push_back(last.history);
   }
+  void save(CheckpointData& d) const;
+  void restore(const CheckpointData& d);
   nlohmann::json json(const SolverSpec& s) const {
     int roundoff_steps = 0, max_its = 0;
     for (bool b : roundoff_) roundoff_steps += b ? 1 : 0;
@@ -288,6 +292,11 @@ class StepRecorder {
   /// the loads, and the contact pressure field.
   void set_contact(const std::vector<ContactBodyState>* states) { contact_ = states; }
 
+  /// Checkpoints: the series so far, the work bookkeeping and every field frame (t, u, v); restore()
+  /// rewrites the field files by replaying the frames, so they never depend on the interrupted files.
+  void save(CheckpointData& d) const;
+  void restore(const CheckpointData& d);
+
  private:
   Recorder::StepValues values(int step, double t, const VecX& u, const VecX& v, int newton_its) {
     const auto [jmin, jtet] = min_volume_ratio(p_.mesh, u);
@@ -376,6 +385,9 @@ class StepRecorder {
 
   /// Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
   void fields(double t, const VecX& u, const VecX& v) {
+    frames_t_.push_back(t);
+    frames_u_.insert(frames_u_.end(), u.data(), u.data() + u.size());
+    frames_v_.insert(frames_v_.end(), v.data(), v.data() + v.size());
     const int frame = rec_.field_frames();
     rec_.add_field_frame(t, std::vector<double>(u.data(), u.data() + u.size()));
     const CellFields c = cell_fields(p_, u);
@@ -420,6 +432,7 @@ class StepRecorder {
   double external_work_ = 0.0;
   VecX f_applied_prev_, u_prev_;
   const std::vector<ContactBodyState>* contact_ = nullptr;
+  std::vector<double> frames_t_, frames_u_, frames_v_;  ///< every field frame so far (checkpoints)
 };
 
 /// After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
@@ -450,22 +463,220 @@ struct State {
   VecX u, v;
 };
 
+// ---- Checkpoints (issue 12, core/results/checkpoint.hpp) --------------------------------------
+
+/// What a stepping loop owns besides the problem and the recorder (null: not in this loop).
+struct LoopState {
+  State& s;
+  double& t;  ///< the loop's time (static: the load factor reached)
+  NewtonLog* newton;
+  long* total_newton;
+  long* total_cutbacks;
+  CentralDifference* central;
+  ImplicitDynamics* implicit;
+};
+
+/// The run's checkpoint, <result dir>/.incomplete/checkpoint.h5: written at step boundaries when
+/// the schedule says so and when a stop was requested; read back by --resume, which restores the
+/// state so that the finished result is identical bit for bit to an uninterrupted run.
+class RunCheckpoint {
+ public:
+  RunCheckpoint(const Problem& p, const fs::path& dir, const RunOptions& opt)
+      : p_(p),
+        path_(dir / RunOutput::kStaging / "checkpoint.h5"),
+        fingerprint_(effective_case_json(p.cfg)),
+        clock_(opt.checkpoints),
+        log_(opt.log) {
+    if (opt.resume) resume_ = read_checkpoint(path_, "run", fingerprint_);
+  }
+  bool resuming() const { return resume_.has_value(); }
+
+  /// After the loop's integrator is initialised: restores the saved state (model, integrator,
+  /// loop, recorder and field files) and returns the last completed step (0 when not resuming).
+  int restore(StepRecorder& rec, const LoopState& loop) {
+    if (!resume_) return 0;
+    const CheckpointData& d = *resume_;
+    const int step = static_cast<int>(d.integer("step"));
+    loop.t = d.scalar("t");
+    loop.s.u = as_vec(d.doubles("u"));
+    loop.s.v = as_vec(d.doubles("v"));
+    p_.model->restore_committed_state(d.doubles("model.committed"));
+    if (loop.central)
+      loop.central->restore(loop.t, d.integer("explicit.steps"), loop.s.u,
+                            as_vec(d.doubles("explicit.v_half")), loop.s.v);
+    if (loop.implicit) loop.implicit->restore(loop.t, loop.s.u, loop.s.v, as_vec(d.doubles("implicit.a")));
+    if (loop.newton) loop.newton->restore(d);
+    if (loop.total_newton) *loop.total_newton = d.integer("total_newton");
+    if (loop.total_cutbacks) *loop.total_cutbacks = d.integer("total_cutbacks");
+    // Extension point: contact state (active set, multipliers, rigid body positions) is restored
+    // here from "contact.*" entries, saved in after_step().
+    rec.restore(d);
+    last_step_ = step;
+    if (log_)
+      *log_ << "tmlab: resuming '" << p_.cfg.name << "' after step " << step << " (t = " << loop.t
+            << ") from " << path_.string() << "\n";
+    resume_.reset();  // the memory of the frames is not needed twice
+    return step;
+  }
+
+  /// At a step boundary, after the step is recorded: writes the checkpoint when it is due or a
+  /// stop was requested (SIGINT/SIGTERM; the loop's safe point throws right after).
+  void after_step(int step, const StepRecorder& rec, const LoopState& loop) {
+    if (!(pending_interrupt() != 0 || clock_.due(step))) return;
+    CheckpointData d;
+    d.put_int("step", step);
+    d.put_scalar("t", loop.t);
+    d.put("u", as_std(loop.s.u));
+    d.put("v", as_std(loop.s.v));
+    d.put("model.committed", p_.model->committed_state());
+    if (loop.central) {
+      d.put_int("explicit.steps", loop.central->steps());
+      d.put("explicit.v_half", as_std(loop.central->half_step_velocity()));
+    }
+    if (loop.implicit) d.put("implicit.a", as_std(loop.implicit->acceleration()));
+    if (loop.newton) loop.newton->save(d);
+    if (loop.total_newton) d.put_int("total_newton", *loop.total_newton);
+    if (loop.total_cutbacks) d.put_int("total_cutbacks", *loop.total_cutbacks);
+    // Extension point: contact state ("contact.*" entries; see restore()).
+    rec.save(d);
+    write_checkpoint(path_, "run", fingerprint_, d);
+    clock_.mark();
+    last_step_ = step;
+  }
+
+  /// For the INTERRUPTED marker: where the checkpoint is and how to continue.
+  std::string where() const {
+    if (last_step_ < 0) return "; no checkpoint was written: run again without --resume";
+    return "; checkpoint after step " + std::to_string(last_step_) + " in " + path_.string() +
+           ": continue with the same command and --resume";
+  }
+  /// The run is complete: its result directory holds no checkpoint.
+  void remove() const { remove_checkpoint(path_); }
+
+ private:
+  static std::vector<double> as_std(const VecX& x) { return {x.data(), x.data() + x.size()}; }
+  static VecX as_vec(const std::vector<double>& x) {
+    return Eigen::Map<const VecX>(x.data(), static_cast<Eigen::Index>(x.size()));
+  }
+
+  const Problem& p_;
+  fs::path path_;
+  nlohmann::json fingerprint_;
+  CheckpointClock clock_;
+  std::ostream* log_;
+  std::optional<CheckpointData> resume_;
+  int last_step_ = -1;
+};
+
+void NewtonLog::save(CheckpointData& d) const {
+  auto ints = [](const auto& v) { return std::vector<std::int64_t>(v.begin(), v.end()); };
+  d.put("newton.iterations", ints(iterations_));
+  d.put("newton.cutbacks", ints(cutbacks_));
+  d.put("newton.sub_increments", ints(sub_increments_));
+  d.put("newton.backtracks", ints(backtracks_));
+  d.put("newton.roundoff", ints(roundoff_));
+  d.put("newton.residual", residual_);
+  d.put("newton.target", target_);
+  std::vector<double> flat;
+  std::vector<std::int64_t> lengths;
+  for (const auto& h : history_) {
+    flat.insert(flat.end(), h.begin(), h.end());
+    lengths.push_back(static_cast<std::int64_t>(h.size()));
+  }
+  d.put("newton.history", flat);
+  d.put("newton.history_lengths", lengths);
+}
+
+void NewtonLog::restore(const CheckpointData& d) {
+  auto ints = [&](const char* name) {
+    const auto& v = d.ints(name);
+    return std::vector<int>(v.begin(), v.end());
+  };
+  iterations_ = ints("newton.iterations");
+  cutbacks_ = ints("newton.cutbacks");
+  sub_increments_ = ints("newton.sub_increments");
+  backtracks_ = ints("newton.backtracks");
+  roundoff_.clear();
+  for (const auto b : d.ints("newton.roundoff")) roundoff_.push_back(b != 0);
+  residual_ = d.doubles("newton.residual");
+  target_ = d.doubles("newton.target");
+  history_.clear();
+  const auto& flat = d.doubles("newton.history");
+  std::size_t at = 0;
+  for (const auto n : d.ints("newton.history_lengths")) {
+    if (n < 0 || at + static_cast<std::size_t>(n) > flat.size())
+      throw Error(d.source() + ": inconsistent Newton history; run without --resume");
+    history_.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(at),
+                          flat.begin() + static_cast<std::ptrdiff_t>(at + static_cast<std::size_t>(n)));
+    at += static_cast<std::size_t>(n);
+  }
+}
+
+void StepRecorder::save(CheckpointData& d) const {
+  nlohmann::json names = nlohmann::json::array();
+  const auto& series = rec_.table().series();
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    names.push_back({series[i].name, series[i].unit});
+    d.put("series." + std::to_string(i), series[i].values);
+  }
+  d.put_text("series.names", names.dump());
+  d.put_scalar("work.external", external_work_);
+  d.put("work.f_applied_prev",
+        std::vector<double>(f_applied_prev_.data(), f_applied_prev_.data() + f_applied_prev_.size()));
+  d.put("work.u_prev", std::vector<double>(u_prev_.data(), u_prev_.data() + u_prev_.size()));
+  d.put("frames.t", frames_t_);
+  d.put("frames.u", frames_u_);
+  d.put("frames.v", frames_v_);
+}
+
+void StepRecorder::restore(const CheckpointData& d) {
+  const nlohmann::json names = nlohmann::json::parse(d.text("series.names"));
+  SeriesTable table;
+  for (std::size_t i = 0; i < names.size(); ++i)
+    for (const double v : d.doubles("series." + std::to_string(i)))
+      table.add(names[i][0].get<std::string>(), names[i][1].get<std::string>(), v);
+  rec_.restore_series(std::move(table));
+  external_work_ = d.scalar("work.external");
+  const auto& fp = d.doubles("work.f_applied_prev");
+  const auto& up = d.doubles("work.u_prev");
+  f_applied_prev_ = Eigen::Map<const VecX>(fp.data(), static_cast<Eigen::Index>(fp.size()));
+  u_prev_ = Eigen::Map<const VecX>(up.data(), static_cast<Eigen::Index>(up.size()));
+  // The field files again, frame by frame, exactly as the interrupted run wrote them.
+  const auto& ft = d.doubles("frames.t");
+  const auto& fu = d.doubles("frames.u");
+  const auto& fv = d.doubles("frames.v");
+  const std::size_t n = static_cast<std::size_t>(p_.system.num_dofs());
+  if (fu.size() != ft.size() * n || fv.size() != ft.size() * n)
+    throw Error(d.source() + ": field frames of the wrong size (another mesh?); run without --resume");
+  for (std::size_t f = 0; f < ft.size(); ++f) {
+    const auto off = static_cast<std::ptrdiff_t>(f * n);
+    const VecX u = Eigen::Map<const VecX>(fu.data() + off, static_cast<Eigen::Index>(n));
+    const VecX v = Eigen::Map<const VecX>(fv.data() + off, static_cast<Eigen::Index>(n));
+    fields(ft[f], u, v);
+  }
+}
+
 bool field_step(const CaseConfig& cfg, int k) { return k % cfg.output.every == 0 || k == cfg.solver.steps; }
 
 /// Static load stepping: solver.steps increments of the load factor t = t_end k / steps.
-nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                           RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const int n_steps = cfg.solver.steps;
   StaticSolver solver(p.system, newton_options(cfg.solver), cfg.solver.max_cutbacks);
   NewtonLog newton_log;
   long total_newton = 0, total_cutbacks = 0;
-  for (int k = 1; k <= n_steps; ++k) {
+  double t = 0.0;
+  const LoopState loop{s, t, &newton_log, &total_newton, &total_cutbacks, nullptr, nullptr};
+  for (int k = ck.restore(rec, loop) + 1; k <= n_steps; ++k) {
     const double t0 = cfg.solver.t_end * (k - 1) / n_steps, t1 = cfg.solver.t_end * k / n_steps;
     const StaticStepReport rep = solver.advance(t0, t1, s.u);
     total_newton += rep.newton_iterations;
     total_cutbacks += rep.cutbacks;
     newton_log.add(rep.newton, rep.newton_iterations, rep.cutbacks, rep.sub_increments, rep.at_roundoff);
     rec.record(k, t1, s.u, s.v, rep.newton_iterations, field_step(cfg, k));
+    t = t1;
+    ck.after_step(k, rec, loop);
     progress(k, t1);
   }
   return {{"type", "static"},
@@ -476,7 +687,8 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
 }
 
 /// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
-nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                             RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const int n_steps = cfg.solver.steps;
   const double dt = cfg.solver.dt;
@@ -485,7 +697,8 @@ nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& prog
   integ.initialize(0.0, s.u, s.v);
   const int series_every = std::max(1, n_steps / 4000);
   double t = 0.0;
-  for (int k = 1; k <= n_steps; ++k) {
+  const LoopState loop{s, t, nullptr, nullptr, nullptr, &integ, nullptr};
+  for (int k = ck.restore(rec, loop) + 1; k <= n_steps; ++k) {
     integ.step(t, dt);
     t = integ.time();
     const bool fields = field_step(cfg, k);
@@ -493,6 +706,7 @@ nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& prog
       s.u = integ.displacement();
       s.v = integ.velocity();
       rec.record(k, t, s.u, s.v, 0, fields);
+      ck.after_step(k, rec, loop);
       progress(k, t);
     }
   }
@@ -508,7 +722,8 @@ nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& prog
 }
 
 /// Implicit dynamics (backward Euler or Newmark), steps of solver.dt up to t_end.
-nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                             RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const int n_steps = cfg.solver.steps;
   const ImplicitScheme scheme = cfg.solver.scheme;
@@ -517,7 +732,8 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
   long total_newton = 0;
   integ.initialize(0.0, s.u, s.v);
   double t = 0.0;
-  for (int k = 1; k <= n_steps; ++k) {
+  const LoopState loop{s, t, &newton_log, &total_newton, nullptr, nullptr, &integ};
+  for (int k = ck.restore(rec, loop) + 1; k <= n_steps; ++k) {
     const double dt = std::min(cfg.solver.dt, cfg.solver.t_end - t);
     const NewtonResult nr = integ.step(t, dt);
     t = integ.time();
@@ -526,6 +742,7 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
     s.u = integ.displacement();
     s.v = integ.velocity();
     rec.record(k, t, s.u, s.v, nr.iterations, field_step(cfg, k));
+    ck.after_step(k, rec, loop);
     progress(k, t);
   }
   return {{"type", "implicit"},
@@ -711,22 +928,26 @@ nlohmann::json step_contact(const Problem& p, StepRecorder& rec, Progress& progr
 }
 
 /// Steps the case's solver from rest, recording t = 0 first; returns the summary's solver block.
-nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log) {
+nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log, RunCheckpoint& ck) {
   Progress progress(p.cfg, log);
   State s{VecX::Zero(p.system.num_dofs()), VecX::Zero(p.system.num_dofs())};
   if (p.cfg.contact.enabled) {
+    // Contact runs write no checkpoint yet (the active set, multipliers and body positions are not
+    // saved): refuse --resume rather than restart silently.
+    if (ck.resuming())
+      throw Error(p.cfg.file + ": --resume is not supported for cases with a 'contact' section yet; run again without it");
     nlohmann::json info = step_contact(p, rec, progress, s);
     progress.finish();
     return info;
   }
-  rec.record(0, 0.0, s.u, s.v, 0, true);
+  if (!ck.resuming()) rec.record(0, 0.0, s.u, s.v, 0, true);  // resumed: the checkpoint holds it
   nlohmann::json solver_info;
   if (p.cfg.solver.type == SolverSpec::Type::Static)
-    solver_info = step_static(p, rec, progress, s);
+    solver_info = step_static(p, rec, progress, s, ck);
   else if (p.cfg.solver.type == SolverSpec::Type::Explicit)
-    solver_info = step_explicit(p, rec, progress, s);
+    solver_info = step_explicit(p, rec, progress, s, ck);
   else
-    solver_info = step_implicit(p, rec, progress, s);
+    solver_info = step_implicit(p, rec, progress, s, ck);
   progress.finish();
   return solver_info;
 }
@@ -818,18 +1039,28 @@ NewtonOptions newton_options(const SolverSpec& s) {
 RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
   const auto wall0 = std::chrono::steady_clock::now();
   const Problem p(cfg);
+  // --resume: the checkpoint is read and checked before the result directory is touched, so a
+  // refused resume leaves the interrupted run as it was.
+  const fs::path dir = fs::path(opt.results_root) / cfg.name;
+  RunCheckpoint ck(p, dir, opt);
   // The result directory is staged; summary.json only when everything succeeded.
-  RunOutput out(fs::path(opt.results_root) / cfg.name, opt.log);
+  RunOutput out(dir, opt.log,
+                opt.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     write_inputs(out, p, opt);
     StepRecorder rec(p, out);
-    const nlohmann::json solver_info = step(p, rec, opt.log);
+    const nlohmann::json solver_info = step(p, rec, opt.log, ck);
     rec.close();
+    ck.remove();  // a complete result holds no checkpoint
     const std::string plot_status = plot(p, opt, out, rec.recorder());
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
     const nlohmann::json summary = summarise(p, rec, solver_info, plot_status, wall);
     out.finalize(summary);
     return {out.dir().string(), summary};
+  } catch (const Interrupted& e) {
+    const Interrupted stopped(e.signal(), e.what() + ck.where());
+    out.abandon(stopped);
+    throw stopped;
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

@@ -139,6 +139,17 @@ void CentralDifference::correct(const VecX& du) {
   v_ += 0.5 * du / dt_;  // v^{n+1} = (v^{n-1/2} + v^{n+1/2}) / 2
 }
 
+void CentralDifference::restore(double t, long steps, const VecX& u, const VecX& v_half, const VecX& v) {
+  const Index n = system_.num_dofs();
+  if (u.size() != n || v_half.size() != n || v.size() != n)
+    throw Error("checkpoint: explicit state of the wrong size (a checkpoint of another mesh?)");
+  t_ = t;
+  n_ = steps;
+  u_ = u;
+  v_half_ = v_half;
+  v_ = v;
+}
+
 double CentralDifference::kinetic_energy() const { return 0.5 * v_.dot(system_.mass().cwiseProduct(v_)); }
 
 }  // namespace tmlab::tm

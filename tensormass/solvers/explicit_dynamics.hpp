@@ -33,6 +33,10 @@ class CentralDifference {
   void initialize(double t0, const VecX& u0, const VecX& v0);
   /// Advances from t (must equal time()) to t + dt (the dt given at construction).
   void step(double t, double dt);
+  /// Sets the state saved at a step boundary (checkpoints): time, step count, u, the half-step
+  /// velocity and v; after initialize(), so the stability estimate and the model are set up.
+  void restore(double t, long steps, const VecX& u, const VecX& v_half, const VecX& v);
+  const VecX& half_step_velocity() const { return v_half_; }
 
   /// A kinematic correction of the step just taken (contact, tensormass/contact/kinematic_contact):
   /// u^{n+1} += du, with the half-step velocity kept consistent, v^{n+1/2} += du / dt (and the

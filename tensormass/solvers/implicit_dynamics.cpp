@@ -84,6 +84,16 @@ void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
   for (Index d : system_.bc().dofs()) a_[d] = 0.0;
 }
 
+void ImplicitDynamics::restore(double t, const VecX& u, const VecX& v, const VecX& a) {
+  const Index n = system_.num_dofs();
+  if (u.size() != n || v.size() != n || a.size() != n)
+    throw Error("checkpoint: implicit state of the wrong size (a checkpoint of another mesh?)");
+  t_ = t;
+  u_ = u;
+  v_ = v;
+  a_ = a;
+}
+
 NewtonResult ImplicitDynamics::step(double t, double dt) {
   if (!(dt > 0.0)) throw Error("implicit time step dt must be > 0");
   if (std::abs(t - t_) > 1e-9 * std::max(1.0, std::abs(t_)))

@@ -58,6 +58,8 @@ class ImplicitDynamics {
   void initialize(double t0, const VecX& u0, const VecX& v0);
   /// Advances from t (= time()) to t + dt; throws tmlab::Error when Newton fails.
   NewtonResult step(double t, double dt);
+  /// Sets the state saved at a step boundary (checkpoints); after initialize().
+  void restore(double t, const VecX& u, const VecX& v, const VecX& a);
 
   double time() const { return t_; }
   const VecX& displacement() const { return u_; }

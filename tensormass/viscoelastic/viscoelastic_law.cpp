@@ -241,4 +241,32 @@ void ViscoelasticHyperelastic::tangent(const VecX& u, SpMat& K) const {
   }
 }
 
+// ---------------------------------------------------------------- checkpoints
+
+std::vector<double> ViscoelasticHyperelastic::committed_state() const {
+  std::vector<double> s(hist_);
+  s.insert(s.end(), driver_.begin(), driver_.end());
+  s.insert(s.end(),
+           {committed_elastic_, committed_branch_, committed_rate_, step_dissipation_, total_dissipation_});
+  return s;
+}
+
+void ViscoelasticHyperelastic::restore_committed_state(const std::vector<double>& s) {
+  const std::size_t nh = hist_.size(), nd = driver_.size();
+  if (s.size() != nh + nd + 5)
+    throw Error("checkpoint: a viscoelastic committed state of " + std::to_string(s.size()) +
+                " values, this model has " + std::to_string(nh + nd + 5) +
+                " (another mesh or Prony series?)");
+  std::copy(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(nh), hist_.begin());
+  std::copy(s.begin() + static_cast<std::ptrdiff_t>(nh), s.begin() + static_cast<std::ptrdiff_t>(nh + nd),
+            driver_.begin());
+  const double* e = s.data() + nh + nd;
+  committed_elastic_ = e[0];
+  committed_branch_ = e[1];
+  committed_rate_ = e[2];
+  step_dissipation_ = e[3];
+  total_dissipation_ = e[4];
+  begin_step(0.0);  // the trial state commit_step leaves behind
+}
+
 }  // namespace tmlab::tm

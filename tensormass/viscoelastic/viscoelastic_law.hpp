@@ -58,6 +58,9 @@ class ViscoelasticHyperelastic : public ElasticModel {
   bool has_history() const override { return true; }
   void begin_step(double dt) override;
   void commit_step(const VecX& u) override;
+  /// hist, driver, then the committed energies, rate and dissipations (5 values).
+  std::vector<double> committed_state() const override;
+  void restore_committed_state(const std::vector<double>& state) override;
 
   /// W_trial(u) = sum_t V [ (1 + g) W(E) + S_hist : E ].
   double trial_potential(const VecX& u) const;

@@ -105,6 +105,9 @@ class ViscoelasticStVK : public ElasticModel {
   bool has_history() const override { return true; }
   void begin_step(double dt) override;
   void commit_step(const VecX& u) override;
+  /// hist, driver, then the committed energies, rate and dissipations (5 values).
+  std::vector<double> committed_state() const override;
+  void restore_committed_state(const std::vector<double>& state) override;
 
   /// W_trial(u): the potential of the trial force (its gradient is internal_force, its Hessian tangent).
   double trial_potential(const VecX& u) const;

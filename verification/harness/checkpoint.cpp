@@ -1,7 +1,7 @@
 #include "verification/harness/checkpoint.hpp"
 
 #include "core/base/error.hpp"
-#include "core/io/atomic_file.hpp"
+#include "core/results/checkpoint.hpp"
 
 #include <cmath>
 #include <fstream>
@@ -109,52 +109,72 @@ CaseResult case_result_from_json(const json& j) {
   return r;
 }
 
-SuiteCheckpoint::SuiteCheckpoint(fs::path dir, const json& suite, bool resume) : dir_(std::move(dir)) {
-  const fs::path suite_file = dir_ / "suite.json";
+namespace {
+constexpr const char* kKind = "verify";
+
+/// The JSON checkpoint directory of tmlab versions before the HDF5 one: <file without .h5>/.
+fs::path legacy_dir(const fs::path& file) {
+  fs::path d = file;
+  d.replace_extension();
+  return d;
+}
+}  // namespace
+
+SuiteCheckpoint::SuiteCheckpoint(fs::path file, const json& suite, bool resume)
+    : file_(std::move(file)), suite_(suite) {
+  const fs::path legacy = legacy_dir(file_);
   if (resume) {
-    if (!fs::exists(suite_file))
-      throw Error("--resume: no checkpoint in " + dir_.string() +
+    if (!fs::exists(file_) && fs::exists(legacy / "suite.json"))
+      throw Error("--resume: " + legacy.string() +
+                  " is a JSON checkpoint of an earlier tmlab; this version checkpoints to HDF5 (" +
+                  file_.filename().string() + ") and does not read it: run without --resume");
+    if (!fs::exists(file_))
+      throw Error("--resume: no checkpoint " + file_.string() +
                   " (nothing was interrupted, or the last run finished; run without --resume)");
-    std::ifstream in(suite_file);
-    json stored;
+    CheckpointData d;
     try {
-      stored = json::parse(in);
-    } catch (const json::exception& e) {
-      throw Error(suite_file.string() + ": unreadable checkpoint (" + e.what() + ")");
+      d = read_checkpoint(file_, kKind, suite);
+    } catch (const Error& e) {
+      const std::string m = e.what();
+      if (m.find("another configuration") == std::string::npos) throw;
+      throw Error(m + " (a checkpoint of a different suite)");
     }
-    if (stored != suite)
-      throw Error("--resume: the checkpoint in " + dir_.string() + " is of a different suite (" +
-                  stored.dump() + "; now " + suite.dump() +
-                  "): resume with the same options, or run without --resume to start again");
+    for (const auto& name : json::parse(d.text("cases")).get<std::vector<std::string>>()) {
+      const std::string& text = d.text("case." + std::to_string(done_.size()));
+      try {
+        done_.emplace(name, case_result_from_json(json::parse(text)));
+      } catch (const json::exception& e) {
+        throw Error(file_.string() + ": unreadable result of case " + name + " (" + e.what() + ")");
+      }
+      order_.push_back(name);
+    }
     return;
   }
-  fs::remove_all(dir_);
-  fs::create_directories(dir_);
-  write_file_atomically(suite_file, suite.dump(2) + "\n");
+  remove_checkpoint(file_);
+  std::error_code ignored;
+  fs::remove_all(legacy, ignored);
 }
 
 std::optional<CaseResult> SuiteCheckpoint::find(const std::string& name) const {
-  const fs::path f = dir_ / (name + ".json");
-  if (!fs::exists(f)) return std::nullopt;
-  std::ifstream in(f);
-  try {
-    return case_result_from_json(json::parse(in));
-  } catch (const json::exception& e) {
-    throw Error(f.string() + ": unreadable checkpoint (" + e.what() + ")");
-  }
+  const auto it = done_.find(name);
+  if (it == done_.end()) return std::nullopt;
+  return it->second;
 }
 
-void SuiteCheckpoint::store(const CaseResult& r) const {
-  write_file_atomically(dir_ / (r.name + ".json"), case_result_to_json(r).dump() + "\n");
+void SuiteCheckpoint::store(const CaseResult& r) {
+  if (!done_.count(r.name)) order_.push_back(r.name);
+  done_[r.name] = r;
+  // The whole suite state in one file, replaced atomically: a crash leaves the old or the new.
+  CheckpointData d;
+  d.put_text("cases", json(order_).dump());
+  for (std::size_t i = 0; i < order_.size(); ++i)
+    d.put_text("case." + std::to_string(i), case_result_to_json(done_.at(order_[i])).dump());
+  fs::create_directories(file_.parent_path());
+  write_checkpoint(file_, kKind, suite_, d);
 }
 
-void SuiteCheckpoint::remove() const { fs::remove_all(dir_); }
+void SuiteCheckpoint::remove() const { remove_checkpoint(file_); }
 
-std::size_t SuiteCheckpoint::stored() const {
-  std::size_t n = 0;
-  for (const auto& e : fs::directory_iterator(dir_))
-    if (e.path().extension() == ".json" && e.path().filename() != "suite.json") ++n;
-  return n;
-}
+std::size_t SuiteCheckpoint::stored() const { return done_.size(); }
 
 }  // namespace tmlab::verify

@@ -3,11 +3,13 @@
 //
 // The unit of work is a case: after each case the runner stores its complete CaseResult (status,
 // every check outcome, every measurement, series, notes and data; doubles in a form that reads
-// back bit for bit, non-finite values included) as <dir>/<case>.json, written atomically. The
-// suite itself (the selected cases in order, and the options that change results) is recorded in
-// <dir>/suite.json when the checkpoint is opened; resuming with a different selection is refused.
-// A case interrupted half-way is run again from its start on resume (check functions are
-// deterministic for a given build and thread count, so the results are the same).
+// back bit for bit, non-finite values included) in one HDF5 checkpoint file (core/results/
+// checkpoint.hpp: results/verification.checkpoint.h5), rewritten atomically after every case. Its
+// fingerprint is the suite (the selected cases in order, and the options that change results);
+// resuming with a different selection is refused, naming the difference. A case interrupted
+// half-way is run again from its start on resume (check functions are deterministic for a given
+// build and thread count, so the results are the same). The JSON checkpoint directory of earlier
+// versions (results/verification.checkpoint/) is not read: --resume says so.
 #pragma once
 
 #include "verification/harness/evaluate.hpp"
@@ -15,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -28,22 +31,26 @@ CaseResult case_result_from_json(const nlohmann::json& j);
 class SuiteCheckpoint {
  public:
   /// Opens (resume = true: must exist and describe the same `suite`) or starts afresh (resume =
-  /// false: an existing checkpoint is removed) the checkpoint directory `dir`. Throws tmlab::Error
-  /// when resuming without a checkpoint, or with one of a different suite (naming the difference).
-  SuiteCheckpoint(std::filesystem::path dir, const nlohmann::json& suite, bool resume);
+  /// false: an existing checkpoint, and an old JSON one, are removed) the checkpoint file `file`.
+  /// Throws tmlab::Error when resuming without a checkpoint, from an old JSON checkpoint, or with
+  /// one of a different suite (naming the difference).
+  SuiteCheckpoint(std::filesystem::path file, const nlohmann::json& suite, bool resume);
 
   /// The stored result of case `name`, if that case finished before.
   std::optional<CaseResult> find(const std::string& name) const;
   /// Stores the result of a finished case (atomically: a crash leaves the old state or the new).
-  void store(const CaseResult& r) const;
+  void store(const CaseResult& r);
   /// Removes the checkpoint (after the suite's report is complete).
   void remove() const;
   /// How many cases of the suite have a stored result.
   std::size_t stored() const;
-  const std::filesystem::path& dir() const { return dir_; }
+  const std::filesystem::path& file() const { return file_; }
 
  private:
-  std::filesystem::path dir_;
+  std::filesystem::path file_;
+  nlohmann::json suite_;
+  std::map<std::string, CaseResult> done_;
+  std::vector<std::string> order_;  ///< the stored cases in the order they finished
 };
 
 }  // namespace tmlab::verify

@@ -53,7 +53,7 @@ std::vector<VerificationCase> select(const std::vector<VerificationCase>& catalo
 
 std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, const CheckRegistry& registry,
                                   const RunSettings& settings, std::ostream& log,
-                                  const SuiteCheckpoint* checkpoint) {
+                                  SuiteCheckpoint* checkpoint) {
   std::vector<CaseResult> results;
   const auto n = cases.size();
   for (std::size_t i = 0; i < n; ++i) {

@@ -32,6 +32,6 @@ struct RunSettings {
 /// is not run again (its stored result is used), and each finished case's result is stored.
 std::vector<CaseResult> run_cases(const std::vector<VerificationCase>& cases, const CheckRegistry& registry,
                                   const RunSettings& settings, std::ostream& log,
-                                  const SuiteCheckpoint* checkpoint = nullptr);
+                                  SuiteCheckpoint* checkpoint = nullptr);
 
 }  // namespace tmlab::verify

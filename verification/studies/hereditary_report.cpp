@@ -1,5 +1,7 @@
 #include "verification/studies/hereditary_report.hpp"
 
+#include "core/base/interrupt.hpp"
+
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
@@ -34,11 +36,119 @@ nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlo
 
 std::string str(Integ s) { return ViscoelasticOptions::to_string(s); }
 
+/// The study's checkpoint: the finished sweeps and liver studies by key, written after each one;
+/// on --resume those of the interrupted study are taken from here. (The other steps are cheap and
+/// run again.)
+class StudyCheckpoint {
+ public:
+  explicit StudyCheckpoint(const HereditaryRunOptions& o) : o_(o) {
+    if (o.resume) d_ = *o.resume;
+  }
+
+  SweepResult sweep(const std::string& key, const std::function<SweepResult()>& run) {
+    if (d_.has(key + ".head")) {
+      if (o_.log) o_.log(key + ": from the checkpoint of the interrupted study");
+      const nlohmann::json names = nlohmann::json::parse(d_.text(key + ".names"));
+      SweepResult r;
+      r.history = names.at(0), r.scheme = names.at(1);
+      const auto& h = d_.doubles(key + ".head");
+      r.order = h.at(0), r.fit_max_dt_over_tau = h.at(1), r.breakdown_1pct = h.at(2),
+      r.breakdown_10pct = h.at(3);
+      const auto& dt = d_.doubles(key + ".dt");
+      const auto& q = d_.doubles(key + ".dt_over_tau");
+      const auto& e = d_.doubles(key + ".error");
+      const auto& qc = d_.doubles(key + ".quadrature");
+      const auto& n = d_.ints(key + ".steps");
+      if (q.size() != dt.size() || e.size() != dt.size() || qc.size() != dt.size() || n.size() != dt.size())
+        throw Error(d_.source() + ": inconsistent entry " + key + "; run without --resume");
+      for (std::size_t i = 0; i < dt.size(); ++i)
+        r.runs.push_back({dt[i], q[i], e[i], qc[i], static_cast<int>(n[i])});
+      return r;
+    }
+    SweepResult r = run();
+    std::vector<double> dt, q, e, qc;
+    std::vector<std::int64_t> n;
+    for (const auto& x : r.runs) {
+      dt.push_back(x.dt), q.push_back(x.dt_over_tau), e.push_back(x.error), qc.push_back(x.quadrature);
+      n.push_back(x.steps);
+    }
+    d_.put_text(key + ".names", nlohmann::json::array({r.history, r.scheme}).dump());
+    d_.put(key + ".head",
+           std::vector<double>{r.order, r.fit_max_dt_over_tau, r.breakdown_1pct, r.breakdown_10pct});
+    d_.put(key + ".dt", dt);
+    d_.put(key + ".dt_over_tau", q);
+    d_.put(key + ".error", e);
+    d_.put(key + ".quadrature", qc);
+    d_.put(key + ".steps", n);
+    commit("the sweep of " + r.history + " " + r.scheme);
+    return r;
+  }
+
+  LiverStudy liver(const std::string& key, const std::function<LiverStudy()>& run) {
+    if (d_.has(key + ".head")) {
+      if (o_.log) o_.log(key + ": from the checkpoint of the interrupted study");
+      LiverStudy ls;
+      const auto& h = d_.doubles(key + ".head");
+      ls.reference_check = h.at(0), ls.richardson_correction = h.at(1), ls.path_check = h.at(2);
+      ls.path_quadrature = h.at(3), ls.peak_force = h.at(4), ls.seconds = h.at(5);
+      const auto& c = d_.ints(key + ".counts");
+      ls.num_tets = static_cast<int>(c.at(0)), ls.num_nodes = static_cast<int>(c.at(1));
+      ls.node_tets = static_cast<int>(c.at(2));
+      const std::size_t runs = static_cast<std::size_t>(c.at(3));
+      ls.t_ref = d_.doubles(key + ".t_ref");
+      ls.force_ref = d_.doubles(key + ".force_ref");
+      ls.describe = nlohmann::json::parse(d_.text(key + ".describe"));
+      for (std::size_t i = 0; i < runs; ++i) {
+        const std::string k = key + ".run" + std::to_string(i);
+        LiverRun r;
+        r.scheme = d_.text(k + ".scheme");
+        const auto& v = d_.doubles(k + ".num");
+        r.dt = v.at(0), r.error = v.at(1), r.isolated_error = v.at(2), r.path_deviation = v.at(3);
+        r.seconds = v.at(4);
+        r.t = d_.doubles(k + ".t");
+        r.force = d_.doubles(k + ".force");
+        ls.runs.push_back(std::move(r));
+      }
+      return ls;
+    }
+    LiverStudy ls = run();
+    d_.put(key + ".head", std::vector<double>{ls.reference_check, ls.richardson_correction, ls.path_check,
+                                              ls.path_quadrature, ls.peak_force, ls.seconds});
+    d_.put(key + ".counts", std::vector<std::int64_t>{ls.num_tets, ls.num_nodes, ls.node_tets,
+                                                      static_cast<std::int64_t>(ls.runs.size())});
+    d_.put(key + ".t_ref", ls.t_ref);
+    d_.put(key + ".force_ref", ls.force_ref);
+    d_.put_text(key + ".describe", ls.describe.dump());
+    for (std::size_t i = 0; i < ls.runs.size(); ++i) {
+      const std::string k = key + ".run" + std::to_string(i);
+      const LiverRun& r = ls.runs[i];
+      d_.put_text(k + ".scheme", r.scheme);
+      d_.put(k + ".num", std::vector<double>{r.dt, r.error, r.isolated_error, r.path_deviation, r.seconds});
+      d_.put(k + ".t", r.t);
+      d_.put(k + ".force", r.force);
+    }
+    commit("the liver study (" + key + ")");
+    return ls;
+  }
+
+ private:
+  /// Writes the checkpoint (when the study has one), then stops here if a signal is pending.
+  void commit(const std::string& after) {
+    if (o_.checkpoint.empty()) return;
+    write_checkpoint(o_.checkpoint, "hereditary", o_.fingerprint, d_);
+    check_interrupt("after " + after + "; the finished parts are in the checkpoint " +
+                    o_.checkpoint.string() + ": continue with the same command and --resume");
+  }
+  const HereditaryRunOptions& o_;
+  CheckpointData d_;
+};
+
 /// Where each step writes: its datasets, its markdown section and its summary entry.
 struct Sink {
   H5File& h5;
   std::ostringstream& md;
   nlohmann::json& summary;
+  StudyCheckpoint& ck;
 };
 
 void write_header(Sink& out, const HereditaryRunOptions& o) {
@@ -94,12 +204,14 @@ void write_sweeps(Sink& out, const HereditaryRunOptions& o) {
          << "|---|---|---|---|---|---|---|---|\n";
   double quad_max = 0.0;
   out.summary["histories"] = nlohmann::json::object();
-  for (const auto& x : o.histories) {
+  for (std::size_t xi = 0; xi < o.histories.size(); ++xi) {
+    const DriverHistory& x = o.histories[xi];
     nlohmann::json hs = {{"description", x.describe()}, {"schemes", nlohmann::json::object()}};
     out.h5.create_group("/sweep/" + x.name());
     out.h5.set_attribute("/sweep/" + x.name(), "description", x.describe().dump());
     for (Integ s : kSchemes) {
-      const SweepResult r = sweep(x, s, o.study, quick ? Log() : o.log);
+      const SweepResult r = out.ck.sweep("sweep" + std::to_string(xi) + "." + str(s),
+                                         [&] { return sweep(x, s, o.study, quick ? Log() : o.log); });
       quad_max = std::max(quad_max, write_sweep(out, x, r, hs));
       if (!quick && o.log)
         o.log(x.name() + " " + r.scheme + ": order " + fixed(r.order) + ", 1 % at dt/tau " +
@@ -281,7 +393,8 @@ void write_liver_scheme(Sink& out, const std::string& root, const LiverStudy& ls
 void write_liver(Sink& out, const HereditaryRunOptions& o, const nlohmann::json& params,
                  const std::string& hist) {
   const LiverStudyOptions lo = liver_options(hist, o.study.quick);
-  const LiverStudy ls = liver_study(params, o.params_file, o.tmlab_root, lo, o.log);
+  const LiverStudy ls = out.ck.liver(
+      "liver." + hist, [&] { return liver_study(params, o.params_file, o.tmlab_root, lo, o.log); });
   const std::string root = "/liver/" + hist;
   out.h5.write(root + "/t_ref", ls.t_ref, {ls.t_ref.size()});
   out.h5.write(root + "/force_ref", ls.force_ref, {ls.force_ref.size()});
@@ -319,7 +432,8 @@ nlohmann::json write_hereditary_study(const HereditaryRunOptions& o, const std::
   nlohmann::json summary = {{"alpha", o.study.alpha}, {"tau", o.study.tau}};
   std::ostringstream md;
   H5File h5 = H5File::create((dir / "hereditary.h5").string());
-  Sink out{h5, md, summary};
+  StudyCheckpoint ck(o);
+  Sink out{h5, md, summary, ck};
   write_header(out, o);
   write_sweeps(out, o);
   write_amplification(out);

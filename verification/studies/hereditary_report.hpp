@@ -5,12 +5,14 @@
 // The command (apps/tmlab/cmd_hereditary.cpp) parses the arguments and owns the result directory.
 #pragma once
 
+#include "core/results/checkpoint.hpp"
 #include "verification/studies/hereditary_study.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +29,14 @@ struct HereditaryRunOptions {
   std::string command_line;      ///< quoted in hereditary.md
   bool plots = true;
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+  /// Checkpoints (issue 12; empty: none): after every sweep (history and scheme) and every liver
+  /// study, the finished results are written to this file with `fingerprint` (the effective
+  /// options), and SIGINT/SIGTERM stop the study there.
+  std::filesystem::path checkpoint;
+  nlohmann::json fingerprint = nlohmann::json::object();
+  /// --resume: a checkpoint read back (read_checkpoint kind "hereditary"); its finished sweeps and
+  /// liver studies are taken from it instead of run again.
+  std::optional<CheckpointData> resume;
 };
 
 /// Runs the study and writes hereditary.h5, hereditary.md and (plots) the PNGs into `dir`; returns

@@ -4,6 +4,7 @@
 #include "core/base/format.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/base/stopwatch.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/hdf5_file.hpp"
@@ -167,6 +168,65 @@ WorkPrecisionPoint point_of(const std::string& family, const std::string& method
   return pt;
 }
 
+/// The study's checkpoint: every finished unit (a problem's reference, a run's point) by key,
+/// written after each one; on --resume the units of the interrupted study are found here.
+class StudyCheckpoint {
+ public:
+  explicit StudyCheckpoint(const WorkPrecisionOptions& o) : o_(o) {
+    if (o.resume) data_ = *o.resume;
+  }
+  std::optional<WorkPrecisionPoint> point(const std::string& key) const {
+    if (!data_.has(key + ".num")) return std::nullopt;
+    const std::vector<double>& v = data_.doubles(key + ".num");
+    const nlohmann::json t = nlohmann::json::parse(data_.text(key + ".text"));
+    if (v.size() != 9 || t.size() != 4) throw Error(data_.source() + ": bad entry " + key);
+    WorkPrecisionPoint p;
+    p.method = t[0], p.family = t[1], p.parameter = t[2], p.failure = t[3];
+    p.value = v[0], p.error = v[1], p.cpu_seconds = v[2], p.wall_seconds = v[3];
+    p.steps = static_cast<long>(v[4]), p.rhs_evals = static_cast<long>(v[5]);
+    p.newton_iterations = static_cast<long>(v[6]), p.linear_iterations = static_cast<long>(v[7]);
+    p.preconditioner_setups = static_cast<long>(v[8]);
+    return p;
+  }
+  void put_point(const std::string& key, const WorkPrecisionPoint& p) {
+    data_.put(key + ".num",
+              std::vector<double>{
+                  p.value, p.error, p.cpu_seconds, p.wall_seconds, static_cast<double>(p.steps),
+                  static_cast<double>(p.rhs_evals), static_cast<double>(p.newton_iterations),
+                  static_cast<double>(p.linear_iterations), static_cast<double>(p.preconditioner_setups)});
+    data_.put_text(key + ".text", nlohmann::json::array({p.method, p.family, p.parameter, p.failure}).dump());
+  }
+  /// A reference trajectory (the displacements at the output times).
+  bool trajectory(const std::string& key, std::vector<VecX>& us) const {
+    if (!data_.has(key + ".u")) return false;
+    const std::vector<double>& flat = data_.doubles(key + ".u");
+    const auto n = static_cast<std::size_t>(data_.integer(key + ".n"));
+    us.clear();
+    if (n == 0 || flat.size() % n != 0) throw Error(data_.source() + ": bad entry " + key);
+    const std::size_t size = flat.size() / n;
+    for (std::size_t i = 0; i < n; ++i)
+      us.push_back(Eigen::Map<const VecX>(flat.data() + i * size, static_cast<Eigen::Index>(size)));
+    return true;
+  }
+  void put_trajectory(const std::string& key, const std::vector<VecX>& us) {
+    std::vector<double> flat;
+    for (const VecX& u : us) flat.insert(flat.end(), u.data(), u.data() + u.size());
+    data_.put(key + ".u", flat);
+    data_.put_int(key + ".n", static_cast<std::int64_t>(us.size()));
+  }
+  /// Writes the checkpoint (when the study has one), then stops here if a signal is pending.
+  void commit(const std::string& after) {
+    if (o_.checkpoint.empty()) return;
+    write_checkpoint(o_.checkpoint, "workprecision", o_.fingerprint, data_);
+    check_interrupt("after " + after + "; the finished runs are in the checkpoint " + o_.checkpoint.string() +
+                    ": continue with the same command and --resume");
+  }
+
+ private:
+  const WorkPrecisionOptions& o_;
+  CheckpointData data_;
+};
+
 /// "explicit + midpoint", "newmark + exact_linear": a fixed-step method by solver and recursion.
 std::string fixed_step_method(const std::string& solver, Integ integ) {
   return solver + " + " + ViscoelasticOptions::to_string(integ);
@@ -305,6 +365,7 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
   if (!(opt.reference_rtol > 0.0 && opt.reference_rtol < 1e-6))
     throw Error("workprecision: the reference rtol must be in (0, 1e-6), got " + fmt(opt.reference_rtol));
   std::vector<WorkPrecisionProblem> results;
+  StudyCheckpoint ck(opt);
   for (const std::string& name : opt.problems) {
     Setup s;
     if (name == "liver")
@@ -334,8 +395,17 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
     // Reference: CVODE BDF + preconditioned SPGMR at reference_rtol.
     std::vector<VecX> ref, us;
     const double ref_rtol = opt.quick ? std::max(opt.reference_rtol, 1e-9) : opt.reference_rtol;
-    P.reference = run_sundials(s, OdeMethod::CvodeBdf, LinearSolverKind::SpgmrPreconditioned, ref_rtol, ref);
-    P.reference.error = 0.0;
+    const std::string ref_key = "ref." + name;
+    if (const auto done = ck.point(ref_key); done && ck.trajectory(ref_key, ref)) {
+      P.reference = *done;  // from the checkpoint of the interrupted study
+    } else {
+      P.reference =
+          run_sundials(s, OdeMethod::CvodeBdf, LinearSolverKind::SpgmrPreconditioned, ref_rtol, ref);
+      P.reference.error = 0.0;
+      ck.put_point(ref_key, P.reference);
+      ck.put_trajectory(ref_key, ref);
+      ck.commit("the reference of " + name);
+    }
     for (const VecX& u : ref) P.max_displacement = std::max(P.max_displacement, u.cwiseAbs().maxCoeff());
     if (!(P.max_displacement > 0.0))
       throw Error("workprecision: the reference of '" + name + "' does not move");
@@ -346,17 +416,34 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
                << " mm\n";
 
     // A run's point; a failing run keeps its plan (method, step or tolerance) and the reason.
+    // Runs finished before an interruption are taken from the checkpoint (key: problem and index).
     auto record = [&](const std::function<WorkPrecisionPoint()>& run, const WorkPrecisionPoint& plan) {
+      const std::string key = "run." + name + "." + std::to_string(P.points.size());
+      if (const auto done = ck.point(key)) {
+        if (done->method != plan.method || done->value != plan.value)
+          throw Error(opt.resume->source() + ": run " + key + " is " + done->method + " at " +
+                      fmt(done->value) + ", this study's is " + plan.method + " at " + fmt(plan.value) +
+                      "; run without --resume");
+        if (opt.log)
+          *opt.log << "[workprecision] " << name << ": from the checkpoint of the interrupted study:\n";
+        log_point(opt.log, name, *done);
+        P.points.push_back(*done);
+        return;
+      }
       WorkPrecisionPoint pt;
       try {
         pt = run();
         pt.error = error_against(us, ref, P.max_displacement);
+      } catch (const Interrupted&) {
+        throw;
       } catch (const Error& e) {
         pt = plan;
         pt.failure = e.what();
       }
       log_point(opt.log, name, pt);
       P.points.push_back(pt);
+      ck.put_point(key, pt);
+      ck.commit(pt.method + " " + pt.parameter + " " + fmt(pt.value) + " of " + name);
     };
 
     // Fixed-step explicit: the largest dt dividing the output interval below 0.9 of the critical step,

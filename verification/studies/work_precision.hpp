@@ -10,6 +10,7 @@
 // (std::clock) of the run, set-up of the model included, the reference excluded.
 #pragma once
 
+#include "core/results/checkpoint.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
 
 #include <nlohmann/json.hpp>
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,14 @@ struct WorkPrecisionOptions {
   std::string tmlab_root = ".";   ///< where meshes/ and cases/ are
   double reference_rtol = 1e-10;  ///< CVODE rtol of the reference
   std::ostream* log = nullptr;    ///< one progress line per run (nullptr: silent)
+  /// Checkpoints (issue 12; empty: none): after the reference and after every run, everything
+  /// finished so far (points, each problem's reference trajectory) is written to this file, with
+  /// `fingerprint` (the effective options), and SIGINT/SIGTERM stop the study there.
+  std::filesystem::path checkpoint;
+  nlohmann::json fingerprint = nlohmann::json::object();
+  /// --resume: a checkpoint read back (read_checkpoint kind "workprecision"); its finished runs are
+  /// taken from it instead of run again (their CPU times are those of the interrupted run).
+  std::optional<CheckpointData> resume;
 };
 
 /// One run of one method.

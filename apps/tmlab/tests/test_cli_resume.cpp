@@ -3,11 +3,18 @@
 // bit for bit except the wall-clock times; finished cases are not run again.
 #include "cli_test_support.hpp"
 
+#include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
+#include "core/io/hdf5_file.hpp"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <csignal>
+#include <cstring>
 #include <fstream>
+#include <map>
 #include <random>
 
 namespace {
@@ -62,7 +69,7 @@ TEST_F(CliResume, InterruptedSuiteResumesToTheSameResult) {
   {
     const fs::path res = dir_ / "after-first";
     const pid_t pid = spawn(suite(res), dir_ / "a.log");
-    ASSERT_TRUE(wait_for(res / "verification.checkpoint" / "analytic-uniaxial-stvk.json"))
+    ASSERT_TRUE(wait_for(res / "verification.checkpoint.h5"))  // written after the first case
         << read_file(dir_ / "a.log");
     ASSERT_EQ(::kill(pid, SIGINT), 0);
     const int rc = wait_exit(pid);
@@ -81,7 +88,7 @@ TEST_F(CliResume, InterruptedSuiteResumesToTheSameResult) {
       ASSERT_EQ(rc, 0) << "the suite finished before the signal arrived: " << read_file(dir_ / "a.log");
     }
     EXPECT_EQ(without_times(res), expected);
-    EXPECT_FALSE(fs::exists(res / "verification.checkpoint")) << "a complete report leaves no checkpoint";
+    EXPECT_FALSE(fs::exists(res / "verification.checkpoint.h5")) << "a complete report leaves no checkpoint";
   }
 
   // Random moments (the seed is printed so that a failure can be replayed).
@@ -122,14 +129,14 @@ TEST_F(CliResume, ResumeWithoutCheckpointOrWithAnotherSuiteIsRefused) {
   // A checkpoint of another selection.
   const fs::path res = dir_ / "res2";
   const pid_t pid = spawn(suite(res), dir_ / "2.log");
-  ASSERT_TRUE(wait_for(res / "verification.checkpoint" / "suite.json"));
+  ASSERT_TRUE(wait_for(res / "verification.checkpoint.h5"));
   ::kill(pid, SIGINT);
   const int rc = wait_exit(pid);
   if (rc != 128 + SIGINT) GTEST_SKIP() << "finished before the signal";
   r = run_argv({"verify", "--case", "kernel-patch-test", "--no-plots", "--results", res.string(), "--resume"},
                dir_ / "3.log");
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find("is of a different suite"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("of a different suite"), std::string::npos) << r.output;
 }
 
 TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
@@ -181,6 +188,327 @@ TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
 
   // Nothing to resume now: refused.
   EXPECT_EQ(run_argv(args, dir_ / "again.log").status, 1);
+}
+
+// ---- tmlab run --resume -----------------------------------------------------------------------
+
+/// Every dataset of an HDF5 file, by path, as raw float64 (int datasets converted exactly).
+void collect_datasets(const tmlab::H5File& f, const std::string& group,
+                      std::map<std::string, std::vector<double>>& out) {
+  for (const std::string& name : f.list(group)) {
+    const std::string path = (group == "/" ? "" : group) + "/" + name;
+    bool is_group = true;
+    try {
+      (void)f.list(path);
+    } catch (const tmlab::Error&) {
+      is_group = false;
+    }
+    if (is_group)
+      collect_datasets(f, path, out);
+    else
+      out[path] = f.read_double(path);
+  }
+}
+
+/// Differences between two HDF5 files, dataset by dataset, bit for bit ("" when identical).
+std::string h5_differences(const fs::path& a, const fs::path& b) {
+  std::map<std::string, std::vector<double>> da, db;
+  collect_datasets(tmlab::H5File::open_read(a.string()), "/", da);
+  collect_datasets(tmlab::H5File::open_read(b.string()), "/", db);
+  std::string out;
+  for (const auto& [name, v] : da) {
+    const auto it = db.find(name);
+    if (it == db.end())
+      out += name + " missing; ";
+    else if (v.size() != it->second.size() ||
+             (!v.empty() && std::memcmp(v.data(), it->second.data(), 8 * v.size())))
+      out += name + " differs; ";
+  }
+  for (const auto& [name, v] : db)
+    if (!da.count(name)) out += name + " extra; ";
+  if (da.empty()) out += "no datasets at all; ";
+  return out;
+}
+
+/// summary.json without what depends on the clock.
+nlohmann::json summary_without_times(const fs::path& dir) {
+  nlohmann::json j = nlohmann::json::parse(read_file(dir / "summary.json"));
+  for (const char* k : {"run_seconds", "wall_seconds", "started_utc", "finished_utc"}) j.erase(k);
+  return j;
+}
+
+/// Compares two complete run directories: every HDF5 dataset, summary.json except times, and every
+/// other file byte for byte except manifest.json (times and the command line).
+void expect_same_run(const fs::path& ref, const fs::path& got) {
+  ASSERT_TRUE(fs::exists(got / "summary.json")) << got;
+  EXPECT_FALSE(fs::exists(got / "checkpoint.h5")) << "a complete result holds no checkpoint";
+  EXPECT_EQ(summary_without_times(ref), summary_without_times(got));
+  int files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(ref)) {
+    if (!e.is_regular_file()) continue;
+    const fs::path rel = fs::relative(e.path(), ref);
+    if (rel == "summary.json" || rel == "manifest.json") continue;
+    ASSERT_TRUE(fs::exists(got / rel)) << rel;
+    ++files;
+    if (rel.extension() == ".h5")
+      EXPECT_EQ(h5_differences(e.path(), got / rel), "") << rel;
+    else
+      EXPECT_TRUE(read_file(e.path()) == read_file(got / rel)) << rel;
+  }
+  EXPECT_GE(files, 5);
+}
+
+class CliRunResume : public tmlab::testing::TempDirTest {
+ protected:
+  /// A viscoelastic cantilever case of `solver` with field frames, written to dir_.
+  fs::path write_case(const std::string& name, const nlohmann::json& solver, int every) const {
+    nlohmann::json c = {
+        {"name", name},
+        {"mesh", {{"file", (fs::path(TMLAB_SOURCE_DIR) / "meshes" / "beam_40x10x10mm.msh").string()}}},
+        {"material",
+         {{"E", 100000},
+          {"nu", 0.3},
+          {"density", 1000},
+          {"viscoelastic",
+           {{"scheme", "objective"},
+            {"prony",
+             {{"convention", "instantaneous"},
+              {"terms", {{{"weight", 0.3}, {"tau", 0.05}}, {{"weight", 0.2}, {"tau", 0.5}}}}}}}}}},
+        {"boundary", {{{"name", "clamp"}, {"nodes", {{"group", "xmin"}}}}}},
+        {"loads",
+         {{{"type", "gravity"},
+           {"acceleration", {0, 0, -9.81}},
+           {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.2}}}}}},
+        {"solver", solver},
+        {"output", {{"every", every}, {"probes", {{{"name", "tip"}, {"point", {0.04, 0.005, 0.005}}}}}}}};
+    const fs::path f = dir_ / (name + ".json");
+    std::ofstream(f) << c.dump(2);
+    return f;
+  }
+  std::vector<std::string> cmd(const fs::path& c, const fs::path& res, const std::string& every = "1") const {
+    return {"run", c.string(), "--no-plots", "--results", res.string(), "--checkpoint-every", every};
+  }
+  /// Waits (polling every millisecond, up to 5 minutes) until `p` exists (and, when `text` is not
+  /// empty, holds it) or the child ended.
+  static bool wait_for_file(const fs::path& p, pid_t pid, const std::string& text = "") {
+    for (int i = 0; i < 300000; ++i) {
+      if (fs::exists(p) && (text.empty() || read_file(p).find(text) != std::string::npos)) return true;
+      int st = 0;
+      if (::waitpid(pid, &st, WNOHANG) == pid) return false;  // reaped: the caller must not wait again
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    return false;
+  }
+
+  /// Runs the case uninterrupted, then `trials` times: start, signal at a random moment after the
+  /// first checkpoint (SIGINT or SIGTERM), resume (signalled again at a random moment), resume to the
+  /// end; every result must equal the uninterrupted one. Returns how many legs were really interrupted.
+  int check(const fs::path& c, const std::string& name, int trials, std::mt19937& rng, int max_delay_ms,
+            const std::string& every) {
+    const fs::path ref = dir_ / ("ref-" + name);
+    const auto full =
+        run_argv({"run", c.string(), "--no-plots", "--results", ref.string()}, dir_ / "full.log");
+    EXPECT_EQ(full.status, 0) << full.output;
+    int interrupted = 0;
+    std::uniform_int_distribution<int> delay(0, max_delay_ms);
+    for (int trial = 0; trial < trials; ++trial) {
+      const fs::path res = dir_ / (name + "-" + std::to_string(trial));
+      const fs::path result = res / name, ck = result / ".incomplete" / "checkpoint.h5";
+      std::vector<std::string> args = cmd(c, res, every);
+      bool done = false;
+      for (int leg = 0; leg < 3 && !done; ++leg) {
+        const int sig = (trial + leg) % 2 ? SIGTERM : SIGINT;
+        const int ms = trial == 0 && leg == 0 ? 0 : delay(rng);
+        SCOPED_TRACE(name + " trial " + std::to_string(trial) + " leg " + std::to_string(leg) + ": " +
+                     tmlab::signal_name(sig) + " " + std::to_string(ms) + " ms after the first checkpoint");
+        const fs::path log = dir_ / (name + "-leg" + std::to_string(leg) + ".log");
+        if (leg == 2) {  // the last leg runs to the end
+          const auto r = run_argv(args, log);
+          EXPECT_EQ(r.status, 0) << r.output;
+          break;
+        }
+        const pid_t pid = spawn(args, log);
+        // The first leg: after its first checkpoint; a resumed leg: once it has restored the state
+        // (its signal handlers are installed long before).
+        const bool started = leg == 0 ? wait_for_file(ck, pid) : wait_for_file(log, pid, "tmlab: resuming");
+        int rc = 0;
+        if (started) {
+          std::this_thread::sleep_for(std::chrono::milliseconds(ms));
+          ::kill(pid, sig);
+          rc = wait_exit(pid);
+        }
+        if (rc == 0) {  // finished before the signal (trivial pass) or before its first checkpoint
+          done = true;
+          break;
+        }
+        EXPECT_EQ(rc, 128 + sig) << read_file(log);
+        ++interrupted;
+        const std::string marker = read_file(result / "INTERRUPTED");
+        EXPECT_NE(marker.find(tmlab::signal_name(sig)), std::string::npos) << marker;
+        EXPECT_NE(marker.find("checkpoint after step"), std::string::npos) << marker;
+        EXPECT_NE(marker.find("--resume"), std::string::npos) << marker;
+        EXPECT_FALSE(fs::exists(result / "summary.json"));
+        EXPECT_FALSE(fs::exists(result / "RUNNING"));
+        if (leg == 0) args.push_back("--resume");
+      }
+      expect_same_run(ref / name, result);
+    }
+    return interrupted;
+  }
+};
+
+TEST_F(CliRunResume, InterruptedRunsResumeBitIdentical) {
+  std::mt19937 rng(20261125);  // fixed: the same moments on every run of the test
+  const fs::path st = write_case("resume-static", {{"type", "static"}, {"steps", 60}, {"t_end", 0.6}}, 7);
+  const fs::path im = write_case(
+      "resume-implicit", {{"type", "implicit"}, {"scheme", "newmark"}, {"dt", 0.005}, {"t_end", 0.4}}, 9);
+  const fs::path ex =
+      write_case("resume-explicit",
+                 {{"type", "explicit"}, {"dt", 5e-5}, {"t_end", 0.1}, {"damping", {{"alpha", 50}}}}, 300);
+  EXPECT_GE(check(st, "resume-static", 2, rng, 150, "1"), 1);
+  EXPECT_GE(check(im, "resume-implicit", 2, rng, 150, "1"), 1);
+  EXPECT_GE(check(ex, "resume-explicit", 2, rng, 300, "50"), 1);
+}
+
+TEST_F(CliRunResume, ResumeOfAnotherCaseOrWithoutCheckpointIsRefused) {
+  const fs::path st = write_case("resume-refuse", {{"type", "static"}, {"steps", 200}, {"t_end", 0.6}}, 50);
+  const fs::path res = dir_ / "res";
+  auto r =
+      run_argv({"run", st.string(), "--no-plots", "--results", res.string(), "--resume"}, dir_ / "0.log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("no checkpoint"), std::string::npos) << r.output;
+
+  const pid_t pid = spawn(cmd(st, res), dir_ / "1.log");
+  ASSERT_TRUE(wait_for_file(res / "resume-refuse" / ".incomplete" / "checkpoint.h5", pid));
+  ::kill(pid, SIGINT);
+  if (wait_exit(pid) != 128 + SIGINT) GTEST_SKIP() << "finished before the signal";
+  // The same name, another time step: refused, naming the key; the interrupted run stays resumable.
+  const fs::path other =
+      write_case("resume-refuse", {{"type", "static"}, {"steps", 100}, {"t_end", 0.6}}, 50);
+  r = run_argv({"run", other.string(), "--no-plots", "--results", res.string(), "--resume"}, dir_ / "2.log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("solver.steps: the checkpoint has 200, this run 100"), std::string::npos)
+      << r.output;
+  EXPECT_TRUE(fs::exists(res / "resume-refuse" / "INTERRUPTED"));
+  r = run_argv({"run", "cube-uniaxial", "--model", "reference", "--resume"}, dir_ / "3.log");
+  EXPECT_EQ(r.status, 2) << r.output;
+}
+
+// ---- tmlab hereditary / workprecision --resume -------------------------------------------------
+
+/// `j` without the keys that hold clock times.
+void strip_times(nlohmann::json& j) {
+  if (j.is_object()) {
+    for (const char* k :
+         {"seconds", "wall_seconds", "cpu_seconds", "run_seconds", "started_utc", "finished_utc"})
+      j.erase(k);
+    for (auto& v : j) strip_times(v);
+  } else if (j.is_array()) {
+    for (auto& v : j) strip_times(v);
+  }
+}
+
+/// h5_differences without the datasets whose names end in one of `timed` (CPU and wall times).
+std::string h5_differences_except(const fs::path& a, const fs::path& b,
+                                  const std::vector<std::string>& timed) {
+  std::map<std::string, std::vector<double>> da, db;
+  collect_datasets(tmlab::H5File::open_read(a.string()), "/", da);
+  collect_datasets(tmlab::H5File::open_read(b.string()), "/", db);
+  auto is_timed = [&](const std::string& n) {
+    for (const auto& t : timed)
+      if (n.size() >= t.size() && n.compare(n.size() - t.size(), t.size(), t) == 0) return true;
+    return false;
+  };
+  std::string out;
+  int compared = 0;
+  for (const auto& [name, v] : da) {
+    if (is_timed(name)) continue;
+    ++compared;
+    const auto it = db.find(name);
+    if (it == db.end())
+      out += name + " missing; ";
+    else if (v.size() != it->second.size() ||
+             (!v.empty() && std::memcmp(v.data(), it->second.data(), 8 * v.size())))
+      out += name + " differs; ";
+  }
+  if (da.size() != db.size()) out += "different dataset counts; ";
+  if (compared == 0) out += "nothing compared; ";
+  return out;
+}
+
+/// Runs a study uninterrupted, then interrupted (SIGINT or SIGTERM, a fixed-seed random moment after
+/// its first checkpoint) and resumed; the results must agree. Returns whether it was interrupted.
+bool check_study(const fs::path& tmp, const std::vector<std::string>& args, const std::string& sub,
+                 const std::string& h5, int sig, int delay_ms) {
+  auto with = [&](const fs::path& res, bool resume) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"--no-plots", "--results", res.string()});
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  const fs::path ref = tmp / (sub + "-ref"), cut = tmp / (sub + "-cut");
+  const auto full = run_argv(with(ref, false), tmp / (sub + "-ref.log"));
+  EXPECT_EQ(full.status, 0) << full.output;
+  const pid_t pid = spawn(with(cut, false), tmp / (sub + "-cut.log"));
+  const fs::path ck = cut / sub / ".incomplete" / "checkpoint.h5";
+  bool seen = false;
+  for (int i = 0; i < 300000 && !seen; ++i) {
+    seen = fs::exists(ck);
+    if (!seen) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_TRUE(seen) << read_file(tmp / (sub + "-cut.log"));
+  std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+  ::kill(pid, sig);
+  const int rc = wait_exit(pid);
+  const bool interrupted = rc != 0;
+  if (interrupted) {
+    EXPECT_EQ(rc, 128 + sig) << read_file(tmp / (sub + "-cut.log"));
+    const std::string marker = read_file(cut / sub / "INTERRUPTED");
+    EXPECT_NE(marker.find("--resume"), std::string::npos) << marker;
+    const auto resumed = run_argv(with(cut, true), tmp / (sub + "-resumed.log"));
+    EXPECT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("from the checkpoint of the interrupted study"), std::string::npos)
+        << resumed.output;
+  }
+  EXPECT_FALSE(fs::exists(cut / sub / "checkpoint.h5"));
+  EXPECT_EQ(h5_differences_except(ref / sub / h5, cut / sub / h5, {"cpu_seconds", "wall_seconds"}), "");
+  nlohmann::json a = nlohmann::json::parse(read_file(ref / sub / "summary.json"));
+  nlohmann::json b = nlohmann::json::parse(read_file(cut / sub / "summary.json"));
+  strip_times(a);
+  strip_times(b);
+  EXPECT_EQ(a, b);
+  return interrupted;
+}
+
+class CliStudyResume : public tmlab::testing::TempDirTest {};
+
+TEST_F(CliStudyResume, InterruptedStudiesResume) {
+  std::mt19937 rng(20261126);  // fixed: the same moments on every run of the test
+  std::uniform_int_distribution<int> delay(0, 200);
+  int interrupted = 0;
+  // The first signal of each study right after its first checkpoint: really inside the study.
+  interrupted +=
+      check_study(dir_, {"hereditary", "--quick", "--no-liver"}, "hereditary", "hereditary.h5", SIGINT, 0);
+  interrupted += check_study(dir_, {"workprecision", "--quick", "--problem", "incompressible"},
+                             "workprecision", "workprecision.h5", SIGTERM, 0);
+  interrupted += check_study(dir_, {"hereditary", "--quick", "--no-liver", "--histories", "sine"},
+                             "hereditary", "hereditary.h5", SIGTERM, delay(rng));
+  interrupted += check_study(dir_, {"workprecision", "--quick", "--problem", "incompressible"},
+                             "workprecision", "workprecision.h5", SIGINT, delay(rng));
+  EXPECT_GE(interrupted, 2);
+  // Another configuration is refused, naming the key.
+  const fs::path res = dir_ / "other";
+  const pid_t pid =
+      spawn({"hereditary", "--quick", "--no-liver", "--no-plots", "--results", res.string()}, dir_ / "o.log");
+  for (int i = 0; i < 300000 && !fs::exists(res / "hereditary" / ".incomplete" / "checkpoint.h5"); ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  ::kill(pid, SIGINT);
+  if (wait_exit(pid) != 128 + SIGINT) return;
+  const auto r = run_argv({"hereditary", "--quick", "--no-liver", "--seed", "5", "--no-plots", "--results",
+                           res.string(), "--resume"},
+                          dir_ / "o2.log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("seed: the checkpoint has 20111101, this run 5"), std::string::npos) << r.output;
 }
 
 }  // namespace

@@ -251,6 +251,19 @@ TEST_F(RunOutputTest, ResumeKeepsTheStagedFilesOfAnInterruptedRun) {
   fresh.finalize();
 }
 
+TEST_F(RunOutputTest, ResumeContinuesARunWhoseProcessDied) {
+  // What SIGKILL leaves: a RUNNING marker of a process that is gone and the staged files.
+  const fs::path dir = root_ / "killed";
+  fs::create_directories(dir / ".incomplete");
+  write_file(dir / "RUNNING", "{\"pid\": 999999999, \"hostname\": \"h\"}\n");
+  write_file(dir / ".incomplete" / "checkpoint.h5", "x");
+  std::ostringstream log;
+  tmlab::RunOutput resumed(dir, &log, tmlab::RunOutput::Previous::ResumeInterrupted);
+  EXPECT_NE(log.str().find("resuming from its staged files"), std::string::npos) << log.str();
+  EXPECT_TRUE(fs::exists(resumed.file("checkpoint.h5")));
+  resumed.finalize();
+}
+
 TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
   const fs::path dir = root_ / "swap";
   {

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
 #include <limits>
 
 namespace tmlab::verify {
@@ -63,12 +64,14 @@ TEST(Checkpoint, CaseResultRoundTripsBitForBit) {
 }
 
 TEST(Checkpoint, StoresFindsAndResumesOnlyTheSameSuite) {
-  const fs::path dir = fs::temp_directory_path() / ("tmlab_checkpoint_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const fs::path root = fs::temp_directory_path() / ("tmlab_checkpoint_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  const fs::path dir = root / "verification.checkpoint.h5";
   const nlohmann::json suite = {{"cases", {"case-a", "case-b"}}};
   EXPECT_THROW(SuiteCheckpoint(dir, suite, /*resume=*/true), Error);  // nothing to resume
   {
-    const SuiteCheckpoint cp(dir, suite, false);
+    SuiteCheckpoint cp(dir, suite, false);
     EXPECT_FALSE(cp.find("case-a").has_value());
     cp.store(sample());
     EXPECT_EQ(cp.stored(), 1u);
@@ -88,9 +91,25 @@ TEST(Checkpoint, StoresFindsAndResumesOnlyTheSameSuite) {
   {
     const SuiteCheckpoint fresh(dir, suite, false);  // without --resume: starts again
     EXPECT_EQ(fresh.stored(), 0u);
+    EXPECT_FALSE(fs::exists(dir));
     fresh.remove();
   }
   EXPECT_FALSE(fs::exists(dir));
+
+  // The JSON checkpoint directory of earlier versions: refused on --resume with a clear message,
+  // removed by a fresh run.
+  fs::create_directories(root / "verification.checkpoint");
+  std::ofstream(root / "verification.checkpoint" / "suite.json") << suite.dump();
+  try {
+    SuiteCheckpoint(dir, suite, true);
+    FAIL() << "an old JSON checkpoint was resumed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("JSON checkpoint of an earlier tmlab"), std::string::npos)
+        << e.what();
+  }
+  { const SuiteCheckpoint fresh(dir, suite, false); }
+  EXPECT_FALSE(fs::exists(root / "verification.checkpoint"));
+  fs::remove_all(root);
 }
 
 }  // namespace
