@@ -301,3 +301,17 @@ void FastTetForce::trial_force_pk2(const VecX& u, double lambda_eff, double mu_e
 }
 
 }  // namespace tmlab::tm
+
+namespace tmlab::tm {
+
+namespace {
+Law fast_law(FastLaw law, double lambda, double mu) {
+  if (law == FastLaw::StVK) return Law(StVenantKirchhoff{lambda, mu});
+  return Law(NeoHookean(lambda, mu));
+}
+}  // namespace
+
+FastHyperelastic::FastHyperelastic(const Mesh& mesh, FastLaw law, double lambda, double mu, int threads)
+    : tl_(mesh, fast_law(law, lambda, mu)), fast_(mesh, law, lambda, mu, threads) {}
+
+}  // namespace tmlab::tm

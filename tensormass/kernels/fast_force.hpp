@@ -84,3 +84,28 @@ class FastTetForce {
 };
 
 }  // namespace tmlab::tm
+
+#include "tensormass/kernels/hyperelastic_tl.hpp"
+
+namespace tmlab::tm {
+
+/// An ElasticModel whose internal force is FastTetForce (with `threads` threads); energy and
+/// tangents are HyperelasticTL's for the same law (the solvers' hot path in explicit dynamics is the
+/// force only).
+class FastHyperelastic : public ElasticModel {
+ public:
+  FastHyperelastic(const Mesh& mesh, FastLaw law, double lambda, double mu, int threads = 1);
+
+  Index num_nodes() const override { return fast_.num_nodes(); }
+  const FastTetForce& kernel() const { return fast_; }
+  double energy(const VecX& u) const override { return tl_.energy(u); }
+  void internal_force(const VecX& u, VecX& f) const override { fast_.internal_force(u, f); }
+  void tangent_apply(const VecX& u, const VecX& v, VecX& Kv) const override { tl_.tangent_apply(u, v, Kv); }
+  void tangent(const VecX& u, SpMat& K) const override { tl_.tangent(u, K); }
+
+ private:
+  HyperelasticTL tl_;
+  FastTetForce fast_;
+};
+
+}  // namespace tmlab::tm
