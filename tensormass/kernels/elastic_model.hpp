@@ -48,6 +48,13 @@ class ElasticModel {
   virtual void begin_step(double /*dt*/) {}
   /// Accepts the step ending at displacement u: advances the committed history.
   virtual void commit_step(const VecX& /*u*/) {}
+  /// internal_force(u, f) of the trial step, then commit_step(u): what an explicit step does at
+  /// every step. History models fuse the two into one pass over the tets (the trial force at u and
+  /// the history update need the same per-tet strains or forces); the result is the same.
+  virtual void force_and_commit(const VecX& u, VecX& f) {
+    internal_force(u, f);
+    commit_step(u);
+  }
 };
 
 }  // namespace tmlab::tm
