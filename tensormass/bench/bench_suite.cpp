@@ -34,7 +34,7 @@ using json = nlohmann::json;
 /// Collects the real time per iteration of the benchmarks run (no console output).
 class Collector : public benchmark::BenchmarkReporter {
  public:
-  double ns = -1.0;
+  double ns = -1.0, cpu_ns = -1.0;
   std::string error;
   bool ReportContext(const Context&) override { return true; }
   void ReportRuns(const std::vector<Run>& runs) override {
@@ -42,14 +42,24 @@ class Collector : public benchmark::BenchmarkReporter {
       if (r.run_type != Run::RT_Iteration) continue;
       if (r.error_occurred)
         error = r.error_message;
-      else
+      else {
         ns = r.GetAdjustedRealTime();
+        cpu_ns = r.GetAdjustedCPUTime();
+      }
     }
   }
 };
 
-/// Wall nanoseconds per call of fn, by Google Benchmark (at least one call, min_time seconds).
-double measure_ns(const std::function<void()>& fn, double min_time) {
+/// Nanoseconds per call: wall time, and the CPU time of the whole process (all threads).
+struct Timing {
+  double wall = 0.0, cpu = 0.0;
+  /// What a record reports: the CPU time for one thread (robust on a shared machine: time spent
+  /// descheduled is not counted), the wall time for several (the speed-up is a wall-time quantity).
+  double reported(int threads) const { return threads == 1 ? cpu : wall; }
+};
+
+/// Times fn by Google Benchmark (at least one call, min_time seconds of wall time).
+Timing measure_ns(const std::function<void()>& fn, double min_time) {
   benchmark::ClearRegisteredBenchmarks();
   benchmark::RegisterBenchmark("tmlab_bench",
                                [&fn](benchmark::State& st) {
@@ -59,13 +69,14 @@ double measure_ns(const std::function<void()>& fn, double min_time) {
                                  }
                                })
       ->UseRealTime()
+      ->MeasureProcessCPUTime()
       ->Unit(benchmark::kNanosecond)
       ->MinTime(min_time);
   Collector c;
   benchmark::RunSpecifiedBenchmarks(&c);
   benchmark::ClearRegisteredBenchmarks();
   if (c.ns < 0.0) throw Error("bench: a measurement failed: " + c.error);
-  return c.ns;
+  return {c.ns, c.cpu_ns};
 }
 
 struct MeshCase {
@@ -106,21 +117,37 @@ const StVenantKirchhoff kStepMaterial = StVenantKirchhoff::from_young_poisson(30
 PronySeries two_terms() { return PronySeries::from_long_term({0.8, 0.4}, {0.5, 5.0}); }
 
 json force_record(const MeshCase& m, const std::string& kernel, const std::string& history,
-                  const std::string& law, int threads, double ns, double flops, double bytes, double memory) {
+                  const std::string& law, int threads, Timing ns, double flops, double bytes, double memory) {
   const double nt = static_cast<double>(m.mesh.num_tets());
-  return {{"kind", "force"},         {"kernel", kernel},
-          {"history", history},      {"law", law},
-          {"mesh", m.name},          {"tets", m.mesh.num_tets()},
-          {"threads", threads},      {"ns_per_tet", ns / nt},
-          {"flops_per_tet", flops},  {"bytes_per_tet", bytes},
+  return {{"kind", "force"},
+          {"kernel", kernel},
+          {"history", history},
+          {"law", law},
+          {"mesh", m.name},
+          {"tets", m.mesh.num_tets()},
+          {"threads", threads},
+          {"ns_per_tet", ns.reported(threads) / nt},
+          {"wall_ns_per_tet", ns.wall / nt},
+          {"time", threads == 1 ? "cpu" : "wall"},
+          {"flops_per_tet", flops},
+          {"bytes_per_tet", bytes},
           {"memory_per_tet", memory}};
 }
 
 json step_record(const MeshCase& m, const std::string& step, const std::string& kernel,
-                 const std::string& history, int threads, double ns) {
-  return {{"kind", "step"},          {"step", step},   {"kernel", kernel},          {"history", history},
-          {"law", "stvk"},           {"mesh", m.name}, {"tets", m.mesh.num_tets()}, {"threads", threads},
-          {"us_per_step", ns * 1e-3}};
+                 const std::string& history, int threads, Timing ns, bool bookkeeping = false) {
+  return {{"kind", "step"},
+          {"step", step},
+          {"kernel", kernel},
+          {"history", history},
+          {"law", "stvk"},
+          {"mesh", m.name},
+          {"tets", m.mesh.num_tets()},
+          {"threads", threads},
+          {"us_per_step", ns.reported(threads) * 1e-3},
+          {"wall_us_per_step", ns.wall * 1e-3},
+          {"time", threads == 1 ? "cpu" : "wall"},
+          {"energy_bookkeeping", bookkeeping}};
 }
 
 // ---- hand counts per tet (docs/performance.md, "Counting") ----
@@ -237,8 +264,7 @@ struct StepProblem {
     DirichletCondition clamp;
     clamp.name = "base";
     for (Index i = 0; i < m.mesh.num_points(); ++i)
-      if (m.mesh.points[static_cast<std::size_t>(i)].z() <= zlo + 0.1 * (zhi - zlo))
-        clamp.nodes.push_back(i);
+      if (m.mesh.points[static_cast<std::size_t>(i)].z() <= zlo + 0.1 * (zhi - zlo)) clamp.nodes.push_back(i);
     const VecX node_mass = lumped_node_mass(m.mesh, 1000.0);
     ExternalLoads loads(m.mesh, node_mass);
     Gravity g;
@@ -251,11 +277,13 @@ struct StepProblem {
 };
 
 std::unique_ptr<ElasticModel> step_model(const MeshCase& m, const std::string& kernel,
-                                         const std::string& history, int threads) {
+                                         const std::string& history, int threads, bool bookkeeping = true) {
   if (history != "none") {
     ViscoelasticOptions vo;
     vo.history =
         history == "seed" ? ViscoelasticOptions::History::NodalForce : ViscoelasticOptions::History::Pk2;
+    vo.energy_bookkeeping = bookkeeping;
+    if (kernel == "fast") vo.fast_threads = threads;
     return std::make_unique<ViscoelasticStVK>(m.mesh, kStepMaterial, two_terms(), vo);
   }
   if (kernel == "fast")
@@ -278,22 +306,32 @@ void step_records(const MeshCase& m, const BenchOptions& o, bool solvers, json& 
   struct Variant {
     std::string kernel, history;
     int threads;
+    bool bookkeeping;
   };
-  std::vector<Variant> variants = {
-      {"tensor_mass", "none", 1}, {"tensor_mass", "seed", 1}, {"baseline", "objective", 1}};
-  for (int t = 1; t <= o.max_threads; ++t) variants.push_back({"fast", "none", t});
+  // The viscoelastic models as the case runner builds them (energy bookkeeping on), and with the
+  // bookkeeping off (a run that records no energies), on the reference and the fast kernels.
+  std::vector<Variant> variants = {{"tensor_mass", "none", 1, false},
+                                   {"tensor_mass", "seed", 1, true},
+                                   {"baseline", "objective", 1, true},
+                                   {"tensor_mass", "seed", 1, false},
+                                   {"baseline", "objective", 1, false}};
+  for (int t = 1; t <= o.max_threads; ++t) {
+    variants.push_back({"fast", "none", t, false});
+    variants.push_back({"fast", "seed", t, false});
+    variants.push_back({"fast", "objective", t, false});
+  }
   for (const Variant& v : variants) {
-    StepProblem p(m, step_model(m, v.kernel, v.history, v.threads));
+    StepProblem p(m, step_model(m, v.kernel, v.history, v.threads, v.bookkeeping));
     CentralDifference integ(*p.system, dt, false);
     integ.initialize(0.0, VecX::Zero(p.system->num_dofs()), VecX::Zero(p.system->num_dofs()));
     double t = 0.0;
-    const double ns = measure_ns(
+    const Timing ns = measure_ns(
         [&] {
           integ.step(t, dt);
           t = integ.time();
         },
         o.min_time);
-    log(step_record(m, "explicit", v.kernel, v.history, v.threads, ns));
+    log(step_record(m, "explicit", v.kernel, v.history, v.threads, ns, v.bookkeeping && v.history != "none"));
   }
   if (!solvers) return;
   {
@@ -301,7 +339,7 @@ void step_records(const MeshCase& m, const BenchOptions& o, bool solvers, json& 
     ImplicitDynamics integ(*p.system, ImplicitScheme::Newmark, NewtonOptions{});
     integ.initialize(0.0, VecX::Zero(p.system->num_dofs()), VecX::Zero(p.system->num_dofs()));
     double t = 0.0;
-    const double ns = measure_ns(
+    const Timing ns = measure_ns(
         [&] {
           integ.step(t, 1e-3);
           t = integ.time();
@@ -313,7 +351,7 @@ void step_records(const MeshCase& m, const BenchOptions& o, bool solvers, json& 
     StepProblem p(m, step_model(m, "tensor_mass", "none", 1), true);
     StaticSolver solver(*p.system, NewtonOptions{});
     VecX u;
-    const double ns = measure_ns(
+    const Timing ns = measure_ns(
         [&] {
           u = VecX::Zero(p.system->num_dofs());
           solver.advance(0.0, 1.0, u);

@@ -13,7 +13,7 @@ namespace tmlab::tm {
 
 namespace {
 
-enum Mode { kStVK = 0, kNeoHookean = 1, kStVKTrial = 2 };
+enum Mode { kStVK = 0, kNeoHookean = 1, kStVKTrial = 2, kFusedPk2 = 3 };
 
 /// 3 x 21 bits interleaved: the Morton (Z-order) code of a point of the unit cube.
 std::uint64_t morton(double x, double y, double z) {
@@ -98,7 +98,7 @@ FastTetForce::FastTetForce(const Mesh& mesh, FastLaw law, double lambda, double 
   vol_.assign(ng * L, 0.0);
   node_.assign(ng * 4 * L, 0);
   dest_.assign(ng * 4 * L, -1 - scratch);
-  tet_.assign(ng * L, 0);
+  tet_.assign(ng * L, -1);
   for (int k = 0; k < kParts; ++k) {
     const std::size_t t0 = tet_begin[static_cast<std::size_t>(k)];
     for (std::size_t i = t0; i < tet_begin[static_cast<std::size_t>(k) + 1]; ++i) {
@@ -127,16 +127,30 @@ std::size_t FastTetForce::storage_bytes() const {
 }
 
 template <int M>
-void FastTetForce::run_part(int part, const double* u, double lam, double mu, const double* s_hist,
-                            double* f) const {
+void FastTetForce::run_part(int part, const double* u, const Args& args, double* f) const {
+  const double lam = args.lam, mu = args.mu;
+  constexpr int T = PronyStep::kMaxTerms;
   constexpr int L = kLanes;
   double* sh = shared_.data() + static_cast<std::size_t>(part) * shared_stride_;
   std::fill(sh, sh + shared_stride_, 0.0);
-  alignas(64) double e[9][L];    // e_j = U_j - U_0: e[3(j-1) + i][l]
-  alignas(64) double fo[12][L];  // f_p: fo[3p + i][l]
-  alignas(64) double sv[6][L];   // S_hist (Voigt) of the trial force
-  alignas(64) double lnj[L];     // neo-Hookean ln J
-  alignas(64) double hh[9][L];   // H, kept for the second stage of the neo-Hookean kernel
+  alignas(64) double e[9][L];       // e_j = U_j - U_0: e[3(j-1) + i][l]
+  alignas(64) double fo[12][L];     // f_p: fo[3p + i][l]
+  alignas(64) double sv[6][L];      // S_hist (Voigt) of the trial force
+  alignas(64) double lnj[L];        // neo-Hookean ln J
+  alignas(64) double hh[9][L];      // H, kept for the second stage of the neo-Hookean kernel
+  alignas(64) double hl[6 * T][L];  // fused pk2: the history h_j of the lane's tet (0 beyond the terms)
+  alignas(64) double xl[6][L];      // fused pk2: the committed driver X
+  double al[T] = {}, aa[T] = {}, cc[T] = {};
+  int nj = 0;
+  if constexpr (M == kFusedPk2) {
+    nj = args.step->terms;
+    for (int j = 0; j < T; ++j) {  // unused terms: alpha 0, h unchanged (a = 1, c = 0)
+      al[j] = j < nj ? args.step->alpha[j] : 0.0;
+      aa[j] = j < nj ? args.step->a[j] : 1.0;
+      cc[j] = j < nj ? args.step->c[j] : 0.0;
+    }
+  }
+  const bool dev = M == kFusedPk2 && args.step->deviatoric;
   for (int g = part_begin_[static_cast<std::size_t>(part)];
        g < part_begin_[static_cast<std::size_t>(part) + 1]; ++g) {
     const std::size_t gs = static_cast<std::size_t>(g);
@@ -150,10 +164,20 @@ void FastTetForce::run_part(int part, const double* u, double lam, double mu, co
         for (int i = 0; i < 3; ++i) e[3 * (j - 1) + i][l] = uj[i] - u0[i];
       }
     }
+    const std::int32_t* tt = &tet_[gs * L];
     if constexpr (M == kStVKTrial) {
-      const std::int32_t* tt = &tet_[gs * L];
       for (int l = 0; l < L; ++l)
-        for (int k = 0; k < 6; ++k) sv[k][l] = s_hist[6 * static_cast<std::ptrdiff_t>(tt[l]) + k];
+        for (int k = 0; k < 6; ++k)
+          sv[k][l] = tt[l] < 0 ? 0.0 : args.s_hist[6 * static_cast<std::ptrdiff_t>(tt[l]) + k];
+    }
+    if constexpr (M == kFusedPk2) {
+      for (int l = 0; l < L; ++l) {
+        const std::ptrdiff_t t = tt[l];
+        for (int k = 0; k < 6; ++k) xl[k][l] = t < 0 ? 0.0 : args.driver[6 * t + k];
+        for (int j = 0; j < T; ++j)
+          for (int k = 0; k < 6; ++k)
+            hl[6 * j + k][l] = (t < 0 || j >= nj) ? 0.0 : args.hist[(t * nj + j) * 6 + k];
+      }
     }
     if constexpr (M == kNeoHookean) {
       // Stage 1: H and ln J (log is scalar: kept out of the vectorised loops).
@@ -224,6 +248,36 @@ void FastTetForce::run_part(int part, const double* u, double lam, double mu, co
           for (int k = 0; k < 3; ++k) S[i][k] = 2.0 * mu * E[i][k];
 #pragma GCC unroll 3
         for (int i = 0; i < 3; ++i) S[i][i] += ltr;
+        if constexpr (M == kFusedPk2) {
+          // driver x = S_e or S_dev = 2 mu (E - tr(E)/3 I) (Voigt), history update, S += sum alpha_j h_j
+          const double trd = (E[0][0] + E[1][1] + E[2][2]) / 3.0;
+          const double x[6] = {dev ? 2.0 * mu * (E[0][0] - trd) : S[0][0],
+                               dev ? 2.0 * mu * (E[1][1] - trd) : S[1][1],
+                               dev ? 2.0 * mu * (E[2][2] - trd) : S[2][2],
+                               S[0][1],
+                               S[0][2],
+                               S[1][2]};
+          double sa[6] = {0, 0, 0, 0, 0, 0};
+#pragma GCC unroll 4
+          for (int j = 0; j < T; ++j)
+#pragma GCC unroll 6
+            for (int k = 0; k < 6; ++k) {
+              const double h = aa[j] * hl[6 * j + k][l] + cc[j] * (x[k] - xl[k][l]);
+              hl[6 * j + k][l] = h;
+              sa[k] += al[j] * h;
+            }
+#pragma GCC unroll 6
+          for (int k = 0; k < 6; ++k) xl[k][l] = x[k];
+          S[0][0] += sa[0];
+          S[1][1] += sa[1];
+          S[2][2] += sa[2];
+          S[0][1] += sa[3];
+          S[1][0] += sa[3];
+          S[0][2] += sa[4];
+          S[2][0] += sa[4];
+          S[1][2] += sa[5];
+          S[2][1] += sa[5];
+        }
         if constexpr (M == kStVKTrial) {
           S[0][0] += sv[0][l];
           S[1][1] += sv[1][l];
@@ -257,6 +311,15 @@ void FastTetForce::run_part(int part, const double* u, double lam, double mu, co
         fo[i][l] = -s0;
       }
     }
+    if constexpr (M == kFusedPk2) {
+      for (int l = 0; l < L; ++l) {
+        const std::ptrdiff_t t = tt[l];
+        if (t < 0) continue;  // padding lane
+        for (int k = 0; k < 6; ++k) args.driver[6 * t + k] = xl[k][l];
+        for (int j = 0; j < nj; ++j)
+          for (int k = 0; k < 6; ++k) args.hist[(t * nj + j) * 6 + k] = hl[6 * j + k][l];
+      }
+    }
     const std::int32_t* ds = &dest_[gs * 4 * L];
     for (int l = 0; l < L; ++l)
       for (int p = 0; p < 4; ++p) {
@@ -270,14 +333,14 @@ void FastTetForce::run_part(int part, const double* u, double lam, double mu, co
 }
 
 template <int M>
-void FastTetForce::evaluate(const VecX& u, double lam, double mu, const double* s_hist, VecX& f) const {
+void FastTetForce::evaluate(const VecX& u, const Args& args, VecX& f) const {
   if (u.size() != 3 * static_cast<Eigen::Index>(num_nodes_))
     throw Error("fast force: u has " + std::to_string(u.size()) + " entries, expected " +
                 std::to_string(3 * static_cast<long>(num_nodes_)));
   f.setZero(3 * static_cast<Eigen::Index>(num_nodes_));
   const double* up = u.data();
   double* fp = f.data();
-  pool_->run(kParts, [&](int k) { run_part<M>(k, up, lam, mu, s_hist, fp); });
+  pool_->run(kParts, [&](int k) { run_part<M>(k, up, args, fp); });
   // Shared nodes: the parts' partial sums, added in part order (the same for any thread count).
   for (std::size_t s = 0; s < shared_nodes_.size(); ++s)
     for (int c = 0; c < 3; ++c) {
@@ -288,16 +351,38 @@ void FastTetForce::evaluate(const VecX& u, double lam, double mu, const double* 
 }
 
 void FastTetForce::internal_force(const VecX& u, VecX& f) const {
+  Args args;
+  args.lam = lambda_;
+  args.mu = mu_;
   if (law_ == FastLaw::StVK)
-    evaluate<kStVK>(u, lambda_, mu_, nullptr, f);
+    evaluate<kStVK>(u, args, f);
   else
-    evaluate<kNeoHookean>(u, lambda_, mu_, nullptr, f);
+    evaluate<kNeoHookean>(u, args, f);
 }
 
 void FastTetForce::trial_force_pk2(const VecX& u, double lambda_eff, double mu_eff, const double* s_hist,
                                    VecX& f) const {
   if (law_ != FastLaw::StVK) throw Error("fast force: the pk2 trial force is St Venant-Kirchhoff only");
-  evaluate<kStVKTrial>(u, lambda_eff, mu_eff, s_hist, f);
+  Args args;
+  args.lam = lambda_eff;
+  args.mu = mu_eff;
+  args.s_hist = s_hist;
+  evaluate<kStVKTrial>(u, args, f);
+}
+
+void FastTetForce::force_and_commit_pk2(const VecX& u, const PronyStep& step, double* hist, double* driver,
+                                        VecX& f) const {
+  if (law_ != FastLaw::StVK) throw Error("fast force: the fused pk2 step is St Venant-Kirchhoff only");
+  if (step.terms < 0 || step.terms > PronyStep::kMaxTerms)
+    throw Error("fast force: the fused pk2 step takes at most " + std::to_string(PronyStep::kMaxTerms) +
+                " Prony terms (got " + std::to_string(step.terms) + ")");
+  Args args;
+  args.lam = lambda_;
+  args.mu = mu_;
+  args.step = &step;
+  args.hist = hist;
+  args.driver = driver;
+  evaluate<kFusedPk2>(u, args, f);
 }
 
 }  // namespace tmlab::tm

@@ -62,18 +62,40 @@ class FastTetForce {
   /// tmlab::Error for neo-Hookean).
   void trial_force_pk2(const VecX& u, double lambda_eff, double mu_eff, const double* s_hist, VecX& f) const;
 
+  /// One step of the objective (pk2) Prony history, for a step of the recursion factors (a_j, c_j).
+  struct PronyStep {
+    static constexpr int kMaxTerms = 4;
+    int terms = 0;
+    double alpha[kMaxTerms] = {}, a[kMaxTerms] = {}, c[kMaxTerms] = {};
+    bool deviatoric = false;  ///< the driver is S_dev = 2 mu dev(E) instead of S_e
+  };
+  /// The fused explicit viscoelastic step (ViscoelasticStVK::force_and_commit, history pk2) in one
+  /// pass: per tet E, the driver x (S_e = lambda tr(E) I + 2 mu E with this kernel's Lame pair, or
+  /// S_dev), the history h_j <- a_j h_j + c_j (x - X), X <- x, and the force of
+  /// S = S_e + sum_j alpha_j h_j (the trial force at u, equal to (1 + g) S_e + S_hist). hist
+  /// [t][j][6] and driver [t][6] (Voigt) in mesh order, updated in place. St VK; terms <= 4.
+  void force_and_commit_pk2(const VecX& u, const PronyStep& step, double* hist, double* driver,
+                            VecX& f) const;
+
  private:
+  struct Args {
+    double lam = 0.0, mu = 0.0;
+    const double* s_hist = nullptr;
+    const PronyStep* step = nullptr;
+    double* hist = nullptr;
+    double* driver = nullptr;
+  };
   template <int Mode>
-  void evaluate(const VecX& u, double lam, double mu, const double* s_hist, VecX& f) const;
+  void evaluate(const VecX& u, const Args& args, VecX& f) const;
   template <int Mode>
-  void run_part(int part, const double* u, double lam, double mu, const double* s_hist, double* f) const;
+  void run_part(int part, const double* u, const Args& args, double* f) const;
 
   Index num_nodes_ = 0, num_tets_ = 0;
   FastLaw law_;
   double lambda_ = 0.0, mu_ = 0.0;
   // per group g (kLanes tets): grad [g][9][l] (a_1, a_2, a_3 row by row), vol [g][l],
   // node [g][4][l], dest [g][4][l] (>= 0: 3 node into f; < 0: -1 - offset into the part's shared row),
-  // tet [g][l] (mesh index of the tet, for s_hist).
+  // tet [g][l] (mesh index of the tet, -1 in padding lanes).
   std::vector<double> grad_, vol_;
   std::vector<std::int32_t> node_, dest_, tet_;
   std::vector<int> part_begin_;  ///< kParts + 1 group offsets

@@ -196,7 +196,7 @@ void ViscoelasticStVK::begin_step(double dt) {
     gain_ = 0.0;
     return;
   }
-  update_trial();
+  trial_stale_ = true;  // the constant trial parts are recomputed on first use (ensure_trial)
 }
 
 void ViscoelasticStVK::commit_tet(std::size_t t, const double* x, bool book, double& psi, double& rate) {
@@ -255,6 +255,23 @@ void ViscoelasticStVK::commit_step(const VecX& u) {
 }
 
 void ViscoelasticStVK::force_and_commit(const VecX& u, VecX& f) {
+  const bool book = options_.energy_bookkeeping;
+  if (fast_ && pk2() && !book && !elastic_only_ &&
+      prony_.size() <= static_cast<std::size_t>(FastTetForce::PronyStep::kMaxTerms)) {
+    // The fast kernel's fused pass: force with S = S_e + sum_j alpha_j h_j^{n+1} and the history
+    // update together; the trial parts S_hist are not needed (equal to the reference to round-off).
+    FastTetForce::PronyStep step;
+    step.terms = static_cast<int>(prony_.size());
+    step.deviatoric = deviatoric();
+    for (std::size_t j = 0; j < prony_.size(); ++j) {
+      step.alpha[j] = prony_.alpha(j);
+      step.a[j] = factors_[j].a;
+      step.c[j] = factors_[j].c;
+    }
+    fast_->force_and_commit_pk2(u, step, hist_.data(), driver_.data(), f);
+    finish_commit(false, 0.0, 0.0);
+    return;
+  }
   if (elastic_only_ || fast_) {
     internal_force(u, f);
     commit_step(u);
@@ -262,7 +279,6 @@ void ViscoelasticStVK::force_and_commit(const VecX& u, VecX& f) {
   }
   assert(u.size() == num_dofs());
   ensure_trial();
-  const bool book = options_.energy_bookkeeping;
   if (book) committed_elastic_ = elastic_.energy(u);  // long-term spring W_e(u), as commit_step
   const std::size_t nt = static_cast<std::size_t>(num_tets());
   const auto& tets = elastic_.tets();

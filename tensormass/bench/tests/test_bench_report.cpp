@@ -40,7 +40,7 @@ json doc() {
                           {"mesh", "liver"},
                           {"tets", 2704},
                           {"threads", 1},
-                          {"us_per_step", 540.0}});
+                          {"us_per_step", 540.0}, {"energy_bookkeeping", true}});
   return b;
 }
 
@@ -71,7 +71,7 @@ TEST(BenchReport, TargetsAreTheRatiosOfTheRecords) {
 TEST(BenchReport, MarkdownHasOneRowPerVariant) {
   const std::string md = bench_markdown(doc());
   EXPECT_NE(md.find("| fast | none | stvk | 2 |"), std::string::npos) << md;
-  EXPECT_NE(md.find("| explicit | tensor_mass | seed | 1 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("| explicit | tensor_mass | seed | 1 | on | - | - | - |"), std::string::npos) << md;
   EXPECT_NE(md.find("not measured"), std::string::npos) << md;
 }
 
