@@ -40,7 +40,8 @@ json doc() {
                           {"mesh", "liver"},
                           {"tets", 2704},
                           {"threads", 1},
-                          {"us_per_step", 540.0}, {"energy_bookkeeping", true}});
+                          {"us_per_step", 540.0},
+                          {"energy_bookkeeping", true}});
   return b;
 }
 
