@@ -89,10 +89,14 @@ void print_usage(std::ostream& os) {
         "                            fit a law to tmlab-measured/1 data with error bars; SPEC is\n"
         "                            LAW[:N][+prony:M][,NAME=VALUE...], e.g. ogden:2,poisson=0.49;\n"
         "                            results/fit/NAME-LAW/ (fit.json, fit.h5, PNG; docs/identification.md)\n"
+        "  bench [--quick] [--large] [--threads N] [--min-time S] [--results DIR] [--no-plots]\n"
+        "                            every force kernel and whole step side by side with the\n"
+        "                            machine's limits; results/bench/ (bench.json, bench.md, PNG;\n"
+        "                            docs/performance.md). --large adds the 2.4M-tet cube (~6 GB, minutes)\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
-        "The ./tmlab script also offers: ./tmlab test [ctest args], ./tmlab bench, ./tmlab build.\n";
+        "The ./tmlab script also offers: ./tmlab test [ctest args], ./tmlab build.\n";
 }
 
 }  // namespace
@@ -127,6 +131,7 @@ int main(int argc, char** argv) {
     if (cmd == "version") return tmlab::cli::cmd_version();
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
+    if (cmd == "bench") return tmlab::cli::cmd_bench(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);

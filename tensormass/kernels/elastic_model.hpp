@@ -60,6 +60,13 @@ class ElasticModel {
   /// Sets the committed state saved by committed_state() (the trial step is reset to dt = 0, as
   /// after commit_step). Throws tmlab::Error when the array has the wrong size.
   virtual void restore_committed_state(const std::vector<double>& state);
+  /// internal_force(u, f) of the trial step, then commit_step(u): what an explicit step does at
+  /// every step. History models fuse the two into one pass over the tets (the trial force at u and
+  /// the history update need the same per-tet strains or forces); the result is the same.
+  virtual void force_and_commit(const VecX& u, VecX& f) {
+    internal_force(u, f);
+    commit_step(u);
+  }
 };
 
 inline void ElasticModel::restore_committed_state(const std::vector<double>& state) {

@@ -250,6 +250,12 @@ double TensorMassStVK::tet_energy(Index t, const VecX& u) const {
   return tet_energy_only(tensors_[static_cast<std::size_t>(t)], e);
 }
 
+void TensorMassStVK::tet_gradient(Index t, const VecX& u, double* g) const {
+  double e[9];
+  relative(u, tets_[static_cast<std::size_t>(t)], e);
+  tet_energy_force(tensors_[static_cast<std::size_t>(t)], e, g);
+}
+
 TensorMassStVK::Mat34 TensorMassStVK::tet_force(Index t, const VecX& u) const {
   double e[9], g[9];
   relative(u, tets_[static_cast<std::size_t>(t)], e);

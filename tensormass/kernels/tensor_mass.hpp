@@ -71,6 +71,10 @@ class TensorMassStVK : public ElasticModel {
   double tet_energy(Index t, const VecX& u) const;
   /// Column p = dW_T/dU_p (internal force on local node p).
   Mat34 tet_force(Index t, const VecX& u) const;
+  /// g_j = dW_T/de_j (j = 1..3, g[3(j-1) + c]): the relative-form gradient from which internal_force
+  /// (f_j += g_j, f_0 -= g_j) and tet_force (f_0 = -(g_1 + g_2 + g_3)) are built; lets a caller
+  /// form both from one evaluation (the fused viscoelastic step).
+  void tet_gradient(Index t, const VecX& u, double* g) const;
   /// d^2 W_T / dU^2, 12x12 local node-major.
   Mat12 tet_stiffness(Index t, const VecX& u) const;
 

@@ -101,8 +101,7 @@ void CentralDifference::step(double t, double dt) {
   // which is then committed (explicit stepping accepts every step).
   if (n_ > 0 && system_.model().has_history()) {
     system_.model().begin_step(dt_);
-    system_.model().internal_force(u_, fint_);
-    system_.model().commit_step(u_);
+    system_.model().force_and_commit(u_, fint_);  // one pass: trial force and history update
   } else {
     system_.model().internal_force(u_, fint_);
   }

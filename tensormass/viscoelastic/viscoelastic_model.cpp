@@ -55,6 +55,11 @@ ViscoelasticStVK::ViscoelasticStVK(const Mesh& mesh, const StVenantKirchhoff& lo
   }
   elastic_only_ = prony_.is_elastic();
   width_ = pk2() ? 6 : 12;
+  if (options_.fast_threads < 0)
+    throw Error("viscoelastic: fast_threads = " + std::to_string(options_.fast_threads) + " must be >= 0");
+  if (options_.fast_threads > 0)
+    fast_ = std::make_shared<const FastTetForce>(mesh, FastLaw::StVK, long_term.lambda, long_term.mu,
+                                                 options_.fast_threads);
   const std::size_t nt = static_cast<std::size_t>(num_tets());
   const std::size_t nj = prony_.size();
   hist_.assign(nt * nj * static_cast<std::size_t>(width_), 0.0);
@@ -106,6 +111,10 @@ void ViscoelasticStVK::driver(Index t, const VecX& u, double* x) const {
   }
   const Mat3 H = displacement_gradient(t, u);
   const Mat3 E = 0.5 * (H + H.transpose() + H.transpose() * H);  // Green-Lagrange strain (eq. 1)
+  driver_from_strain(E, x);
+}
+
+void ViscoelasticStVK::driver_from_strain(const Mat3& E, double* x) const {
   if (deviatoric()) {
     // S_dev = 2 mu (E - tr(E)/3 I)
     const Mat3 Ed = E - (E.trace() / 3.0) * Mat3::Identity();
@@ -148,7 +157,7 @@ double ViscoelasticStVK::branch_form(Index t, const double* h, double* rate) con
 
 // ---------------------------------------------------------------- steps
 
-void ViscoelasticStVK::update_trial() {
+void ViscoelasticStVK::update_trial() const {
   // X_hist = sum_j alpha_j (a_j h_j^c - c_j X_e^c)   (the u-independent part of eqs. 20-21)
   const std::size_t nt = static_cast<std::size_t>(num_tets()), nj = prony_.size();
   const std::size_t w = static_cast<std::size_t>(width_);
@@ -170,6 +179,7 @@ void ViscoelasticStVK::update_trial() {
         for (int c = 0; c < 3; ++c) f_hist_[3 * static_cast<Eigen::Index>(tet[p]) + c] += loc[3 * p + c];
     }
   }
+  trial_stale_ = false;
 }
 
 void ViscoelasticStVK::begin_step(double dt) {
@@ -186,7 +196,43 @@ void ViscoelasticStVK::begin_step(double dt) {
     gain_ = 0.0;
     return;
   }
-  update_trial();
+  trial_stale_ = true;  // the constant trial parts are recomputed on first use (ensure_trial)
+}
+
+void ViscoelasticStVK::commit_tet(std::size_t t, const double* x, bool book, double& psi, double& rate) {
+  const std::size_t nj = prony_.size(), w = static_cast<std::size_t>(width_);
+  double* X = &driver_[w * t];
+  for (std::size_t j = 0; j < nj; ++j) {
+    // h_j^{n+1} = a_j h_j^n + c_j (X_e^{n+1} - X_e^n)   (eq. 20 family)
+    double* h = &hist_[(t * nj + j) * w];
+    const double a = factors_[j].a, c = factors_[j].c;
+    for (std::size_t k = 0; k < w; ++k) h[k] = a * h[k] + c * (x[k] - X[k]);
+  }
+  for (std::size_t k = 0; k < w; ++k) X[k] = x[k];
+  if (book) {
+    double r = 0.0;
+    psi += branch_form(static_cast<Index>(t), &hist_[t * nj * w], &r);
+    rate += r;
+  }
+}
+
+void ViscoelasticStVK::finish_commit(bool book, double psi, double rate) {
+  if (book) {
+    // Trapezoidal quadrature of the dissipation rate over the step (>= 0: both rates are >= 0).
+    step_dissipation_ = 0.5 * dt_ * (committed_rate_ + rate);
+    total_dissipation_ += step_dissipation_;
+    committed_rate_ = rate;
+    committed_branch_ = psi;
+  }
+  // Trial at dt = 0: internal_force(u) is now the committed total force. begin_step(0) without its
+  // pass over the tets, which ensure_trial() makes on first use.
+  dt_ = 0.0;
+  gain_ = 0.0;
+  for (std::size_t j = 0; j < prony_.size(); ++j) {
+    factors_[j] = recursion_factors(options_.integration, 0.0, prony_.tau(j));
+    gain_ += prony_.alpha(j) * factors_[j].c;
+  }
+  trial_stale_ = true;
 }
 
 void ViscoelasticStVK::commit_step(const VecX& u) {
@@ -198,40 +244,98 @@ void ViscoelasticStVK::commit_step(const VecX& u) {
     dt_ = 0.0;
     return;
   }
-  const std::size_t nt = static_cast<std::size_t>(num_tets()), nj = prony_.size();
-  const std::size_t w = static_cast<std::size_t>(width_);
+  const std::size_t nt = static_cast<std::size_t>(num_tets());
   double x[12];
   double psi = 0.0, rate = 0.0;
   for (std::size_t t = 0; t < nt; ++t) {
     driver(static_cast<Index>(t), u, x);
-    double* X = &driver_[w * t];
-    for (std::size_t j = 0; j < nj; ++j) {
-      // h_j^{n+1} = a_j h_j^n + c_j (X_e^{n+1} - X_e^n)   (eq. 20 family)
-      double* h = &hist_[(t * nj + j) * w];
-      const double a = factors_[j].a, c = factors_[j].c;
-      for (std::size_t k = 0; k < w; ++k) h[k] = a * h[k] + c * (x[k] - X[k]);
+    commit_tet(t, x, book, psi, rate);
+  }
+  finish_commit(book, psi, rate);
+}
+
+void ViscoelasticStVK::force_and_commit(const VecX& u, VecX& f) {
+  const bool book = options_.energy_bookkeeping;
+  if (fast_ && pk2() && !book && !elastic_only_ &&
+      prony_.size() <= static_cast<std::size_t>(FastTetForce::PronyStep::kMaxTerms)) {
+    // The fast kernel's fused pass: force with S = S_e + sum_j alpha_j h_j^{n+1} and the history
+    // update together; the trial parts S_hist are not needed (equal to the reference to round-off).
+    FastTetForce::PronyStep step;
+    step.terms = static_cast<int>(prony_.size());
+    step.deviatoric = deviatoric();
+    for (std::size_t j = 0; j < prony_.size(); ++j) {
+      step.alpha[j] = prony_.alpha(j);
+      step.a[j] = factors_[j].a;
+      step.c[j] = factors_[j].c;
     }
-    for (std::size_t k = 0; k < w; ++k) X[k] = x[k];
-    if (book) {
-      double r = 0.0;
-      psi += branch_form(static_cast<Index>(t), &hist_[t * nj * w], &r);
-      rate += r;
+    fast_->force_and_commit_pk2(u, step, hist_.data(), driver_.data(), f);
+    finish_commit(false, 0.0, 0.0);
+    return;
+  }
+  if (elastic_only_ || fast_) {
+    internal_force(u, f);
+    commit_step(u);
+    return;
+  }
+  assert(u.size() == num_dofs());
+  ensure_trial();
+  if (book) committed_elastic_ = elastic_.energy(u);  // long-term spring W_e(u), as commit_step
+  const std::size_t nt = static_cast<std::size_t>(num_tets());
+  const auto& tets = elastic_.tets();
+  double x[12];
+  double psi = 0.0, rate = 0.0;
+  f.setZero(num_dofs());
+  if (!pk2()) {
+    // One tensor-mass evaluation per tet: assembled as TensorMassStVK::internal_force does and kept
+    // per tet as TensorMassStVK::tet_force does (the driver), so both match the separate calls bit
+    // for bit.
+    double* F = f.data();
+    double g[9];
+    for (std::size_t t = 0; t < nt; ++t) {
+      const Tet& tet = tets[t];
+      elastic_.tet_gradient(static_cast<Index>(t), u, g);
+      double* f0 = F + 3 * static_cast<std::ptrdiff_t>(tet[0]);
+      for (int j = 0; j < 3; ++j) {
+        double* fj = F + 3 * static_cast<std::ptrdiff_t>(tet[j + 1]);
+        for (int c = 0; c < 3; ++c) {
+          fj[c] += g[3 * j + c];
+          f0[c] -= g[3 * j + c];
+        }
+      }
+      TensorMassStVK::Mat34 ft;
+      for (int j = 0; j < 3; ++j) ft.col(j + 1) = Vec3(g[3 * j], g[3 * j + 1], g[3 * j + 2]);
+      ft.col(0) = -(ft.col(1) + ft.col(2) + ft.col(3));
+      for (int p = 0; p < 4; ++p)
+        for (int c = 0; c < 3; ++c) x[3 * p + c] = ft(c, p);
+      commit_tet(t, x, book, psi, rate);
+    }
+    f = (1.0 + gain_) * f + f_hist_;  // as internal_force: f = (1 + g) f_e + f_hist
+  } else {
+    // One strain per tet: the trial force of internal_force and the driver of commit_step.
+    const StVenantKirchhoff eff = trial_elasticity();
+    const double lam_eff = eff.lambda, mu_eff = eff.mu;
+    for (std::size_t t = 0; t < nt; ++t) {
+      const TetRest& r = rest_[t];
+      const Mat3 H = displacement_gradient(static_cast<Index>(t), u);
+      const Mat3 E = 0.5 * (H + H.transpose() + H.transpose() * H);
+      Mat3 S = from_voigt(&s_hist_[6 * t]);
+      S.diagonal().array() += lam_eff * E.trace();
+      S.noalias() += (2.0 * mu_eff) * E;
+      const Mat3 VP = r.volume * ((Mat3::Identity() + H) * S);
+      for (int p = 0; p < 4; ++p)
+        f.segment<3>(3 * static_cast<Eigen::Index>(tets[t][p])).noalias() += VP * r.grad[p];
+      driver_from_strain(E, x);
+      commit_tet(t, x, book, psi, rate);
     }
   }
-  if (book) {
-    // Trapezoidal quadrature of the dissipation rate over the step (>= 0: both rates are >= 0).
-    step_dissipation_ = 0.5 * dt_ * (committed_rate_ + rate);
-    total_dissipation_ += step_dissipation_;
-    committed_rate_ = rate;
-    committed_branch_ = psi;
-  }
-  begin_step(0.0);  // trial at dt = 0: internal_force(u) is now the committed total force
+  finish_commit(book, psi, rate);
 }
 
 // ---------------------------------------------------------------- trial evaluation
 
 double ViscoelasticStVK::trial_potential(const VecX& u) const {
   if (elastic_only_) return elastic_.energy(u);
+  ensure_trial();
   if (!pk2()) return (1.0 + gain_) * elastic_.energy(u) + f_hist_.dot(u);  // (1+g) W_e + f_hist . u
   // sum_t V [ lambda_eff/2 (tr E)^2 + mu_eff E:E + S_hist : E ]
   const StVenantKirchhoff eff = trial_elasticity();
@@ -253,6 +357,7 @@ double ViscoelasticStVK::trial_potential(const VecX& u) const {
 double ViscoelasticStVK::energy(const VecX& u) const {
   const double we = elastic_.energy(u);
   if (elastic_only_) return we;
+  ensure_trial();
   // + branch energies of the trial histories h_j(u) = a_j h_j^c + c_j (X_e(u) - X_e^c)
   const std::size_t nt = static_cast<std::size_t>(num_tets()), nj = prony_.size();
   const std::size_t w = static_cast<std::size_t>(width_);
@@ -276,10 +381,19 @@ void ViscoelasticStVK::internal_force(const VecX& u, VecX& f) const {
     elastic_.internal_force(u, f);
     return;
   }
+  ensure_trial();
   if (!pk2()) {
     // f = (1 + g) f_e(u) + f_hist   (eqs. 20-21 on nodal forces)
-    elastic_.internal_force(u, f);
+    if (fast_)
+      fast_->internal_force(u, f);
+    else
+      elastic_.internal_force(u, f);
     f = (1.0 + gain_) * f + f_hist_;
+    return;
+  }
+  if (fast_) {  // S_total = lambda_eff tr(E) I + 2 mu_eff E + S_hist in the fast kernel
+    const StVenantKirchhoff eff = trial_elasticity();
+    fast_->trial_force_pk2(u, eff.lambda, eff.mu, s_hist_.data(), f);
     return;
   }
   assert(u.size() == num_dofs());
@@ -312,6 +426,7 @@ void ViscoelasticStVK::tangent_apply(const VecX& u, const VecX& v, VecX& Kv) con
     elastic_.tangent_apply(u, v, Kv);
     return;
   }
+  ensure_trial();
   if (!pk2()) {
     elastic_.tangent_apply(u, v, Kv);
     Kv *= (1.0 + gain_);  // K = (1 + g) K_e
@@ -347,6 +462,7 @@ void ViscoelasticStVK::tangent(const VecX& u, SpMat& K) const {
     elastic_.tangent(u, K);
     return;
   }
+  ensure_trial();
   if (!pk2()) {
     elastic_.tangent(u, K);  // K = (1 + g) K_e (the history part of the force is constant in u)
     const double s = 1.0 + gain_;

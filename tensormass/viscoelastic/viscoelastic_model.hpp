@@ -44,11 +44,13 @@
 
 #include "core/constitutive/prony.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
+#include "tensormass/kernels/fast_force.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tet_geometry.hpp"
 #include "tensormass/materials/stvk_material.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -66,6 +68,10 @@ struct ViscoelasticOptions {
   /// Update the committed energies and dissipation at every commit (costs about 2-3 elastic force
   /// evaluations per commit; switch off for long explicit runs that do not report energies).
   bool energy_bookkeeping = true;
+  /// 0: the trial force on the reference per-tet kernels (results bit-identical to earlier versions).
+  /// N >= 1: on FastTetForce (kernels/fast_force.hpp) with N threads: equal to the reference to
+  /// round-off (1e-12 relative, tested), several times faster (docs/performance.md).
+  int fast_threads = 0;
 
   /// "nodal_force" | "pk2", "midpoint" | "exact_linear" | "backward_euler", "full" | "deviatoric"
   /// (the shared parsers of prony.hpp). Throw tmlab::Error naming the accepted values.
@@ -108,6 +114,9 @@ class ViscoelasticStVK : public ElasticModel {
   /// hist, driver, then the committed energies, rate and dissipations (5 values).
   std::vector<double> committed_state() const override;
   void restore_committed_state(const std::vector<double>& state) override;
+  /// internal_force(u, f) then commit_step(u) in one pass over the tets (the per-tet strains or
+  /// elastic forces serve both); bit-identical to the two calls.
+  void force_and_commit(const VecX& u, VecX& f) override;
 
   /// W_trial(u): the potential of the trial force (its gradient is internal_force, its Hessian tangent).
   double trial_potential(const VecX& u) const;
@@ -135,12 +144,24 @@ class ViscoelasticStVK : public ElasticModel {
   bool deviatoric() const { return options_.relaxation == ViscoelasticOptions::Relaxation::Deviatoric; }
   /// X_e of tet t at u (width_ values): nodal forces, S_e or S_dev (Voigt).
   void driver(Index t, const VecX& u, double* x) const;
+  /// pk2: X_e from the Green strain E of a tet (S_e or S_dev, Voigt).
+  void driver_from_strain(const Mat3& E, double* x) const;
+  /// The per-tet history update of commit_step (eq. 20 family) with the new driver x, and the
+  /// branch energy bookkeeping of that tet.
+  void commit_tet(std::size_t t, const double* x, bool book, double& psi, double& rate);
+  /// The end of commit_step: dissipation bookkeeping, then the trial reset to dt = 0.
+  void finish_commit(bool book, double psi, double rate);
+  /// After a commit the trial is dt = 0; its constant parts are recomputed on first use (an
+  /// explicit step calls begin_step(dt) next, which recomputes them anyway).
+  void ensure_trial() const {
+    if (trial_stale_) update_trial();
+  }
   /// sum_j alpha_j h_j : M : h_j / tau_j-weighted quadratic forms of tet t for a set of histories.
   double branch_form(Index t, const double* h, double* rate) const;
   /// The elasticity scaled by the trial gain g (pk2): the Lame pair of the trial S(E) part.
   StVenantKirchhoff trial_elasticity() const;
   /// Recomputes the constant trial parts (f_hist or S_hist) from the committed state.
-  void update_trial();
+  void update_trial() const;
   /// pk2: grad u of tet t from relative displacements.
   Mat3 displacement_gradient(Index t, const VecX& u) const;
 
@@ -163,8 +184,12 @@ class ViscoelasticStVK : public ElasticModel {
   double dt_ = 0.0;
   double gain_ = 0.0;  ///< g = sum alpha_j c_j
   std::vector<RecursionFactors> factors_;
-  VecX f_hist_;                 ///< nodal_force: assembled constant force
-  std::vector<double> s_hist_;  ///< pk2: per tet 6 (Voigt)
+  // The constant trial parts, mutable: recomputed lazily after a commit (ensure_trial). A model is
+  // therefore not safe for concurrent const calls (no solver makes them).
+  mutable VecX f_hist_;                 ///< nodal_force: assembled constant force
+  mutable std::vector<double> s_hist_;  ///< pk2: per tet 6 (Voigt)
+  mutable bool trial_stale_ = false;
+  std::shared_ptr<const FastTetForce> fast_;  ///< options_.fast_threads >= 1
 };
 
 }  // namespace tmlab::tm

@@ -19,6 +19,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <memory>
 #include <random>
@@ -909,6 +910,103 @@ TEST(ViscoelasticStVK, HysteresisLoopAreaEqualsDissipationPerCycle) {
     EXPECT_LT(mismatch[2], 1e-3);
     EXPECT_NEAR(p, 2.0, 0.3);
   }
+}
+
+/// A random-walk displacement history on a jittered 3^3 box (large strains), for the fused-step and
+/// fast-kernel tests.
+std::vector<VecX> random_walk(const Mesh& mesh, int steps, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-2e-4, 2e-4);
+  std::vector<VecX> out;
+  VecX u = VecX::Zero(3 * mesh.num_points());
+  for (int k = 0; k < steps; ++k) {
+    for (Eigen::Index i = 0; i < u.size(); ++i) u[i] += d(rng);
+    out.push_back(u);
+  }
+  return out;
+}
+
+const StVenantKirchhoff kMat = StVenantKirchhoff::from_young_poisson(10e3, 0.3);
+
+Mesh walk_mesh() { return make_box_mesh(Vec3::Zero(), Vec3::Constant(0.003), 3, 3, 3); }
+
+bool same_bits(const VecX& a, const VecX& b) {
+  return a.size() == b.size() &&
+         std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST(ViscoelasticStVK, FusedForceAndCommitIsBitIdenticalToTheSeparateCalls) {
+  const Mesh mesh = walk_mesh();
+  const auto us = random_walk(mesh, 6, 3u);
+  const PronySeries prony = PronySeries::from_long_term({0.8, 0.4}, {0.02, 0.3});
+  for (const Opt& o : all_variants()) {
+    ViscoelasticStVK a(mesh, kMat, prony, o), b(mesh, kMat, prony, o);
+    for (const VecX& u : us) {
+      a.begin_step(0.01);
+      b.begin_step(0.01);
+      VecX fa, fb;
+      a.internal_force(u, fa);
+      a.commit_step(u);
+      b.force_and_commit(u, fb);
+      // pk2: bit for bit. nodal_force: the fused loop calls TensorMassStVK::tet_gradient where
+      // internal_force inlines the same arithmetic, and the compiler may contract the last multiply
+      // into the accumulation there (FMA): the forces agree to round-off, the history bit for bit.
+      if (o.history == Hist::Pk2)
+        ASSERT_TRUE(same_bits(fa, fb)) << label(o);
+      else
+        ASSERT_LE((fa - fb).norm(), 1e-14 * fa.norm()) << label(o);
+      ASSERT_EQ(a.committed_history(), b.committed_history()) << label(o);
+      ASSERT_EQ(a.committed_driver(), b.committed_driver()) << label(o);
+      EXPECT_EQ(a.committed_elastic_energy(), b.committed_elastic_energy()) << label(o);
+      EXPECT_EQ(a.committed_branch_energy(), b.committed_branch_energy()) << label(o);
+      EXPECT_EQ(a.total_dissipation(), b.total_dissipation()) << label(o);
+      // the dt = 0 trial after the commit (computed lazily) is the committed total force
+      a.internal_force(u, fa);
+      b.internal_force(u, fb);
+      EXPECT_TRUE(same_bits(fa, fb)) << label(o);
+    }
+  }
+}
+
+TEST(ViscoelasticStVK, FastKernelEqualsTheReferenceKernelAndIgnoresTheThreadCount) {
+  const Mesh mesh = walk_mesh();
+  const auto us = random_walk(mesh, 6, 5u);
+  const PronySeries prony = PronySeries::from_long_term({0.8, 0.4}, {0.02, 0.3});
+  for (Opt o : all_variants()) {
+    for (bool book : {true, false}) {  // false: the fused fast pass of the pk2 history
+      o.energy_bookkeeping = book;
+      ViscoelasticStVK ref(mesh, kMat, prony, o);
+      o.fast_threads = 1;
+      ViscoelasticStVK one(mesh, kMat, prony, o);
+      o.fast_threads = 2;
+      ViscoelasticStVK two(mesh, kMat, prony, o);
+      for (const VecX& u : us) {
+        VecX fr, f1, f2;
+        for (ViscoelasticStVK* m : {&ref, &one, &two}) m->begin_step(0.01);
+        ref.force_and_commit(u, fr);
+        one.force_and_commit(u, f1);
+        two.force_and_commit(u, f2);
+        EXPECT_LE((f1 - fr).norm(), 1e-12 * fr.norm()) << label(o) << " book " << book;
+        EXPECT_TRUE(same_bits(f1, f2)) << label(o);
+        const auto& hr = ref.committed_history();
+        const auto& h1 = one.committed_history();
+        double dh = 0.0, nh = 0.0;
+        for (std::size_t k = 0; k < hr.size(); ++k) {
+          dh = std::max(dh, std::abs(h1[k] - hr[k]));
+          nh = std::max(nh, std::abs(hr[k]));
+        }
+        EXPECT_LE(dh, 1e-12 * nh) << label(o) << " book " << book;
+        EXPECT_EQ(one.committed_history(), two.committed_history()) << label(o);
+        // after the commit the dt = 0 trial force (reactions) agrees as well
+        ref.internal_force(u, fr);
+        one.internal_force(u, f1);
+        EXPECT_LE((f1 - fr).norm(), 1e-12 * fr.norm()) << label(o) << " book " << book;
+      }
+    }
+  }
+  Opt bad;
+  bad.fast_threads = -1;
+  EXPECT_THROW(ViscoelasticStVK(mesh, kMat, prony, bad), Error);
 }
 
 }  // namespace
