@@ -50,7 +50,7 @@ class SeqLock {
       s1 = seq_.load(std::memory_order_relaxed);
     } while ((s0 & 1u) != 0 || s0 != s1);
     T out;
-    std::memcpy(&out, w.data(), sizeof(T));
+    std::memcpy(static_cast<void*>(&out), w.data(), sizeof(T));  // T is trivially copyable
     return out;
   }
 

@@ -41,5 +41,7 @@ int cmd_rig(const std::vector<std::string>& args);
 int cmd_data(const std::vector<std::string>& args);
 // Inverse identification (cmd_fit.cpp, docs/identification.md).
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line);
+// The real-time haptic / control / visual loop (cmd_realtime.cpp, docs/realtime.md).
+int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli
