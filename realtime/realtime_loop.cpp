@@ -144,9 +144,9 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
   // Main thread: report the phases for the allocation test, then wait for the end.
   while (warm.load() < 3 && Clock::now() < end && !stopping())
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  if (opt.phase) opt.phase->store(1);
+  if (opt.on_phase) opt.on_phase(1);
   while (Clock::now() < end && !stopping()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  if (opt.phase) opt.phase->store(2);
+  if (opt.on_phase) opt.on_phase(2);
   stop = true;
   haptic.join();
   ctl.join();

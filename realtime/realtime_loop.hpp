@@ -49,9 +49,10 @@ struct LoopOptions {
   /// Called by the visual thread with each new frame (positions, rendered force, probe); must not
   /// allocate or block (the --serve server copies into its own triple buffer). May be empty.
   std::function<void(const std::vector<float>&, const Vec3& force, const Vec3& probe)> on_frame;
-  /// Set to 1 when all three threads have done their first iteration, 2 when the stop is requested
-  /// (the allocation test counts between the two). May be null.
-  std::atomic<int>* phase = nullptr;
+  /// Called by the loop's own (waiting) thread with 1 once all three threads have done their first
+  /// iteration, and with 2 just before the stop is requested (the allocation test counts between
+  /// the two). May be empty.
+  std::function<void(int)> on_phase;
   /// Stops the loop early when set (may be null).
   const std::atomic<bool>* stop = nullptr;
 };

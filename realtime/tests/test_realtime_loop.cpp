@@ -12,7 +12,6 @@
 #include <atomic>
 #include <cstdlib>
 #include <new>
-#include <thread>
 
 namespace {
 std::atomic<long> g_allocations{0};
@@ -45,17 +44,13 @@ TEST(RealtimeLoop, ThreadedPokeReplaysOfflineAndAllocatesNothing) {
   opt.visual_hz = c.visual_hz;
   opt.trajectory = c.trajectory.get();
   opt.keep_frames = true;
-  std::atomic<int> phase{0};
-  opt.phase = &phase;
-  long during = -1;
-  std::thread monitor([&] {  // counts allocations between "all threads running" and "stop"
-    while (phase.load() < 1) std::this_thread::yield();
-    const long a = g_allocations.load();
-    while (phase.load() < 2) std::this_thread::yield();
-    during = g_allocations.load() - a;
-  });
+  long at_start = -1, during = -1;
+  opt.on_phase = [&](int phase) {  // counts allocations between "all threads running" and "stop"
+    if (phase == 1) at_start = g_allocations.load();
+    if (phase == 2) during = g_allocations.load() - at_start;
+  };
   const LoopResult r = run_realtime_loop(*control, opt);
-  monitor.join();
+  ASSERT_GE(at_start, 0);
   EXPECT_EQ(during, 0) << "allocations while the three threads ran";
 
   // Timing report for each thread.
