@@ -43,5 +43,7 @@ int cmd_data(const std::vector<std::string>& args);
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line);
 // Kernel and step benchmarks with the machine's limits (cmd_bench.cpp, docs/performance.md).
 int cmd_bench(const std::vector<std::string>& args, const std::string& command_line);
+// The real-time haptic / control / visual loop (cmd_realtime.cpp, docs/realtime.md).
+int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

@@ -60,6 +60,11 @@ void print_usage(std::ostream& os) {
         "                            error against CPU time: fixed-step schemes and SUNDIALS;\n"
         "                            results/workprecision/ (workprecision.h5, .md, PNG per problem)\n"
         "                            --resume: continue an interrupted study (finished runs reused)\n"
+        "  realtime CASE [--record] [--duration S] [--coupling extrapolation|local_model]\n"
+        "           [--results DIR] [--no-frames]\n"
+        "                            the haptic (1 kHz) / control / visual (40 Hz) threads on the liver\n"
+        "                            with a scripted probe; --record: results/realtime/ (timing.json,\n"
+        "                            forces.csv, frames/*.png; docs/realtime.md)\n"
         "  verify [--full] [--case NAME] [--label L] [--list] [--results DIR] [--no-plots]\n"
         "         [--cases-dir DIR] [--update-docs] [--resume]\n"
         "                            the verification catalogue (fast suite; --full: all); report\n"
@@ -136,6 +141,7 @@ int main(int argc, char** argv) {
     if (cmd == "data") return tmlab::cli::cmd_data(args);
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);
     if (cmd == "fit") return tmlab::cli::cmd_fit(args, command_line);
+    if (cmd == "realtime") return tmlab::cli::cmd_realtime(args, command_line);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

@@ -1,0 +1,97 @@
+// Probe trajectories: scripted motions are closed and smooth; the CSV reader is strict and its
+// errors name the file and line.
+#include "realtime/probe_trajectory.hpp"
+
+#include "core/base/error.hpp"
+#include "core/testing/temp_dir.hpp"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+
+namespace tmlab::rt {
+namespace {
+
+TEST(ProbeTrajectory, PokeIsClosedAndReachesItsDepth) {
+  const Vec3 s(0.0, 0.0, 1.0);
+  const ProbeTrajectory p = ProbeTrajectory::poke(s, Vec3(0, 0, -2), 0.01, 0.5, 0.3);
+  EXPECT_DOUBLE_EQ(p.duration(), 1.3);
+  EXPECT_LT((p.position(0.0) - s).norm(), 1e-15);
+  EXPECT_NEAR(p.position(0.6).z(), 0.99, 1e-15);
+  EXPECT_NEAR(p.position(0.25).z(), 0.995, 1e-15);
+  EXPECT_LT((p.position(1.3) - s).norm(), 1e-15);
+  EXPECT_LT((p.position(5.0) - s).norm(), 1e-15);
+}
+
+TEST(ProbeTrajectory, EllipsePeriodsAreClosed) {
+  const ProbeTrajectory p =
+      ProbeTrajectory::ellipse(Vec3::Zero(), -Vec3::UnitZ(), Vec3(1, 0, 1), 0.02, 0.004, 0.5, 2, 0.2);
+  EXPECT_LT((p.position(0.2) - p.position(0.7)).norm(), 1e-15);
+  EXPECT_LT((p.position(0.7) - p.position(1.2)).norm(), 1e-15);
+  EXPECT_NEAR(p.position(0.2 + 0.125).z(), -0.02, 1e-15);  // deepest point
+  EXPECT_NEAR(p.position(0.2 + 0.25).x(), 0.008, 1e-15);   // widest point, lateral made orthogonal
+  EXPECT_LT(p.position(p.duration()).norm(), 1e-15);
+}
+
+class TrajectoryCsv : public tmlab::testing::TempDirTest {
+ protected:
+  std::string write(const std::string& text) {
+    const std::string path = (dir_ / "probe.csv").string();
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string error_of(const std::string& text) {
+    const std::string path = write(text);
+    try {
+      ProbeTrajectory::read_csv(path);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  }
+};
+
+TEST_F(TrajectoryCsv, ReadsAndInterpolates) {
+  const std::string path = write("# comment\n\nt,x,y,z\n0,0,0,1\n0.5, 0.1, 0, 1\n1.0,0.1,0.2,1\n");
+  const ProbeTrajectory p = ProbeTrajectory::read_csv(path);
+  EXPECT_DOUBLE_EQ(p.duration(), 1.0);
+  EXPECT_NEAR(p.position(0.25).x(), 0.05, 1e-15);
+  EXPECT_NEAR(p.position(0.75).y(), 0.1, 1e-15);
+  EXPECT_NEAR(p.position(2.0).y(), 0.2, 1e-15);
+  // Round trip through write_csv.
+  const std::string out = (dir_ / "out.csv").string();
+  ProbeTrajectory::write_csv(out, {0.0, 0.25}, {Vec3(1, 2, 3), Vec3(4, 5, 6)});
+  EXPECT_NEAR(ProbeTrajectory::read_csv(out).position(0.125).z(), 4.5, 1e-15);
+}
+
+TEST_F(TrajectoryCsv, ErrorsNameFileAndLine) {
+  const std::string p = (dir_ / "probe.csv").string();
+  EXPECT_EQ(error_of("t,x,y\n0,0,0\n"), p + ":1: the header must be 't,x,y,z' (got 't,x,y')");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,abc,1\n"),
+            p + ":3: column 3 (y) is not a finite number: 'abc'");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0\n"),
+            p + ":3: expected 4 comma-separated columns t,x,y,z (got '0.1,0,0')");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1,5\n"),
+            p + ":3: expected 4 comma-separated columns t,x,y,z (got '0.1,0,0,1,5')");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1\n0.1,0,0,1\n"),
+            p + ":4: time 0.100000 is not after the previous sample's");
+  EXPECT_EQ(error_of("t,x,y,z\n0.5,0,0,1\n"), p + ":2: the first sample must be at t = 0 (got 0.5,0,0,1)");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,nan,1\n"), p + ":2: column 3 (y) is not a finite number: 'nan'");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,1e999,1\n"), p + ":2: column 3 (y) is not a finite number: '1e999'");
+  EXPECT_EQ(error_of(""), p + ": empty trajectory file (expected the header 't,x,y,z')");
+  EXPECT_EQ(error_of("t,x,y,z\n"), p + ": the trajectory has a header but no sample");
+  EXPECT_NE(error_of("t,x,y,z\n0,,0,1\n").find(":2: column 2 (x)"), std::string::npos);
+  EXPECT_THROW(ProbeTrajectory::read_csv((dir_ / "missing.csv").string()), Error);
+}
+
+TEST(ProbeTrajectory, BadScriptsAreRefused) {
+  EXPECT_THROW(ProbeTrajectory::poke(Vec3::Zero(), Vec3::Zero(), 0.01, 0.5, 0.0), Error);
+  EXPECT_THROW(ProbeTrajectory::poke(Vec3::Zero(), -Vec3::UnitZ(), -0.01, 0.5, 0.0), Error);
+  EXPECT_THROW(ProbeTrajectory::ellipse(Vec3::Zero(), -Vec3::UnitZ(), -Vec3::UnitZ(), 0.01, 0.0, 1.0, 1, 0.1),
+               Error);
+  EXPECT_THROW(ProbeTrajectory::ellipse(Vec3::Zero(), -Vec3::UnitZ(), Vec3::UnitX(), 0.01, 0.0, 1.0, 0, 0.1),
+               Error);
+}
+
+}  // namespace
+}  // namespace tmlab::rt
