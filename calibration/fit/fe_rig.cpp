@@ -70,7 +70,7 @@ class FeRigModel final : public ForwardModel {
       r->conditions = conditions_of(c.at("boundary"), r->mesh, where);
       for (std::size_t i = 0; i < r->conditions.size(); ++i)
         if (r->conditions[i].name == "top_platen") r->top = i;
-      if (c.contains("contact")) r->bodies = tm::parse_contact_bodies(c["contact"]["bodies"], where);
+      if (c.contains("contact")) r->bodies = tm::parse_contact_section(c["contact"], where).bodies;
       const double shift = rigs::data_rig_time_shift(d, k);
       const ms::Test& t = d.tests[k];
       for (std::size_t i = 0; i < t.size(); ++i) r->sample_times.push_back(t.time_s[i] - t.time_s[0] + shift);
