@@ -8,6 +8,7 @@ void register_builtin_checks(CheckRegistry& registry) {
   register_analytic_checks(registry);
   register_model_checks(registry);
   register_sundials_checks(registry);
+  register_law_checks(registry);
   register_reference_checks(registry);
 }
 

@@ -13,6 +13,7 @@ void register_kernel_checks(CheckRegistry& registry);
 void register_analytic_checks(CheckRegistry& registry);
 void register_model_checks(CheckRegistry& registry);
 void register_sundials_checks(CheckRegistry& registry);
+void register_law_checks(CheckRegistry& registry);        ///< laws beyond St VK (law_checks.cpp)
 void register_reference_checks(CheckRegistry& registry);  ///< no-op without deal.II
 
 }  // namespace tmlab::verify
