@@ -175,10 +175,16 @@ MaterialSpec parse_material(ConfigReader& root) {
   const std::vector<std::string> keys = law_keys(law);
   std::string key_list;
   for (const std::string& k : keys) key_list += (key_list.empty() ? "" : ", ") + k;
+  // A key of another law gets a message naming this law's keys; any other stray key is reported by
+  // finish() as an unknown key.
   for (auto it = m.json().begin(); it != m.json().end(); ++it) {
     const std::string& k = it.key();
-    if (k == "law" || k == "density" || k == "viscoelastic") continue;
-    if (std::find(keys.begin(), keys.end(), k) == keys.end())
+    bool other_law = false;
+    for (const char* name : kMaterialLawNames) {
+      const std::vector<std::string> ks = law_keys(*material_law_from_string(name));
+      other_law = other_law || std::find(ks.begin(), ks.end(), k) != ks.end();
+    }
+    if (other_law && std::find(keys.begin(), keys.end(), k) == keys.end())
       throw m.error(
           k, "is not a parameter of law '" + law_name + "' (its keys: " + key_list + "; docs/case-files.md)");
   }

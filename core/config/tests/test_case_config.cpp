@@ -271,6 +271,9 @@ TEST_F(CaseConfigTest, BadLawParametersNameFileAndKey) {
        "key 'material.nu' must satisfy"},
       {{{"law", "neo_hookean"}, {"E", 1000.0}, {"nu", 0.3}, {"kappa", 1e5}},
        "key 'material.kappa' is not a parameter of law 'neo_hookean'"},
+      // A key of no law is an unknown key, as anywhere in a case file.
+      {{{"law", "ogden"}, {"mu", {100.0}}, {"alpha", {2.0}}, {"kappa", 1e5}, {"colour", 1}},
+       "case.json: unknown key 'material.colour'"},
   };
   for (const Bad& b : cases) {
     auto j = minimal();
