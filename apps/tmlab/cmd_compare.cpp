@@ -57,8 +57,9 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   opt.plots = false;
   opt.log = &std::cerr;
   CaseConfig tm_cfg = cfg;
-  tm_cfg.model = CaseModel::TensorMass;
-  std::cerr << "tmlab compare: tensor-mass run\n";
+  // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.
+  tm_cfg.model = cfg.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
+  std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
   const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
   tmlab::RunResult b;
   if (against == "reference") {

@@ -137,7 +137,8 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
   if (p.has("--model")) {
     const std::string m = p.get("--model");
     const std::optional<CaseModel> fast = case_model_from_string(m);
-    if (!fast && m != "reference") throw UsageError("--model must be tensor_mass, tl_oracle or reference");
+    if (!fast && m != "reference")
+      throw UsageError("--model must be tensor_mass, tl_oracle, hyperelastic_tl or reference");
     if (fast) cfg.model = *fast;
   }
   return run_config(cfg, p, command_line);

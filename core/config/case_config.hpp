@@ -40,9 +40,16 @@ struct ViscoelasticSpec {
   std::optional<PronyScheme> scheme;  ///< the shorthand given, if any (seed, objective, ...)
 };
 
+/// The material section: the law and its parameters (core/constitutive/material_law.hpp; each
+/// law's keys in docs/case-files.md), the density and the viscoelasticity. The models build their
+/// law from `law` + `parameters` (the fast model through tensormass/materials/law_factory.hpp).
 struct MaterialSpec {
-  MaterialLaw law = MaterialLaw::StVK;  ///< St Venant-Kirchhoff (the only law of the tensor-mass model)
-  double young = 0.0;                   ///< Pa; the long-term modulus E_inf of a viscoelastic material
+  MaterialLaw law = MaterialLaw::StVK;
+  LawParameters parameters;  ///< the law's parameters; kappa resolved when the case gave nu instead
+  /// Young's modulus (Pa) and Poisson's ratio: as given for stvk and neo_hookean; for the other laws
+  /// those of their small-strain limit (small_strain_moduli), derived. The long-term modulus E_inf of
+  /// a viscoelastic material.
+  double young = 0.0;
   double poisson = 0.0;
   double density = 0.0;  ///< kg/m^3
   ViscoelasticSpec viscoelastic;
@@ -96,18 +103,20 @@ struct OutputSpec {
   std::vector<ProbeSpec> probes;
 };
 
-/// The fast model's elastic kernel: tensor_mass (Picinbono's tensors, relative displacements) |
-/// tl_oracle (the F-based total-Lagrangian kernel). The reference is chosen on the command line.
-enum class CaseModel { TensorMass, TlOracle };
+/// The fast model's elastic kernel: tensor_mass (Picinbono's tensors, relative displacements; St
+/// Venant-Kirchhoff only, the paper's model) | tl_oracle (the slow St VK total-Lagrangian oracle) |
+/// hyperelastic_tl (the F-based kernel for every law of core/constitutive/material_law.hpp, elastic
+/// or with the objective Prony scheme). The reference is chosen on the command line.
+enum class CaseModel { TensorMass, TlOracle, HyperelasticTL };
 std::string to_string(CaseModel m);
-/// The model a name denotes ("tensor_mass", "tl_oracle"), or nothing.
+/// The model a name denotes ("tensor_mass", "tl_oracle", "hyperelastic_tl"), or nothing.
 std::optional<CaseModel> case_model_from_string(const std::string& name);
 
 struct CaseConfig {
   std::string name;
   std::string description;
   std::string file;                         ///< where the case came from ("<embedded>" for the demo)
-  CaseModel model = CaseModel::TensorMass;  ///< tensor_mass | tl_oracle
+  CaseModel model = CaseModel::TensorMass;  ///< tensor_mass | tl_oracle | hyperelastic_tl
   MeshSpec mesh;
   MaterialSpec material;
   std::vector<BoundarySpec> boundary;

@@ -8,6 +8,7 @@
 // recursion factors and weight conversion are the shared ones of core/constitutive/prony.hpp.
 #pragma once
 
+#include "core/base/error.hpp"
 #include "core/constitutive/material_law.hpp"
 #include "core/constitutive/prony.hpp"
 
@@ -111,132 +112,12 @@ struct YeohLaw {
   }
 };
 
-/// One of the laws above, chosen at run time (a closed set: a switch is clearer than virtuals).
-struct Material {
-  using Kind = MaterialLaw;
-  Kind kind = Kind::StVK;
-  double lambda = 0.0, mu = 0.0;  ///< Lame constants of the small-strain limit
-  StVenantKirchhoffLaw stvk;
-  NeoHookeanLaw neo;
-  YeohLaw yeoh;
-
-  /// lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)). Throws tmlab::Error for bad E, nu or Yeoh ratios.
-  static Material make(MaterialLaw law, double young, double poisson, double yeoh_c20_ratio = 1.0,
-                       double yeoh_c30_ratio = 0.0);
-  /// law: stvk | neo_hookean | yeoh (the names of core/constitutive/material_law.hpp); throws for others.
-  static Material make(const std::string& law, double young, double poisson, double yeoh_c20_ratio = 1.0,
-                       double yeoh_c30_ratio = 0.0);
-  std::string name() const { return to_string(kind); }
-
-  double energy(const SymTensor2& E) const {
-    switch (kind) {
-      case Kind::StVK:
-        return stvk.energy(E);
-      case Kind::NeoHookean:
-        return neo.energy(E);
-      default:
-        return yeoh.energy(E);
-    }
-  }
-  SymTensor2 stress(const SymTensor2& E) const {
-    switch (kind) {
-      case Kind::StVK:
-        return stvk.stress(E);
-      case Kind::NeoHookean:
-        return neo.stress(E);
-      default:
-        return yeoh.stress(E);
-    }
-  }
-  SymTensor4 tangent(const SymTensor2& E) const {
-    switch (kind) {
-      case Kind::StVK:
-        return stvk.tangent(E);
-      case Kind::NeoHookean:
-        return neo.tangent(E);
-      default:
-        return yeoh.tangent(E);
-    }
-  }
-};
-
-/// Prony series on the PK2 stress (the objective form of the tensor-mass model's viscoelasticity):
-///   S_total^{n+1} = S_e^{n+1} + sum_j alpha_j h_j^{n+1},
-///   h_j^{n+1} = a_j h_j^n + c_j (S_r^{n+1} - S_r^n),  (a_j, c_j) = recursion_factors(integration, dt,
-///   tau_j),
-/// with S_e = dW/dE (long-term law) and S_r the relaxing stress: S_e ("full") or, for St VK only,
-/// S_dev = 2 mu (E - tr(E)/3 I) ("deviatoric"). The factors (midpoint, exact_linear, backward_euler)
-/// are those of core/constitutive/prony.hpp, the ones the tensor-mass model uses.
-/// alpha_j are long-term normalised; an instantaneous series g_j is converted alpha_j = g_j/(1-sum g).
-struct PronySeries {
-  using Integration = PronyIntegration;
-  std::vector<double> alpha, tau;
-  Integration integration = Integration::ExactLinear;
-  bool deviatoric = false;
-
-  /// The weights as given in `convention`. Throws tmlab::Error for bad input (sizes, a negative
-  /// weight, a tau <= 0, instantaneous weights summing to >= 1).
-  static PronySeries make(PronyConvention convention, const std::vector<double>& weights,
-                          const std::vector<double>& taus, PronyIntegration integration,
-                          PronyRelaxation relaxation);
-  std::size_t size() const { return alpha.size(); }
-
-  /// Recursion factors (a_j, c_j) for a step dt >= 0.
-  void factors(std::size_t j, double dt, double& a, double& c) const {
-    const RecursionFactors f = recursion_factors(integration, dt, tau[j]);
-    a = f.a, c = f.c;
-  }
-  /// The relaxing stress S_r(E) and its tangent dS_r/dE.
-  SymTensor2 relaxing_stress(const Material& m, const SymTensor2& E) const {
-    if (!deviatoric) return m.stress(E);
-    return 2.0 * m.mu * (E - dealii::trace(E) / 3.0 * dealii::unit_symmetric_tensor<3>());
-  }
-  SymTensor4 relaxing_tangent(const Material& m, const SymTensor2& E) const {
-    if (!deviatoric) return m.tangent(E);
-    return 2.0 * m.mu * dealii::deviator_tensor<3>();
-  }
-};
-
-/// History of one quadrature point: the committed state (h_j^n, S_r^n) and the trial state of the
-/// step being solved; commit() makes the trial state the committed one (once per converged step).
-struct PronyState {
-  std::vector<SymTensor2> h, h_trial;
-  SymTensor2 s_r, s_r_trial;
-  void resize(std::size_t n) {
-    h.assign(n, SymTensor2());
-    h_trial.assign(n, SymTensor2());
-  }
-  void commit() {
-    h = h_trial;
-    s_r = s_r_trial;
-  }
-};
-
-/// Total stress of the trial state and its consistent tangent for step dt, updating state.h_trial.
-inline void prony_update(const Material& m, const PronySeries& p, const SymTensor2& E, double dt,
-                         PronyState& state, SymTensor2& S, SymTensor4* D) {
-  S = m.stress(E);
-  if (D) *D = m.tangent(E);
-  const SymTensor2 sr = p.relaxing_stress(m, E);
-  state.s_r_trial = sr;
-  double dfac = 0.0;
-  for (std::size_t j = 0; j < p.size(); ++j) {
-    double a = 0.0, c = 0.0;
-    p.factors(j, dt, a, c);
-    state.h_trial[j] = a * state.h[j] + c * (sr - state.s_r);
-    S += p.alpha[j] * state.h_trial[j];
-    dfac += p.alpha[j] * c;
-  }
-  if (D && dfac != 0.0) *D += dfac * p.relaxing_tangent(m, E);
-}
-
 // ---------------------------------------------------------------------------------------------
 // Further laws of the fast model (tensormass/materials/, docs/theory/hyperelastic-laws.md), with
 // the same energies so that the two models agree to round-off pointwise and on the same mesh
-// (tests/test_reference_materials.cpp). Not yet selectable through Material::make (a closed set
-// wired by the case file's `material.law`); each has the energy / stress / tangent triad of the
-// laws above. Decoupled: isochoric invariants I1b = J^{-2/3} I1, I2b = J^{-4/3} I2, volumetric
-// kappa/2 (ln J)^2 as YeohLaw.
+// (tests/test_reference_materials.cpp; verification case reference-laws-same-mesh). Each has the
+// energy / stress / tangent triad of the laws above. Decoupled: isochoric invariants
+// I1b = J^{-2/3} I1, I2b = J^{-4/3} I2, volumetric kappa/2 (ln J)^2 as YeohLaw.
 // ---------------------------------------------------------------------------------------------
 
 /// d I2b / dC = J^{-4/3} (I1 I - C - 2/3 I2 C^-1) and its derivative
@@ -439,5 +320,140 @@ struct OgdenLaw {
     return D;
   }
 };
+
+/// One of the laws above, chosen at run time (a closed set: a switch is clearer than virtuals).
+struct Material {
+  using Kind = MaterialLaw;
+  Kind kind = Kind::StVK;
+  double lambda = 0.0, mu = 0.0;  ///< Lame constants of the small-strain limit
+  StVenantKirchhoffLaw stvk;
+  NeoHookeanLaw neo;
+  YeohLaw yeoh;
+  MooneyRivlinLaw mooney_rivlin;
+  OgdenLaw ogden;
+  VerondaWestmannLaw veronda_westmann;
+
+  /// The law of a case file's material section (core/constitutive/material_law.hpp: the same
+  /// parameters the fast model builds its law from, tensormass/materials/law_factory.hpp). Throws
+  /// tmlab::Error naming the parameter when law_parameter_problem() refuses them.
+  static Material make(MaterialLaw law, const LawParameters& parameters);
+  /// The legacy override of the command line (tmlab_reference --law) for a case given by E and nu:
+  /// stvk | neo_hookean | yeoh, lambda = E nu / ((1+nu)(1-2nu)), mu = E / (2(1+nu)); Yeoh with C10 = mu/2,
+  /// kappa = lambda + 2 mu/3 and C20, C30 as multiples of C10. Throws tmlab::Error for bad E, nu or
+  /// Yeoh ratios and for the other laws (they have their own parameters: give them in the case).
+  static Material make(MaterialLaw law, double young, double poisson, double yeoh_c20_ratio = 1.0,
+                       double yeoh_c30_ratio = 0.0);
+  /// As above, by name (the names of core/constitutive/material_law.hpp).
+  static Material make(const std::string& law, double young, double poisson, double yeoh_c20_ratio = 1.0,
+                       double yeoh_c30_ratio = 0.0);
+  std::string name() const { return to_string(kind); }
+
+  /// f(law) on the law in use.
+  template <class F>
+  auto visit(F&& f) const {
+    switch (kind) {
+      case Kind::StVK:
+        return f(stvk);
+      case Kind::NeoHookean:
+        return f(neo);
+      case Kind::MooneyRivlin:
+        return f(mooney_rivlin);
+      case Kind::Yeoh:
+        return f(yeoh);
+      case Kind::Ogden:
+        return f(ogden);
+      case Kind::VerondaWestmann:
+        break;
+    }
+    return f(veronda_westmann);
+  }
+  double energy(const SymTensor2& E) const {
+    return visit([&](const auto& law) { return law.energy(E); });
+  }
+  SymTensor2 stress(const SymTensor2& E) const {
+    return visit([&](const auto& law) { return law.stress(E); });
+  }
+  SymTensor4 tangent(const SymTensor2& E) const {
+    return visit([&](const auto& law) { return law.tangent(E); });
+  }
+};
+
+inline Material Material::make(MaterialLaw law, const LawParameters& p) {
+  if (const LawParameterProblem problem = law_parameter_problem(law, p); !problem.empty())
+    throw Error("material: key '" + problem.key + "' " + problem.reason + " (law '" + to_string(law) + "')");
+  if (law_takes_young_poisson(law)) return make(law, p.young, p.poisson);
+  Material m;
+  m.kind = law;
+  const SmallStrainModuli small = small_strain_moduli(law, p);
+  m.lambda = small.lambda();
+  m.mu = small.shear;
+  m.mooney_rivlin = {p.c10, p.c01, p.kappa};
+  m.yeoh = {p.c10, p.c20, p.c30, p.kappa};
+  m.ogden = {p.mu, p.alpha, p.kappa};
+  m.veronda_westmann = {p.c1, p.c2, p.kappa};
+  return m;
+}
+
+struct PronySeries {
+  using Integration = PronyIntegration;
+  std::vector<double> alpha, tau;
+  Integration integration = Integration::ExactLinear;
+  bool deviatoric = false;
+
+  /// The weights as given in `convention`. Throws tmlab::Error for bad input (sizes, a negative
+  /// weight, a tau <= 0, instantaneous weights summing to >= 1).
+  static PronySeries make(PronyConvention convention, const std::vector<double>& weights,
+                          const std::vector<double>& taus, PronyIntegration integration,
+                          PronyRelaxation relaxation);
+  std::size_t size() const { return alpha.size(); }
+
+  /// Recursion factors (a_j, c_j) for a step dt >= 0.
+  void factors(std::size_t j, double dt, double& a, double& c) const {
+    const RecursionFactors f = recursion_factors(integration, dt, tau[j]);
+    a = f.a, c = f.c;
+  }
+  /// The relaxing stress S_r(E) and its tangent dS_r/dE.
+  SymTensor2 relaxing_stress(const Material& m, const SymTensor2& E) const {
+    if (!deviatoric) return m.stress(E);
+    return 2.0 * m.mu * (E - dealii::trace(E) / 3.0 * dealii::unit_symmetric_tensor<3>());
+  }
+  SymTensor4 relaxing_tangent(const Material& m, const SymTensor2& E) const {
+    if (!deviatoric) return m.tangent(E);
+    return 2.0 * m.mu * dealii::deviator_tensor<3>();
+  }
+};
+
+/// History of one quadrature point: the committed state (h_j^n, S_r^n) and the trial state of the
+/// step being solved; commit() makes the trial state the committed one (once per converged step).
+struct PronyState {
+  std::vector<SymTensor2> h, h_trial;
+  SymTensor2 s_r, s_r_trial;
+  void resize(std::size_t n) {
+    h.assign(n, SymTensor2());
+    h_trial.assign(n, SymTensor2());
+  }
+  void commit() {
+    h = h_trial;
+    s_r = s_r_trial;
+  }
+};
+
+/// Total stress of the trial state and its consistent tangent for step dt, updating state.h_trial.
+inline void prony_update(const Material& m, const PronySeries& p, const SymTensor2& E, double dt,
+                         PronyState& state, SymTensor2& S, SymTensor4* D) {
+  S = m.stress(E);
+  if (D) *D = m.tangent(E);
+  const SymTensor2 sr = p.relaxing_stress(m, E);
+  state.s_r_trial = sr;
+  double dfac = 0.0;
+  for (std::size_t j = 0; j < p.size(); ++j) {
+    double a = 0.0, c = 0.0;
+    p.factors(j, dt, a, c);
+    state.h_trial[j] = a * state.h[j] + c * (sr - state.s_r);
+    S += p.alpha[j] * state.h_trial[j];
+    dfac += p.alpha[j] * c;
+  }
+  if (D && dfac != 0.0) *D += dfac * p.relaxing_tangent(m, E);
+}
 
 }  // namespace tmlab::ref

@@ -100,6 +100,21 @@ std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions&
 
 namespace {
 
+/// The law of the run: the case's (material.law and its keys, the parameters the fast model uses),
+/// or the command line's override (--law stvk | neo_hookean | yeoh) of a case given by E and nu.
+Material reference_material(const CaseConfig& cfg, const ReferenceOptions& ro) {
+  try {
+    if (ro.law.empty()) return Material::make(cfg.material.law, cfg.material.parameters);
+    if (!law_takes_young_poisson(cfg.material.law))
+      throw Error("the law override '" + ro.law + "' needs a case given by E and nu (material.law is '" +
+                  to_string(cfg.material.law) + "')");
+    return Material::make(ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio,
+                          ro.yeoh_c30_ratio);
+  } catch (const Error& e) {
+    throw Error(cfg.file + ": " + e.what());
+  }
+}
+
 /// What the reference does not do: say so instead of silently doing something else.
 void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned n_ranks) {
   if (cfg.solver.type != SolverSpec::Type::Static)
@@ -116,11 +131,12 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
   if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
-  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && ro.law != "stvk")
+  const std::string law = ro.law.empty() ? to_string(cfg.material.law) : ro.law;
+  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && law != "stvk")
     throw Error(
         "reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law "
         "'" +
-        ro.law + "')");
+        law + "')");
   const bool use_ida = ro.time_integration == "ida";
   if (!use_ida && ro.time_integration != "fixed_step")
     throw Error("reference: time_integration must be 'fixed_step' or 'ida' (got '" + ro.time_integration +
@@ -369,8 +385,7 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
   check_supported(cfg, ro, n_ranks);
   mesh = load_case_mesh(cfg.mesh, report, repaired);
   build_coarse(*this);
-  material =
-      Material::make(ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio, ro.yeoh_c30_ratio);
+  material = reference_material(cfg, ro);
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled)
     prony = PronySeries::make(vs.convention, vs.weights, vs.taus, vs.integration, vs.relaxation);

@@ -17,8 +17,10 @@ namespace tmlab::ref {
 
 /// What the reference adds to a case: discretisation, constitutive law and solver choices.
 struct ReferenceOptions {
-  int degree = 1;              ///< polynomial degree: 1 or 2
-  std::string law = "stvk";    ///< stvk | neo_hookean | yeoh
+  int degree = 1;  ///< polynomial degree: 1 or 2
+  /// Empty: the case's law (material.law, docs/case-files.md). Otherwise an override of a case given by
+  /// E and nu: stvk | neo_hookean | yeoh (tmlab_reference --law).
+  std::string law;
   double newton_rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|) + atol (atol from the case)
   std::string linear_solver = "direct";  ///< direct (MUMPS through Trilinos Amesos) | cg_amg (CG + ML AMG)
   /// Yeoh law W = C10 (I1b-3) + C20 (I1b-3)^2 + C30 (I1b-3)^3 + kappa/2 (ln J)^2 with C10 = mu/2 and

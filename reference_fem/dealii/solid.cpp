@@ -49,6 +49,9 @@ Material Material::make(MaterialLaw law, double young, double poisson, double ye
   if (!(young > 0.0) || !std::isfinite(young))
     throw Error("material: E must be > 0 (got " + std::to_string(young) + ")");
   if (!(poisson > -1.0 && poisson < 0.5)) throw Error("material: nu must satisfy -1 < nu < 0.5");
+  if (law != Kind::StVK && law != Kind::NeoHookean && law != Kind::Yeoh)
+    throw Error("material: law '" + to_string(law) +
+                "' is not given by E and nu: give it with its own keys in the case's material section");
   Material m;
   m.lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
   m.mu = young / (2.0 * (1.0 + poisson));
@@ -65,7 +68,9 @@ Material Material::make(MaterialLaw law, double young, double poisson, double ye
 Material Material::make(const std::string& law, double young, double poisson, double yeoh_c20_ratio,
                         double yeoh_c30_ratio) {
   const std::optional<MaterialLaw> named = material_law_from_string(law);
-  if (!named) throw Error("reference: unknown law '" + law + "' (expected stvk, neo_hookean or yeoh)");
+  if (!named || (*named != Kind::StVK && *named != Kind::NeoHookean && *named != Kind::Yeoh))
+    throw Error("reference: the law override takes stvk, neo_hookean or yeoh (got '" + law +
+                "'); other laws are given in the case's material section");
   return make(*named, young, poisson, yeoh_c20_ratio, yeoh_c30_ratio);
 }
 

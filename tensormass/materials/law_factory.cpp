@@ -157,4 +157,27 @@ Law make_law(const std::string& name, const nlohmann::json& params, const std::s
   return *law;
 }
 
+Law make_law(MaterialLaw law, const LawParameters& p, const std::string& where) {
+  json params;
+  switch (law) {
+    case MaterialLaw::StVK:
+    case MaterialLaw::NeoHookean:
+      params = {{"young", p.young}, {"poisson", p.poisson}};
+      break;
+    case MaterialLaw::MooneyRivlin:
+      params = {{"c10", p.c10}, {"c01", p.c01}, {"kappa", p.kappa}};
+      break;
+    case MaterialLaw::Yeoh:
+      params = {{"c10", p.c10}, {"c20", p.c20}, {"c30", p.c30}, {"kappa", p.kappa}};
+      break;
+    case MaterialLaw::Ogden:
+      params = {{"mu", p.mu}, {"alpha", p.alpha}, {"kappa", p.kappa}};
+      break;
+    case MaterialLaw::VerondaWestmann:
+      params = {{"c1", p.c1}, {"c2", p.c2}, {"kappa", p.kappa}};
+      break;
+  }
+  return make_law(to_string(law), params, where);
+}
+
 }  // namespace tmlab::tm

@@ -11,6 +11,7 @@
 // unknown key is an error (a misspelt key must not silently fall back to a default).
 #pragma once
 
+#include "core/constitutive/material_law.hpp"
 #include "tensormass/materials/law.hpp"
 
 #include <nlohmann/json_fwd.hpp>
@@ -30,5 +31,12 @@ const std::vector<std::string>& law_names();
 /// names the key(s) and carries the constructor's reason).
 Law make_law(const std::string& name, const nlohmann::json& params, const std::string& where,
              const std::vector<std::string>& ignored = {"law"});
+
+/// Builds the law of a case file's material section in plain form (core/constitutive/
+/// material_law.hpp: the vocabulary core/config parses into, which knows nothing of tm::Law), through
+/// make_law above: stvk and neo_hookean from young/poisson, the others from their coefficients and
+/// kappa. The same names and the same constructors' checks, so a case file and a parameter object
+/// give the same law. `where` prefixes errors (e.g. "case.json: material").
+Law make_law(MaterialLaw law, const LawParameters& parameters, const std::string& where);
 
 }  // namespace tmlab::tm

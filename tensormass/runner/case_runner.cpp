@@ -19,12 +19,15 @@
 #include "tensormass/contact/contact_implicit.hpp"
 #include "tensormass/contact/contact_solver.hpp"
 #include "tensormass/contact/kinematic_contact.hpp"
+#include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/materials/law_factory.hpp"
 #include "tensormass/solvers/explicit_dynamics.hpp"
 #include "tensormass/solvers/implicit_dynamics.hpp"
 #include "tensormass/solvers/static_solver.hpp"
 #include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include <Eigen/Geometry>
@@ -118,16 +121,40 @@ class NewtonLog {
   std::vector<std::vector<double>> history_;
 };
 
-/// The elastic model a case asks for; `visco` is set when it is the viscoelastic one.
+/// The viscoelastic model of a run, whichever class it is: ViscoelasticStVK (the tensor-mass model,
+/// every Prony scheme) or ViscoelasticHyperelastic (any law on the F-based kernel, objective scheme);
+/// both keep the same committed-energy bookkeeping. Empty for an elastic run.
+struct Viscous {
+  const ViscoelasticStVK* stvk = nullptr;
+  const ViscoelasticHyperelastic* law = nullptr;
+  explicit operator bool() const { return stvk || law; }
+  /// f(model) on the one that is set (call only when set).
+  template <class F>
+  auto get(F&& f) const {
+    return stvk ? f(*stvk) : f(*law);
+  }
+};
+
+/// The elastic model a case asks for; `visco` is set when it is a viscoelastic one. tensor_mass and
+/// tl_oracle are St Venant-Kirchhoff models (the paper's and its oracle): another law is refused
+/// with the name of the model that runs it, hyperelastic_tl (HyperelasticTL, any law).
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
-                                         const StVenantKirchhoff& material, const ViscoelasticStVK*& visco) {
+                                         const StVenantKirchhoff& material, const Law& law, Viscous& visco) {
+  if (cfg.material.law != MaterialLaw::StVK && cfg.model != CaseModel::HyperelasticTL)
+    throw Error(
+        cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
+        (cfg.model == CaseModel::TensorMass ? "the paper's St Venant-Kirchhoff tensor-mass model"
+                                            : "the St Venant-Kirchhoff oracle") +
+        "; material.law '" + to_string(cfg.material.law) +
+        "' runs on the F-based kernel: set \"model\": \"hyperelastic_tl\" (or --model hyperelastic_tl)");
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled) {
-    // Prony-series viscoelasticity on the tensor-mass model; material.E is the long-term modulus.
+    // Prony-series viscoelasticity; the law's parameters (material.E for St VK) are the long-term ones.
     if (cfg.model == CaseModel::TlOracle)
       throw Error(
           cfg.file +
-          ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass for a viscoelastic material");
+          ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass or hyperelastic_tl for "
+          "a viscoelastic material");
     const PronySeries prony = vs.convention == PronyConvention::Instantaneous
                                   ? PronySeries::from_instantaneous(vs.weights, vs.taus)
                                   : PronySeries::from_long_term(vs.weights, vs.taus);
@@ -135,10 +162,22 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     vo.history = vs.history;
     vo.integration = vs.integration;
     vo.relaxation = vs.relaxation;
+    if (cfg.model == CaseModel::HyperelasticTL) {
+      // The objective scheme on any law (history pk2, relaxation full; the class refuses the rest).
+      std::unique_ptr<ViscoelasticHyperelastic> vm;
+      try {
+        vm = std::make_unique<ViscoelasticHyperelastic>(mesh, law, prony, vo);
+      } catch (const Error& e) {
+        throw Error(cfg.file + ": key 'material.viscoelastic' (model hyperelastic_tl): " + e.what());
+      }
+      visco.law = vm.get();
+      return vm;
+    }
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
-    visco = vm.get();
+    visco.stvk = vm.get();
     return vm;
   }
+  if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
   if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);
   return std::make_unique<TensorMassStVK>(mesh, material);
 }
@@ -190,7 +229,8 @@ struct Problem {
         mesh(load_case_mesh(cfg.mesh, report, repaired)),
         size((report.bbox_max - report.bbox_min).norm()),
         material(StVenantKirchhoff::from_young_poisson(cfg.material.young, cfg.material.poisson)),
-        model(make_model(cfg, mesh, material, visco)),
+        law(make_law(cfg.material.law, cfg.material.parameters, cfg.file + ": material")),
+        model(make_model(cfg, mesh, material, law, visco)),
         fields_kernel(mesh, material),
         node_mass(lumped_node_mass(mesh, cfg.material.density)),
         conditions(make_conditions(cfg, mesh)),
@@ -208,11 +248,12 @@ struct Problem {
   MeshReport report;
   int repaired = 0;
   Mesh mesh;
-  double size;  ///< bounding-box diagonal, m
-  StVenantKirchhoff material;
-  const ViscoelasticStVK* visco = nullptr;  ///< the model when it is viscoelastic
+  double size;                 ///< bounding-box diagonal, m
+  StVenantKirchhoff material;  ///< the small-strain St VK (the law of tensor_mass and tl_oracle)
+  Law law;                     ///< the case's law (hyperelastic_tl; St VK as `material` otherwise)
+  Viscous visco;               ///< the model when it is viscoelastic
   std::unique_ptr<ElasticModel> model;
-  TotalLagrangianStVK fields_kernel;  // per-tet F, E, S for output
+  TotalLagrangianStVK fields_kernel;  // per-tet F for output (geometry only: the stress is the law's)
   VecX node_mass;
   std::vector<DirichletCondition> conditions;
   ExternalLoads loads;
@@ -221,7 +262,8 @@ struct Problem {
 };
 
 /// The per-tet output fields of a displacement u: volume ratio J, Green strain E, Cauchy stress
-/// sigma = F S F^T / J and its von Mises value.
+/// sigma = F S F^T / J of the case's law (S = dW/dE; for a viscoelastic material the long-term
+/// stress) and its von Mises value.
 struct CellFields {
   std::vector<double> jratio, von_mises;
   std::vector<Eigen::Matrix3d> strain, cauchy;
@@ -234,7 +276,7 @@ CellFields cell_fields(const Problem& p, const VecX& u) {
   for (Index t2 = 0; t2 < p.mesh.num_tets(); ++t2) {
     const Eigen::Matrix3d F = p.fields_kernel.deformation_gradient(t2, u);
     const Eigen::Matrix3d E = 0.5 * (F.transpose() * F - Eigen::Matrix3d::Identity());
-    const Eigen::Matrix3d S = p.material.pk2_stress(E);
+    const Eigen::Matrix3d S = p.law.pk2_stress(E);
     const double J = F.determinant();
     const Eigen::Matrix3d sigma = F * S * F.transpose() / J;
     const Eigen::Matrix3d dev = sigma - sigma.trace() / 3.0 * Eigen::Matrix3d::Identity();
@@ -303,9 +345,8 @@ class StepRecorder {
     if (!(jmin > 0.0)) {
       std::ostringstream m;
       m << p_.mesh.tet_name(jtet) << " inverted at t = " << t << " (step " << step << ", volume ratio "
-        << jmin
-        << "): the load is beyond what the St Venant-Kirchhoff tet mesh survives; reduce the load or "
-           "refine the mesh";
+        << jmin << "): the load is beyond what the " << p_.law.name()
+        << " tet mesh survives; reduce the load or refine the mesh";
       throw Error(m.str());
     }
     p_.model->internal_force(u, fint_);
@@ -327,14 +368,19 @@ class StepRecorder {
     // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
     // the Maxwell-branch energies of the committed state (the same definition as the deal.II
     // reference); dissipation is the model's own count.
-    const ViscoelasticStVK* visco = p_.visco;
-    s.elastic_energy =
-        visco ? visco->committed_elastic_energy() + visco->committed_branch_energy() : p_.model->energy(u);
-    if (visco)
-      s.extras = {{series_names::kSpringEnergy, "J", visco->committed_elastic_energy()},
-                  {series_names::kBranchEnergy, "J", visco->committed_branch_energy()},
-                  {series_names::kDissipatedEnergy, "J", visco->total_dissipation()},
-                  {series_names::kStepDissipation, "J", visco->step_dissipation()}};
+    const Viscous& visco = p_.visco;
+    if (visco) {
+      visco.get([&](const auto& m) {
+        s.elastic_energy = m.committed_elastic_energy() + m.committed_branch_energy();
+        s.extras = {{series_names::kSpringEnergy, "J", m.committed_elastic_energy()},
+                    {series_names::kBranchEnergy, "J", m.committed_branch_energy()},
+                    {series_names::kDissipatedEnergy, "J", m.total_dissipation()},
+                    {series_names::kStepDissipation, "J", m.step_dissipation()}};
+        return 0;
+      });
+    } else {
+      s.elastic_energy = p_.model->energy(u);
+    }
     s.extras.push_back({series_names::kExternalWork, "J", external_work_});
     s.kinetic_energy = 0.5 * v.dot(p_.system.mass().cwiseProduct(v));
     s.min_volume_ratio = jmin;
@@ -976,6 +1022,19 @@ std::string plot(const Problem& p, const RunOptions& opt, const RunOutput& out, 
   return "failed (see plots.log)";
 }
 
+/// summary.json's material block: the law, its parameters as the case file gives them (the manifest's
+/// effective configuration), the density, and the small-strain E, nu, lambda, mu of the law.
+nlohmann::json material_summary(const Problem& p) {
+  nlohmann::json m = effective_case_json(p.cfg)["material"];
+  m.erase("viscoelastic");
+  const LameConstants l = p.law.small_strain();
+  m["E"] = p.cfg.material.young;
+  m["nu"] = p.cfg.material.poisson;
+  m["lambda"] = l.lambda;
+  m["mu"] = l.mu;
+  return m;
+}
+
 /// summary.json: the case, mesh, material, solver, the recorder's common blocks, the energy balance
 /// (work in = stored + kinetic + dissipated) and the viscoelastic settings.
 nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohmann::json& solver_info,
@@ -990,13 +1049,7 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
                               {"tets", p.mesh.num_tets()},
                               {"volume_m3", p.report.total_volume},
                               {"orientation_repaired", p.repaired}}},
-                            {"material",
-                             {{"law", "stvk"},
-                              {"E", cfg.material.young},
-                              {"nu", cfg.material.poisson},
-                              {"density", cfg.material.density},
-                              {"lambda", p.material.lambda},
-                              {"mu", p.material.mu}}},
+                            {"material", material_summary(p)},
                             {"solver", solver_info},
                             {"plots", plot_status},
                             {"run_seconds", wall}};
@@ -1008,7 +1061,7 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
   const SeriesTable& table = rec.recorder().table();
   const double stored = table.last(series_names::kElasticEnergy);
   const double kinetic = table.last(series_names::kKineticEnergy);
-  const double dissipated = p.visco ? p.visco->total_dissipation() : 0.0;
+  const double dissipated = p.visco ? p.visco.get([](const auto& m) { return m.total_dissipation(); }) : 0.0;
   const double work = rec.external_work();
   summary["energy"] = {{"external_work_J", work},
                        {"stored_J", stored},
@@ -1017,10 +1070,11 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
                        {"balance_residual_J", work - stored - kinetic - dissipated}};
   if (p.visco) {
     const ViscoelasticSpec& vs = cfg.material.viscoelastic;
-    summary["viscoelastic"] = {{"history", to_string(vs.history)},
-                               {"integration", to_string(vs.integration)},
-                               {"relaxation", to_string(vs.relaxation)},
-                               {"prony_long_term", p.visco->prony().to_json()}};
+    summary["viscoelastic"] = {
+        {"history", to_string(vs.history)},
+        {"integration", to_string(vs.integration)},
+        {"relaxation", to_string(vs.relaxation)},
+        {"prony_long_term", p.visco.get([](const auto& m) { return m.prony().to_json(); })}};
   }
   return summary;
 }

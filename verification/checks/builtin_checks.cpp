@@ -9,6 +9,7 @@ void register_builtin_checks(CheckRegistry& registry) {
   register_model_checks(registry);
   register_sundials_checks(registry);
   register_contact_checks(registry);
+  register_law_checks(registry);
   register_reference_checks(registry);
   register_fit_checks(registry);
 }

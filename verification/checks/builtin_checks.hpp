@@ -14,6 +14,7 @@ void register_analytic_checks(CheckRegistry& registry);
 void register_model_checks(CheckRegistry& registry);
 void register_sundials_checks(CheckRegistry& registry);
 void register_contact_checks(CheckRegistry& registry);
+void register_law_checks(CheckRegistry& registry);        ///< laws beyond St VK (law_checks.cpp)
 void register_reference_checks(CheckRegistry& registry);  ///< no-op without deal.II
 void register_fit_checks(CheckRegistry& registry);        ///< identification (calibration/fit)
 

@@ -87,9 +87,10 @@ void quiet_output(CaseConfig& c) {
   c.output.plots = false;
 }
 
-/// The tensor-mass run of a case (model forced to tensor_mass).
+/// The fast model's run of a case: tensor_mass for St VK (the paper's model), hyperelastic_tl (the
+/// F-based kernel) for the other laws, which tensor_mass does not have.
 tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
-  c.model = CaseModel::TensorMass;
+  c.model = c.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
   return tm::run_case(c, run_options(ctx));
 }
 

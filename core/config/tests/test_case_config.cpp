@@ -126,8 +126,10 @@ TEST_F(CaseConfigTest, BadChoicesNameTheAcceptedValues) {
     const char* message;
   };
   const Bad cases[] = {
-      {"model", "fem", "key 'model' must be 'tensor_mass' or 'tl_oracle' (got 'fem')"},
-      {"law", "ogden", "key 'material.law' must be 'stvk' (St Venant-Kirchhoff; got 'ogden')"},
+      {"model", "fem", "key 'model' must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl' (got 'fem')"},
+      {"law", "hooke",
+       "key 'material.law' must be 'stvk', 'neo_hookean', 'mooney_rivlin', 'yeoh', 'ogden' or "
+       "'veronda_westmann' (got 'hooke')"},
       {"history", "stress",
        "key 'material.viscoelastic.history' must be 'nodal_force' or 'pk2' (got 'stress')"},
       {"integration", "trapezoid",
@@ -197,6 +199,88 @@ TEST_F(CaseConfigTest, EffectiveConfigHasEveryDefaultAndRoundTrips) {
   EXPECT_EQ(d["solver"]["scheme"], "newmark");
   EXPECT_FALSE(d["solver"].contains("steps"));
   EXPECT_EQ(effective_case_json(parse_case(d, "effective.json", {dir_.string()})), d);
+}
+
+TEST_F(CaseConfigTest, EveryLawWithItsOwnKeys) {
+  struct Case {
+    nlohmann::json material;
+    MaterialLaw law;
+    double shear;  // small-strain shear modulus of the parameters
+  };
+  const Case cases[] = {
+      {{{"law", "neo_hookean"}, {"E", 2600.0}, {"nu", 0.3}}, MaterialLaw::NeoHookean, 1000.0},
+      {{{"law", "mooney_rivlin"}, {"c10", 400.0}, {"c01", 100.0}, {"kappa", 1e5}},
+       MaterialLaw::MooneyRivlin,
+       1000.0},
+      {{{"law", "yeoh"}, {"c10", 500.0}, {"c20", 50.0}, {"kappa", 1e5}}, MaterialLaw::Yeoh, 1000.0},
+      {{{"law", "ogden"}, {"mu", {600.0, -40.0}}, {"alpha", {2.0, -5.0}}, {"kappa", 1e5}},
+       MaterialLaw::Ogden,
+       700.0},
+      {{{"law", "veronda_westmann"}, {"c1", 250.0}, {"c2", 4.0}, {"kappa", 1e5}},
+       MaterialLaw::VerondaWestmann,
+       1000.0},
+  };
+  for (const Case& k : cases) {
+    auto j = minimal();
+    j["material"] = k.material;
+    j["material"]["density"] = 1000.0;
+    const CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+    EXPECT_EQ(c.material.law, k.law) << k.material.dump();
+    const SmallStrainModuli m = small_strain_moduli(c.material.law, c.material.parameters);
+    EXPECT_NEAR(m.shear, k.shear, 1e-9 * k.shear) << k.material.dump();
+    // E and nu are the small-strain ones: E / (2 (1 + nu)) is the shear modulus.
+    EXPECT_NEAR(c.material.young / (2.0 * (1.0 + c.material.poisson)), k.shear, 1e-9 * k.shear);
+    // The effective configuration round-trips.
+    const nlohmann::json e = effective_case_json(c);
+    EXPECT_EQ(e["material"]["law"], to_string(k.law));
+    EXPECT_EQ(effective_case_json(parse_case(e, "effective.json", {dir_.string()})), e) << e.dump();
+  }
+  // nu instead of kappa: kappa = 2 G (1 + nu) / (3 (1 - 2 nu)), and the small-strain nu is that nu.
+  auto j = minimal();
+  j["material"] = {{"law", "yeoh"}, {"c10", 500.0}, {"nu", 0.45}, {"density", 1000.0}};
+  const CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+  EXPECT_NEAR(c.material.parameters.kappa, 2.0 * 1000.0 * 1.45 / (3.0 * 0.1), 1e-8);
+  EXPECT_NEAR(c.material.poisson, 0.45, 1e-14);
+  EXPECT_EQ(c.material.parameters.c20, 0.0);
+}
+
+TEST_F(CaseConfigTest, BadLawParametersNameFileAndKey) {
+  struct Bad {
+    nlohmann::json material;
+    const char* message;
+  };
+  const Bad cases[] = {
+      {{{"law", "mooney_rivlin"}, {"E", 1000.0}, {"nu", 0.3}},
+       "case.json: key 'material.E' is not a parameter of law 'mooney_rivlin' (its keys: c10, c01, kappa, "
+       "nu"},
+      {{{"law", "mooney_rivlin"}, {"c10", 400.0}, {"kappa", 1e5}},
+       "case.json: key 'material.c01' is required"},
+      {{{"law", "yeoh"}, {"c10", 400.0}},
+       "key 'material.kappa' or 'nu': law 'yeoh' needs exactly one of the bulk modulus 'kappa'"},
+      {{{"law", "yeoh"}, {"c10", 400.0}, {"kappa", 1e5}, {"nu", 0.4}}, "needs exactly one of"},
+      {{{"law", "yeoh"}, {"c10", -400.0}, {"kappa", 1e5}},
+       "key 'material.c10' must be > 0 (got -400) (law 'yeoh')"},
+      {{{"law", "ogden"}, {"mu", {100.0, 50.0}}, {"alpha", {2.0, -5.0}}, {"kappa", 1e5}},
+       "case.json: key 'material.mu' violates the Ogden stability condition sum_p mu_p alpha_p > 0"},
+      {{{"law", "ogden"}, {"mu", {100.0}}, {"alpha", {2.0, 1.0}}, {"kappa", 1e5}},
+       "key 'material.alpha' must have as many terms as mu"},
+      {{{"law", "ogden"}, {"mu", {100.0}}, {"alpha", {0.0}}, {"nu", 0.4}}, "key 'material.alpha' term 1"},
+      {{{"law", "veronda_westmann"}, {"c1", 100.0}, {"c2", 2.0}, {"kappa", 0.0}},
+       "key 'material.kappa' must be > 0"},
+      {{{"law", "veronda_westmann"}, {"c1", 100.0}, {"c2", 2.0}, {"nu", 0.5}},
+       "key 'material.nu' must satisfy"},
+      {{{"law", "neo_hookean"}, {"E", 1000.0}, {"nu", 0.3}, {"kappa", 1e5}},
+       "key 'material.kappa' is not a parameter of law 'neo_hookean'"},
+      // A key of no law is an unknown key, as anywhere in a case file.
+      {{{"law", "ogden"}, {"mu", {100.0}}, {"alpha", {2.0}}, {"kappa", 1e5}, {"colour", 1}},
+       "case.json: unknown key 'material.colour'"},
+  };
+  for (const Bad& b : cases) {
+    auto j = minimal();
+    j["material"] = b.material;
+    j["material"]["density"] = 1000.0;
+    EXPECT_NE(error_of(j).find(b.message), std::string::npos) << b.material.dump() << "\n" << error_of(j);
+  }
 }
 
 }  // namespace

@@ -280,3 +280,36 @@ TEST(ReferenceMaterials, FastModelLawsEqualTheReferenceLawsPointwise) {
   expect_same_law(OgdenLaw{{2.0, -0.5}, {0.5, -3.5}, 3.0}, tm::Ogden({2.0, -0.5}, {0.5, -3.5}, 3.0),
                   "ogden 2");
 }
+
+TEST(ReferenceMaterials, EveryLawFromTheCaseFileParameters) {
+  // Material::make(law, parameters): the case file's plain parameters (core/constitutive) build
+  // every law; the wrapper dispatches to it (S and D against differences of W and S through the
+  // wrapper) and its small-strain Lame constants are the parameters' (D(0) = lambda I(x)I + 2 mu II).
+  using tmlab::LawParameters, tmlab::MaterialLaw, tmlab::SmallStrainModuli;
+  LawParameters p;
+  p.young = 5000.0, p.poisson = 0.45;
+  p.c10 = 700.0, p.c01 = 300.0, p.c20 = 100.0, p.c30 = 10.0, p.c1 = 200.0, p.c2 = 5.0;
+  p.mu = {630.0, 1.2, -10.0}, p.alpha = {1.3, 5.0, -2.0}, p.kappa = 2e4;
+  std::mt19937 rng(7);
+  for (const char* name : tmlab::kMaterialLawNames) {
+    const MaterialLaw law = tmlab::material_law_from_string(name).value();
+    const Material m = Material::make(law, p);
+    EXPECT_EQ(m.name(), name);
+    for (int k = 0; k < 5; ++k) check_derivatives(m, random_strain(rng, 0.15), rng);
+    const SmallStrainModuli s = tmlab::small_strain_moduli(law, p);
+    const Material lame = Material::make(MaterialLaw::StVK, s.young(), s.poisson());
+    const SymTensor4 D = m.tangent(SymTensor2()), D0 = lame.tangent(SymTensor2());
+    EXPECT_LE((D - D0).norm(), 1e-10 * D0.norm()) << name;
+    EXPECT_NEAR(m.mu, s.shear, 1e-12 * s.shear) << name;
+  }
+  // Refused parameters name the key; the E/nu override refuses the laws that have their own keys.
+  p.mu = {100.0, 50.0}, p.alpha = {2.0, -5.0};
+  try {
+    Material::make(MaterialLaw::Ogden, p);
+    FAIL() << "unstable Ogden accepted";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("key 'mu'"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(Material::make("ogden", 5000.0, 0.45), tmlab::Error);
+  EXPECT_THROW(Material::make(MaterialLaw::MooneyRivlin, 5000.0, 0.45), tmlab::Error);
+}

@@ -83,5 +83,45 @@ TEST(LawFactory, RefusedParametersNameTheCaseKeys) {
             std::string::npos);
 }
 
+TEST(LawFactory, PlainParametersOfTheCaseFileGiveTheSameLaw) {
+  // One vocabulary: core's law names are the factory's, in the same order.
+  ASSERT_EQ(law_names().size(), std::size(kMaterialLawNames));
+  for (std::size_t k = 0; k < law_names().size(); ++k) EXPECT_EQ(law_names()[k], kMaterialLawNames[k]);
+  LawParameters p;
+  p.young = 3000.0, p.poisson = 0.45;
+  p.c10 = 400.0, p.c01 = 100.0, p.c20 = 30.0, p.c30 = 5.0, p.c1 = 200.0, p.c2 = 2.5;
+  p.mu = {600.0, -40.0}, p.alpha = {2.0, -5.0}, p.kappa = 2e4;
+  const Mat3 E = (Mat3() << 0.05, 0.01, -0.02, 0.01, -0.03, 0.015, -0.02, 0.015, 0.02).finished();
+  for (const char* name : kMaterialLawNames) {
+    const MaterialLaw law = material_law_from_string(name).value();
+    const Law plain = make_law(law, p, "case.json: material");
+    EXPECT_EQ(plain.name(), name);
+    // The small-strain moduli core computes are the law's.
+    const SmallStrainModuli m = small_strain_moduli(law, p);
+    EXPECT_NEAR(plain.small_strain().mu, m.shear, 1e-12 * m.shear) << name;
+    EXPECT_NEAR(plain.small_strain().lambda, m.lambda(), 1e-9 * m.bulk) << name;
+    // And the law is the one the JSON parameters build.
+    json j;
+    if (law_takes_young_poisson(law))
+      j = {{"young", p.young}, {"poisson", p.poisson}};
+    else if (law == MaterialLaw::MooneyRivlin)
+      j = {{"c10", p.c10}, {"c01", p.c01}, {"kappa", p.kappa}};
+    else if (law == MaterialLaw::Yeoh)
+      j = {{"c10", p.c10}, {"c20", p.c20}, {"c30", p.c30}, {"kappa", p.kappa}};
+    else if (law == MaterialLaw::Ogden)
+      j = {{"mu", p.mu}, {"alpha", p.alpha}, {"kappa", p.kappa}};
+    else
+      j = {{"c1", p.c1}, {"c2", p.c2}, {"kappa", p.kappa}};
+    EXPECT_EQ(plain.pk2_stress(E), make_law(name, j, "m").pk2_stress(E)) << name;
+  }
+  p.mu = {600.0, 40.0}, p.alpha = {2.0, -50.0};  // sum mu_p alpha_p = 1200 - 2000 < 0
+  try {
+    make_law(MaterialLaw::Ogden, p, "case.json: material");
+    FAIL() << "expected the stability error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("case.json: material (law 'ogden'"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace tmlab::tm
