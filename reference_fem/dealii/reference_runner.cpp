@@ -92,9 +92,9 @@ std::vector<unsigned> dof_entity_vertices(const DoFHandler<3>::active_cell_itera
 std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions& ro) {
   if (!ro.name_suffix.empty()) return cfg.name + ro.name_suffix;
   std::string s = cfg.name + "-reference";
-  if (ro.cells == "hex") s += "-hex";
+  if (ro.cells == CellType::Hex) s += "-hex";
   if (ro.degree == 2) s += "-p2";
-  if (ro.time_integration == "ida") s += "-ida";
+  if (ro.time_integration == TimeIntegration::Ida) s += "-ida";
   return s;
 }
 
@@ -115,16 +115,12 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
         "nodal_force history is not objective (docs/theory/seed-errata.md) and has no continuum counterpart");
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
-  if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
-  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && ro.law != "stvk")
+  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && ro.law != MaterialLaw::StVK)
     throw Error(
         "reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law "
         "'" +
-        ro.law + "')");
-  const bool use_ida = ro.time_integration == "ida";
-  if (!use_ida && ro.time_integration != "fixed_step")
-    throw Error("reference: time_integration must be 'fixed_step' or 'ida' (got '" + ro.time_integration +
-                "')");
+        to_string(ro.law) + "')");
+  const bool use_ida = ro.time_integration == TimeIntegration::Ida;
   if (use_ida) {
     if (!vs.enabled)
       throw Error(cfg.file +
@@ -135,11 +131,11 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
                   std::to_string(n_ranks) + "); run it without mpirun or with the serial option");
     if (!(ro.ida_rtol > 0.0) || !(ro.ida_atol >= 0.0))
       throw Error("reference: ida_rtol must be > 0 and ida_atol >= 0");
-    if (ro.linear_solver != "direct" && ro.linear_solver != "direct_klu")
+    if (ro.linear_solver == LinearSolver::CgAmg)
       throw Error(
           "reference: the IDA time integration needs a direct linear solver ('direct' or "
           "'direct_klu'; got '" +
-          ro.linear_solver + "')");
+          to_string(ro.linear_solver) + "')");
   }
   for (const auto& l : cfg.loads)
     if (l.type == LoadSpec::Type::Pressure && l.follower)
@@ -365,7 +361,7 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
       comm(communicator),
       rank(Utilities::MPI::this_mpi_process(comm)),
       n_ranks(Utilities::MPI::n_mpi_processes(comm)),
-      hex(ro.cells == "hex") {
+      hex(ro.cells == CellType::Hex) {
   check_supported(cfg, ro, n_ranks);
   mesh = load_case_mesh(cfg.mesh, report, repaired);
   build_coarse(*this);
@@ -428,13 +424,13 @@ void write_inputs(const RunOutput& out, const Problem& p, const RunOptions& opt)
   mi.command_line = opt.command_line;
   mi.config = effective_case_json(p.cfg);
   mi.config["reference"] = {{"degree", ro.degree},
-                            {"law", ro.law},
-                            {"cells", ro.cells},
-                            {"linear_solver", ro.linear_solver},
+                            {"law", to_string(ro.law)},
+                            {"cells", to_string(ro.cells)},
+                            {"linear_solver", to_string(ro.linear_solver)},
                             {"newton_rtol", ro.newton_rtol},
                             {"mpi_ranks", p.n_ranks},
-                            {"time_integration", ro.time_integration}};
-  if (ro.time_integration == "ida") {
+                            {"time_integration", to_string(ro.time_integration)}};
+  if (ro.time_integration == TimeIntegration::Ida) {
     mi.config["reference"]["ida_rtol"] = ro.ida_rtol;
     mi.config["reference"]["ida_atol"] = ro.ida_atol;
   }
@@ -685,13 +681,13 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                               {"newton_iterations", r.newton},
                               {"linear_iterations", r.linear},
                               {"cutbacks", r.cutbacks},
-                              {"linear_solver", ro.linear_solver},
+                              {"linear_solver", to_string(ro.linear_solver)},
                               {"newton_rtol", ro.newton_rtol},
                               {"assembly_seconds", r.assembly_seconds},
                               {"solve_seconds", r.solve_seconds},
                               {"newton_seconds", r.newton_seconds},
                               {"steps", r.per_step},
-                              {"time_integration", ro.time_integration}}},
+                              {"time_integration", to_string(ro.time_integration)}}},
                             {"plots", "skipped"},
                             {"run_seconds", wall}};
   summary.update(rec.summary_blocks());
@@ -704,7 +700,7 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                                            {"integration", to_string(vs.integration)},
                                            {"relaxation", to_string(vs.relaxation)},
                                            {"history", "pk2"}};
-  if (ro.time_integration == "ida") summary["solver"]["ida"] = r.ida;
+  if (ro.time_integration == TimeIntegration::Ida) summary["solver"]["ida"] = r.ida;
   return summary;
 }
 
@@ -733,8 +729,9 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
     if (log)
       *log << "reference: " << cfg.name << ", " << p.material.name() << ", " << (p.hex ? "Q" : "P")
            << ro.degree << ", " << p.solid->n_dofs() << " DoFs, " << p.n_ranks << " rank(s), "
-           << ro.linear_solver << " solver\n";
-    const SteppingReport r = ro.time_integration == "ida" ? step_ida(p, rec, log) : step_fixed(p, rec);
+           << to_string(ro.linear_solver) << " solver\n";
+    const SteppingReport r =
+        ro.time_integration == TimeIntegration::Ida ? step_ida(p, rec, log) : step_fixed(p, rec);
     nlohmann::json summary;
     if (root) {
       rec.close(*out);

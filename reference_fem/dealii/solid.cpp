@@ -438,17 +438,14 @@ void Solid::set_history(
 
 int Solid::linear_solve(TrilinosWrappers::MPI::Vector& du, const TrilinosWrappers::MPI::Vector& rhs) {
   du = 0.0;
-  if (newton_.linear_solver == "direct" || newton_.linear_solver == "direct_klu") {
+  if (newton_.linear_solver != LinearSolver::CgAmg) {
     SolverControl control(1, 0.0);
     TrilinosWrappers::SolverDirect::AdditionalData data(
-        false, newton_.linear_solver == "direct" ? "Amesos_Mumps" : "Amesos_Klu");
+        false, newton_.linear_solver == LinearSolver::Direct ? "Amesos_Mumps" : "Amesos_Klu");
     TrilinosWrappers::SolverDirect solver(control, data);
     solver.solve(K_, du, rhs);
     return 0;
   }
-  if (newton_.linear_solver != "cg_amg")
-    throw Error("reference: linear_solver must be 'direct', 'direct_klu' or 'cg_amg' (got '" +
-                newton_.linear_solver + "')");
   TrilinosWrappers::PreconditionAMG amg;
   TrilinosWrappers::PreconditionAMG::AdditionalData ad;
   ad.elliptic = true;

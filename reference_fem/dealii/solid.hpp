@@ -17,6 +17,7 @@
 #include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
 #include "reference_fem/dealii/materials.hpp"
+#include "reference_fem/dealii/reference_options.hpp"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature.h>
@@ -57,10 +58,10 @@ struct NewtonParameters {
   /// sufficient decrease of |R_free| only; None: full steps (core/config/line_search.hpp).
   LineSearch line_search = LineSearch::Energy;
   int max_backtracks = 12;
-  double stagnation_tol = 1e-13;         ///< relative step below which a stalled |R| is round-off
-  int max_cutbacks = 8;                  ///< halvings of a load increment whose Newton solve fails
-  std::string linear_solver = "direct";  ///< direct | cg_amg
-  double cg_rtol = 1e-8;                 ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
+  double stagnation_tol = 1e-13;  ///< relative step below which a stalled |R| is round-off
+  int max_cutbacks = 8;           ///< halvings of a load increment whose Newton solve fails
+  LinearSolver linear_solver = LinearSolver::Direct;  ///< direct | direct_klu | cg_amg
+  double cg_rtol = 1e-8;  ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
 };
 
 /// Per-step statistics, for the summary and docs/performance.md.

@@ -96,7 +96,7 @@ tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
 /// The deal.II run of a case: serial (the harness may run under mpirun; the comparisons are serial
 /// runs), Newton tolerance of the case, result directory <case><suffix>.
 tmlab::RunResult run_reference(const CheckContext& ctx, const CaseConfig& c, int degree,
-                               const std::string& solver, const std::string& suffix) {
+                               ref::LinearSolver solver, const std::string& suffix) {
   ref::ReferenceOptions o;
   o.degree = degree;
   o.linear_solver = solver;
@@ -117,11 +117,13 @@ Eigen::VectorXd final_displacement(const std::string& dir) {
   return out;
 }
 
-std::string require_linear_solver(ConfigReader& p) {
+ref::LinearSolver require_linear_solver(ConfigReader& p) {
   const std::string s = p.get<std::string>("linear_solver", "direct");
-  if (s != "direct" && s != "direct_klu" && s != "cg_amg")
-    throw p.error("linear_solver", "must be direct, direct_klu or cg_amg (got '" + s + "')");
-  return s;
+  try {
+    return ref::parse_linear_solver(s);
+  } catch (const Error& e) {
+    throw p.error("linear_solver", e.what());
+  }
 }
 
 // ------------------------------------------------------------------ reference.same_mesh
@@ -143,7 +145,7 @@ Measurements same_mesh(const CheckContext& ctx) {
     const tmlab::RunResult a = run_tensor_mass(ctx, c);
     const double t_tm = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    const tmlab::RunResult b = run_reference(ctx, c, 1, "direct", "-reference");
+    const tmlab::RunResult b = run_reference(ctx, c, 1, ref::LinearSolver::Direct, "-reference");
     const double t_ref = seconds_since(t1);
     const nlohmann::json cmp = compare_results(a.dir, b.dir);
     const double du = cmp.at("rel_diff_displacement").get<double>();
@@ -306,7 +308,7 @@ Measurements p1_vs_p2(const CheckContext& ctx) {
   const std::vector<int> levels = read_levels(p, "levels");
   const int ref_level = p.require<int>("reference_level");
   const int check_level = p.require<int>("reference_check_level");
-  const std::string solver = require_linear_solver(p);
+  const ref::LinearSolver solver = require_linear_solver(p);
   p.finish();
   // Every level is a multiple of the coarsest, so the coarsest mesh's vertices are vertices of all
   // meshes; P1 levels finer than the reference are compared at the reference's vertices.
@@ -478,7 +480,7 @@ Measurements elastica(const CheckContext& ctx) {
     const auto t1 = std::chrono::steady_clock::now();
     ref::ReferenceOptions o;
     o.degree = 2;
-    o.cells = "hex";
+    o.cells = ref::CellType::Hex;
     o.hex_subdivisions = {1u, 1u, unsigned(n)};
     o.newton_rtol = 1e-10;
     o.serial = true;
@@ -528,7 +530,7 @@ Measurements locking(const CheckContext& ctx) {
   const int level = p.require<int>("level");
   const int fine = p.require<int>("p2_check_level");
   const auto nus = p.require<std::vector<double>>("poisson_ratios");
-  const std::string solver = require_linear_solver(p);
+  const ref::LinearSolver solver = require_linear_solver(p);
   p.finish();
   if (level < 1) throw p.error("level", "must be >= 1");
   if (fine <= level || fine % level != 0)
