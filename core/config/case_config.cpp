@@ -334,6 +334,7 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
   c.loads = parse_loads(root);
   c.solver = parse_solver(root);
   c.output = parse_output(root);
+  if (root.has("contact")) c.contact = parse_contact_spec(root.raw("contact"), where, "contact");
   root.finish();
   return c;
 }
@@ -441,6 +442,7 @@ nlohmann::json effective_case_json(const CaseConfig& c) {
   doc["loads"] = loads;
   doc["solver"] = solver_json(c.solver);
   doc["output"] = output_json(c.output);
+  if (c.contact.enabled) doc["contact"] = contact_spec_json(c.contact);
   return doc;
 }
 

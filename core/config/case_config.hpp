@@ -3,6 +3,7 @@
 // and the deal.II reference both build their problem from it. docs/case-files.md is the reference.
 #pragma once
 
+#include "core/config/contact_spec.hpp"
 #include "core/config/implicit_scheme.hpp"
 #include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
@@ -113,6 +114,7 @@ struct CaseConfig {
   std::vector<LoadSpec> loads;
   SolverSpec solver;
   OutputSpec output;
+  ContactSpec contact;  ///< rigid bodies pressed into the sample (core/config/contact_spec.hpp)
 };
 
 /// Parses a case document. `where` names it in messages; relative mesh paths are looked up in

@@ -1,21 +1,10 @@
-// The `contact` section of a case file (docs/contact.md), parsed and validated into the plain
-// structs of the contact module. The case-file parser calls parse_contact_section() on the section;
-// errors name the file and the full key ("case.json: key 'contact.bodies[1].radius': must be > 0").
-//
-//   "contact": {
-//     "method": "augmented_lagrangian" | "penalty",      (default augmented_lagrangian)
-//     "stiffness_factor": 100, "stiffness": 0,            (eps; see ContactOptions)
-//     "gap_tol": 0, "initial_gap_tol": 0, "search_margin": 0, "max_outer_iterations": 30,
-//     "bodies": [
-//       {"name": "indenter", "type": "sphere", "center": [x,y,z], "radius": R, "axis": [0,0,-1],
-//        "mode": "frictionless" | "bonded", "displacement": [dx,dy,dz], "function": {time function}},
-//       {"type": "punch", "center": [..] (face centre), "axis": [..] (into the sample), "radius": R,
-//        "edge_radius": 0, ...},
-//       {"type": "plane", "point": [..], "normal": [..] (towards the sample), ...}
-//     ]
-//   }
+// The case file's `contact` section in the contact module's terms. The section itself is parsed
+// into the model-agnostic ContactSpec by core/config (contact_spec.hpp), which the deal.II reference
+// reads too; contact_settings() converts that spec into the RigidBody list and ContactOptions of
+// the fast model's contact solver (docs/contact.md).
 #pragma once
 
+#include "core/config/contact_spec.hpp"
 #include "tensormass/contact/contact_solver.hpp"
 #include "tensormass/contact/rigid_body.hpp"
 
@@ -29,15 +18,14 @@ namespace tmlab::tm {
 struct ContactSettings {
   ContactOptions options;
   std::vector<RigidBody> bodies;
+  std::vector<std::string> keys;  ///< each body's case-file key ("contact.bodies[0]"), for messages
 };
 
-/// Parses the list of bodies (`where` names the file, `path` the key of the list). Unknown keys,
-/// missing keys, wrong types, impossible values and duplicate names throw tmlab::Error naming the
-/// key.
-std::vector<RigidBody> parse_contact_bodies(const nlohmann::json& bodies, const std::string& where,
-                                            const std::string& path = "contact.bodies");
+/// The bodies and options of a parsed spec (validated again by RigidBody::validate()).
+ContactSettings contact_settings(const ContactSpec& spec);
 
-/// Parses the whole section (options and bodies); at least one body is required.
+/// parse_contact_spec + contact_settings: the section at key `path` of file `where`. Errors name
+/// the file and the key.
 ContactSettings parse_contact_section(const nlohmann::json& section, const std::string& where,
                                       const std::string& path = "contact");
 

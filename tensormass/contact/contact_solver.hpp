@@ -56,6 +56,9 @@ struct ContactOptions {
   double stiffness = 0.0;        ///< > 0: eps in N/m, overriding stiffness_factor
   double gap_tol = 0.0;          ///< metres; 0: 1e-8 * mean boundary edge length
   double initial_gap_tol = 0.0;  ///< penetration refused at t0, metres; 0: gap_tol
+  /// A body whose smallest gap to the sample at t0 exceeds this is refused (it would not touch),
+  /// metres; 0: 1e-3 * the mesh's bounding-box diagonal (checked by the case runner).
+  double max_initial_gap = 0.0;
   int max_outer_iterations = 30;
   double search_margin = 0.0;  ///< metres; 0: max(2 * body travel in the increment, 2 * mean edge)
 };

@@ -1,5 +1,5 @@
-// The `contact` section parser: a full section round-trips into the structs; every kind of bad
-// input is refused with an error naming the key.
+// The `contact` section in the contact module's terms (core parses it, contact_settings converts):
+// a full section converts into the bodies and options; bad input is refused naming the key.
 #include "tensormass/contact/contact_config.hpp"
 
 #include "core/base/error.hpp"
@@ -48,6 +48,8 @@ TEST(ContactConfig, ParsesAFullSection) {
   EXPECT_EQ(s.bodies[1].edge_radius, 0.0005);
   EXPECT_EQ(s.bodies[2].mode, ContactMode::Bonded);
   EXPECT_EQ(s.bodies[2].shape, RigidShape::Plane);
+  ASSERT_EQ(s.keys.size(), 3u);
+  EXPECT_EQ(s.keys[2], "contact.bodies[2]");
 }
 
 TEST(ContactConfig, BadInputNamesTheKey) {
