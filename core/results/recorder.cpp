@@ -48,6 +48,7 @@ void Recorder::record(const StepValues& v) {
     const auto& u = v.probes.at(k);
     sn::add_vector(table_, sn::probe(probe_names_[k]), "m", u[0], u[1], u[2]);
   }
+  for (const sn::ContactValues& c : v.contact) sn::add_contact(table_, c);
 }
 
 void Recorder::open_displacements(const std::filesystem::path& path) {

@@ -15,6 +15,7 @@
 
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh.hpp"
+#include "core/results/series_names.hpp"
 #include "core/results/series_table.hpp"
 
 #include <nlohmann/json.hpp>
@@ -51,8 +52,9 @@ class Recorder {
     double kinetic_energy = 0.0;    ///< J
     double min_volume_ratio = 1.0;  ///< smallest deformed/rest volume ratio of the step
     int newton_iterations = 0;
-    std::vector<std::array<double, 3>> reactions;  ///< N
-    std::vector<std::array<double, 3>> probes;     ///< m
+    std::vector<std::array<double, 3>> reactions;      ///< N
+    std::vector<std::array<double, 3>> probes;         ///< m
+    std::vector<series_names::ContactValues> contact;  ///< one per rigid contact body, if any
   };
 
   /// `conditions`: the names of the Dirichlet conditions, in the case file's order; the probes'

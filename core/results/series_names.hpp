@@ -4,6 +4,11 @@
 //   time, elastic_energy, max_displacement, min_volume_ratio, newton_iterations, ...  scalars
 //   reaction_<condition>_{x,y,z,norm}   the reaction of a Dirichlet condition, N
 //   probe_<probe>_{x,y,z,norm}          the displacement of a probe's node, m
+//   contact_<body>_position_{x,y,z,norm}  a rigid contact body's reference point c(t), m
+//   contact_<body>_force_{x,y,z,norm}     the force the sample exerts on the body, N
+//   contact_<body>_moment_{x,y,z,norm}    its moment about c(t), N m
+//   contact_<body>_area, _radius, _radius_max, _active_nodes, _max_pressure, _max_penetration
+//                                       (m^2, m, m, 1, Pa, m; docs/contact.md)
 //
 // A vector quantity is four series named <base>_x, <base>_y, <base>_z and <base>_norm.
 #pragma once
@@ -40,6 +45,42 @@ inline std::string probe(const std::string& probe) { return "probe_" + probe; }
 /// One component of a vector quantity: component(reaction("base"), "z") = "reaction_base_z".
 inline std::string component(const std::string& base, const std::string& suffix) {
   return base + "_" + suffix;
+}
+
+/// The base name of the outputs of contact body `body`: "contact_<body>".
+inline std::string contact(const std::string& body) { return "contact_" + body; }
+
+/// The contact outputs of one rigid body at one recorded step (docs/contact.md).
+struct ContactValues {
+  std::string body;
+  std::array<double, 3> position{}, force{}, moment{};  ///< m, N, N m
+  double area = 0.0;                                    ///< m^2, projected reference area in contact
+  double radius = 0.0;           ///< m, area-equivalent contact radius sqrt(area / pi) (0 for a plane)
+  double radius_max = 0.0;       ///< m, largest distance of a contact point from the body's axis
+  double active_nodes = 0.0;     ///< nodes in contact
+  double max_pressure = 0.0;     ///< Pa, largest nodal contact pressure
+  double max_penetration = 0.0;  ///< m, largest penetration of a node in contact
+};
+
+/// Appends the series of one body's contact outputs (contact_<body>_...) to the table.
+inline void add_contact(SeriesTable& table, const ContactValues& c) {
+  const std::string b = contact(c.body);
+  const auto vec = [&](const char* what, const char* unit, const std::array<double, 3>& v) {
+    const std::string base = b + "_" + what;
+    table.add(component(base, "x"), unit, v[0]);
+    table.add(component(base, "y"), unit, v[1]);
+    table.add(component(base, "z"), unit, v[2]);
+    table.add(component(base, "norm"), unit, std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+  };
+  vec("position", "m", c.position);
+  vec("force", "N", c.force);
+  vec("moment", "N m", c.moment);
+  table.add(b + "_area", "m^2", c.area);
+  table.add(b + "_radius", "m", c.radius);
+  table.add(b + "_radius_max", "m", c.radius_max);
+  table.add(b + "_active_nodes", "1", c.active_nodes);
+  table.add(b + "_max_pressure", "Pa", c.max_pressure);
+  table.add(b + "_max_penetration", "m", c.max_penetration);
 }
 
 /// The conditions whose reactions a list of series names holds (those with a reaction_<c>_x series),

@@ -6,9 +6,10 @@ namespace tmlab::tm {
 
 namespace {
 
-RigidBody rigid_body(const ContactBodySpec& s) {
+RigidBody rigid_body(const ContactBodySpec& s, const std::string& where) {
   RigidBody b;
   b.name = s.name;
+  b.origin = where + ": key '" + s.key + "'";
   switch (s.shape) {
     case ContactShape::Sphere:
       b.shape = RigidShape::Sphere;
@@ -33,7 +34,7 @@ RigidBody rigid_body(const ContactBodySpec& s) {
 
 }  // namespace
 
-ContactSettings contact_settings(const ContactSpec& spec) {
+ContactSettings contact_settings(const ContactSpec& spec, const std::string& where) {
   ContactSettings s;
   s.options.method = spec.method == ContactEnforcement::Penalty ? ContactMethod::Penalty
                                                                 : ContactMethod::AugmentedLagrangian;
@@ -45,7 +46,7 @@ ContactSettings contact_settings(const ContactSpec& spec) {
   s.options.search_margin = spec.search_margin;
   s.options.max_outer_iterations = spec.max_outer_iterations;
   for (const ContactBodySpec& b : spec.bodies) {
-    s.bodies.push_back(rigid_body(b));
+    s.bodies.push_back(rigid_body(b, where));
     s.keys.push_back(b.key);
   }
   return s;
@@ -53,7 +54,7 @@ ContactSettings contact_settings(const ContactSpec& spec) {
 
 ContactSettings parse_contact_section(const nlohmann::json& section, const std::string& where,
                                       const std::string& path) {
-  return contact_settings(parse_contact_spec(section, where, path));
+  return contact_settings(parse_contact_spec(section, where, path), where);
 }
 
 }  // namespace tmlab::tm

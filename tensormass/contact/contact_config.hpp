@@ -21,8 +21,9 @@ struct ContactSettings {
   std::vector<std::string> keys;  ///< each body's case-file key ("contact.bodies[0]"), for messages
 };
 
-/// The bodies and options of a parsed spec (validated again by RigidBody::validate()).
-ContactSettings contact_settings(const ContactSpec& spec);
+/// The bodies and options of a parsed spec (validated again by RigidBody::validate()); each body's
+/// origin is "<where>: key '<its key>'" for messages.
+ContactSettings contact_settings(const ContactSpec& spec, const std::string& where);
 
 /// parse_contact_spec + contact_settings: the section at key `path` of file `where`. Errors name
 /// the file and the key.

@@ -17,25 +17,26 @@ constexpr double kPi = 3.14159265358979323846;
 /// R = f_int - f_ext + dPhi/du, J = K - df_ext/du + d^2Phi/du^2, Pi = W - f_ext.u + Phi.
 class ContactResidual final : public NonlinearSystem {
  public:
-  ContactResidual(const MechanicalSystem& s, const ContactStaticSolver& contact, double t, const VecX& u0)
-      : inner_(s, t, u0), contact_(contact), t_(t) {
+  ContactResidual(std::unique_ptr<NonlinearSystem> inner, const ContactStaticSolver& contact, double t,
+                  const VecX& u0)
+      : inner_(std::move(inner)), contact_(contact), t_(t) {
     VecX r = VecX::Zero(u0.size());
     contact_.add_contact_terms(u0, t_, &r, nullptr, nullptr);
     // The contact forces at u0 set the scale when the body's own motion is the only load.
-    scale_ = std::max(inner_.force_scale(), r.norm());
+    scale_ = std::max(inner_->force_scale(), r.norm());
   }
   void residual(const VecX& u, VecX& r) override {
-    inner_.residual(u, r);
+    inner_->residual(u, r);
     contact_.add_contact_terms(u, t_, &r, nullptr, nullptr);
   }
   void jacobian(const VecX& u, SpMat& J) override {
-    inner_.jacobian(u, J);
+    inner_->jacobian(u, J);
     contact_.add_contact_terms(u, t_, nullptr, &J, nullptr);
   }
-  bool symmetric() const override { return inner_.symmetric(); }
+  bool symmetric() const override { return inner_->symmetric(); }
   double force_scale() const override { return scale_; }
   bool potential(const VecX& u, double& value) override {
-    if (!inner_.potential(u, value)) return false;
+    if (!inner_->potential(u, value)) return false;
     double phi = 0.0;
     contact_.add_contact_terms(u, t_, nullptr, nullptr, &phi);
     value += phi;
@@ -43,7 +44,7 @@ class ContactResidual final : public NonlinearSystem {
   }
 
  private:
-  StaticResidual inner_;
+  std::unique_ptr<NonlinearSystem> inner_;
   const ContactStaticSolver& contact_;
   double t_;
   double scale_ = 0.0;
@@ -151,8 +152,7 @@ void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
     }
     if (worst > tol) {
       std::ostringstream msg;
-      msg << "contact body '" << body.name << "' (" << body.shape_name()
-          << ") penetrates the sample at t = " << t0 << " by " << worst << " m at "
+      msg << body.label() << " penetrates the sample at t = " << t0 << " by " << worst << " m at "
           << node_label(mesh_, worst_node) << " (tolerance " << tol
           << " m): place the body clear of, or touching, the surface at the start";
       throw Error(msg.str());
@@ -213,7 +213,8 @@ void ContactStaticSolver::find_candidates(double t, double margin, const VecX& u
   }
 }
 
-bool ContactStaticSolver::solve_at(double t, double t_from, VecX& u, ContactStepReport& report) {
+bool ContactStaticSolver::solve(double t, double t_from, VecX& u, ContactStepReport& report,
+                                const InnerResidualFactory& inner) {
   trial_ = committed_;
   const bool penalty = options_.method == ContactMethod::Penalty;
   double margin = options_.search_margin;
@@ -227,7 +228,7 @@ bool ContactStaticSolver::solve_at(double t, double t_from, VecX& u, ContactStep
   report.active_counts.clear();
   find_candidates(t, margin, u);
   for (int outer = 0; outer < options_.max_outer_iterations; ++outer) {
-    ContactResidual residual(system_, *this, t, u);
+    ContactResidual residual(inner(t, u), *this, t, u);
     const NewtonResult nr = newton_solve(residual, system_.bc(), t, u, newton_, *linear_);
     report.solver.newton_iterations += nr.iterations;
     report.solver.newton = nr;
@@ -288,8 +289,38 @@ bool ContactStaticSolver::solve_at(double t, double t_from, VecX& u, ContactStep
   return false;
 }
 
+void ContactStaticSolver::accept(double t, const VecX& u) {
+  state_ = evaluate_state(t, u);
+  committed_ = trial_;
+  // Bonded bodies: nodes that came into contact during the increment are glued where they are.
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    if (bodies_[b].mode != ContactMode::Bonded) continue;
+    BodyData& d = committed_[b];
+    for (Index k : d.candidates) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      if (d.bonded[kk] || !(d.lambda[kk] > 0.0)) continue;
+      const GapPoint gp = bodies_[b].gap(position(u, k), t);
+      d.bonded[kk] = 1;
+      d.anchor[kk] = gp.closest - bodies_[b].position(t);
+      d.lambda_b[kk] = -d.lambda[kk] * gp.normal;  // the same force on the sample
+      d.lambda[kk] = 0.0;
+    }
+  }
+}
+
+void ContactStaticSolver::add_mass_scale(double c_a) {
+  if (options_.stiffness > 0.0) return;
+  double sum = 0.0;
+  for (Index n : surface_.nodes)
+    for (int c = 0; c < 3; ++c) sum += system_.mass()[3 * static_cast<Eigen::Index>(n) + c];
+  eps_ += options_.stiffness_factor * c_a * sum / (3.0 * static_cast<double>(surface_.size()));
+}
+
 ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, VecX& u) {
   ContactStepReport report;
+  const InnerResidualFactory statics = [this](double t, const VecX& u0) {
+    return std::make_unique<StaticResidual>(system_, t, u0);
+  };
   double t_done = t_prev;
   double h = t_next - t_prev;
   int depth = 0;
@@ -299,7 +330,7 @@ ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, Vec
     bool ok = false;
     system_.model().begin_step(t_try - t_done);
     try {
-      ok = solve_at(t_try, t_done, u_try, report);
+      ok = solve(t_try, t_done, u_try, report, statics);
     } catch (const Error&) {
       ok = false;  // a non-finite residual in a too-large increment: cut back
       if (depth >= max_cutbacks_) throw;
@@ -307,22 +338,7 @@ ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, Vec
     if (ok) {
       system_.model().commit_step(u_try);
       u.swap(u_try);
-      state_ = evaluate_state(t_try, u);
-      committed_ = trial_;
-      // Bonded bodies: nodes that came into contact during the increment are glued where they are.
-      for (std::size_t b = 0; b < bodies_.size(); ++b) {
-        if (bodies_[b].mode != ContactMode::Bonded) continue;
-        BodyData& d = committed_[b];
-        for (Index k : d.candidates) {
-          const std::size_t kk = static_cast<std::size_t>(k);
-          if (d.bonded[kk] || !(d.lambda[kk] > 0.0)) continue;
-          const GapPoint gp = bodies_[b].gap(position(u, k), t_try);
-          d.bonded[kk] = 1;
-          d.anchor[kk] = gp.closest - bodies_[b].position(t_try);
-          d.lambda_b[kk] = -d.lambda[kk] * gp.normal;  // the same force on the sample
-          d.lambda[kk] = 0.0;
-        }
-      }
+      accept(t_try, u);
       t_done = t_try;
       ++report.solver.sub_increments;
       if (depth > 0) {
@@ -336,9 +352,11 @@ ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, Vec
       msg << "static solve with contact did not converge at t = " << t_try << " after " << max_cutbacks_
           << " cut-backs (outer iterations " << report.outer_iterations
           << ", natural complementarity residual " << report.natural_residual << " m against gap_tol "
-          << gap_tol_ << " m, last Newton residual " << report.solver.newton.residual_final
-          << "); a node held by a Dirichlet condition inside a body, or "
-          << "a body driven too far for the model, prevents a solution";
+          << gap_tol_ << " m, last Newton residual " << report.solver.newton.residual_final << "; bodies:";
+      for (const RigidBody& b : bodies_) msg << " " << b.label();
+      msg << "); a node held by a Dirichlet condition inside a body, or "
+          << "a body driven too far for the model, prevents a solution (raise contact.max_outer_iterations, "
+             "or solver.steps)";
       throw Error(msg.str());
     }
     h *= 0.5;

@@ -36,6 +36,7 @@
 #include "tensormass/contact/surface_grid.hpp"
 #include "tensormass/solvers/static_solver.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,7 +58,8 @@ struct ContactOptions {
   double gap_tol = 0.0;          ///< metres; 0: 1e-8 * mean boundary edge length
   double initial_gap_tol = 0.0;  ///< penetration refused at t0, metres; 0: gap_tol
   /// A body whose smallest gap to the sample at t0 exceeds this is refused (it would not touch),
-  /// metres; 0: 1e-3 * the mesh's bounding-box diagonal (checked by the case runner).
+  /// metres; 0: 1e-3 * the mesh's bounding-box diagonal (check_contact_rig in contact_checks.hpp; the case
+  /// runner calls it).
   double max_initial_gap = 0.0;
   int max_outer_iterations = 30;
   double search_margin = 0.0;  ///< metres; 0: max(2 * body travel in the increment, 2 * mean edge)
@@ -92,6 +94,11 @@ struct ContactStepReport {
   std::vector<ContactBodyState> bodies;
 };
 
+/// Builds the nonlinear system of one solve at time t from the starting state u, to which the
+/// contact terms are added: a StaticResidual for static equilibrium, an ImplicitStepResidual in
+/// implicit dynamics.
+using InnerResidualFactory = std::function<std::unique_ptr<NonlinearSystem>(double t, const VecX& u)>;
+
 class ContactStaticSolver {
  public:
   /// Builds the contact surface and its grid, sets eps, and checks the bodies against the
@@ -106,6 +113,18 @@ class ContactStaticSolver {
   /// increment is halved up to max_cutbacks times when Newton or the outer loop fails, then
   /// tmlab::Error names the time reached.
   ContactStepReport advance(double t_prev, double t_next, VecX& u);
+
+  /// One contact solve at t from the accepted state at t_from (no cut-backs; the model's
+  /// begin_step/commit_step are the caller's): the outer loop around newton_solve of inner(t, u)
+  /// plus the contact terms. Returns whether the stopping test held; then call accept(t, u).
+  bool solve(double t, double t_from, VecX& u, ContactStepReport& report, const InnerResidualFactory& inner);
+  /// Commits the multipliers (and glues the new contacts of bonded bodies) of the last successful
+  /// solve at (t, u), and evaluates the outputs (state()).
+  void accept(double t, const VecX& u);
+  /// Implicit dynamics: the Newton matrix holds c_a M besides K, so an automatic eps is raised by
+  /// stiffness_factor * c_a * (mean nodal mass over the boundary DOFs) to keep the Uzawa contraction
+  /// (no effect when contact.stiffness is given).
+  void add_mass_scale(double c_a);
 
   /// The linear solver of the Newton iterations (direct LDL^T by default).
   void set_linear_solver(ConstrainedLinearSolver::Kind kind, double cg_rtol = 1e-12) {
@@ -133,7 +152,6 @@ class ContactStaticSolver {
     std::vector<Index> candidates;  ///< surface-local nodes evaluated this outer iteration
   };
 
-  bool solve_at(double t, double t_from, VecX& u, ContactStepReport& report);
   void find_candidates(double t, double margin, const VecX& u);
   Vec3 position(const VecX& u, Index surface_local) const;
   std::vector<ContactBodyState> evaluate_state(double t, const VecX& u) const;

@@ -16,9 +16,7 @@ Vec3 any_perpendicular(const Vec3& a) {
   return (trial - trial.dot(a) * a).normalized();
 }
 
-std::string body_label(const RigidBody& b) {
-  return std::string("contact body '") + b.name + "' (" + b.shape_name() + ")";
-}
+std::string body_label(const RigidBody& b) { return b.label(); }
 }  // namespace
 
 GapPoint sphere_gap(const Vec3& x, double radius) {
@@ -112,6 +110,11 @@ RigidBody RigidBody::plane(std::string name, const Vec3& point, const Vec3& norm
   b.axis = normal;
   b.validate();
   return b;
+}
+
+std::string RigidBody::label() const {
+  if (!origin.empty()) return origin + " (" + shape_name() + " '" + name + "')";
+  return std::string("contact body '") + name + "' (" + shape_name() + ")";
 }
 
 const char* RigidBody::shape_name() const {

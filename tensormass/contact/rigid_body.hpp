@@ -49,6 +49,8 @@ enum class ContactMode {
 
 struct RigidBody {
   std::string name;  ///< for messages and output ("indenter", "top_platen", ...)
+  /// Where the body was given, for messages ("case.json: key 'contact.bodies[0]'"); may be empty.
+  std::string origin;
   RigidShape shape = RigidShape::Plane;
   ContactMode mode = ContactMode::Frictionless;
   Vec3 reference = Vec3::Zero();     ///< c_0: sphere centre, punch face centre, a point of the plane
@@ -80,6 +82,8 @@ struct RigidBody {
   void bounding_box(double t, double margin, Vec3& lo, Vec3& hi) const;
   /// "sphere", "punch" or "plane".
   const char* shape_name() const;
+  /// The body in messages: "<origin> (sphere 'indenter')", or "contact body 'indenter' (sphere)".
+  std::string label() const;
 };
 
 /// The gap functions of the three shapes in the body frame (x relative to the reference point).

@@ -13,6 +13,11 @@
 #include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/series_names.hpp"
+#include "tensormass/contact/contact_checks.hpp"
+#include "tensormass/contact/contact_config.hpp"
+#include "tensormass/contact/contact_implicit.hpp"
+#include "tensormass/contact/contact_solver.hpp"
+#include "tensormass/contact/kinematic_contact.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
 #include "tensormass/solvers/explicit_dynamics.hpp"
@@ -278,6 +283,10 @@ class StepRecorder {
 
   const Recorder& recorder() const { return rec_; }
   double external_work() const { return external_work_; }
+  /// The contact outputs recorded with every later step (the contact solver's own state, which
+  /// must outlive the recording): the per-body series, the nodal contact forces in the work of
+  /// the loads, and the contact pressure field.
+  void set_contact(const std::vector<ContactBodyState>* states) { contact_ = states; }
 
  private:
   Recorder::StepValues values(int step, double t, const VecX& u, const VecX& v, int newton_its) {
@@ -298,6 +307,7 @@ class StepRecorder {
     // runs; in dynamics the reactions leave out the inertia of the prescribed nodes).
     VecX f_applied = fext_;
     for (Index d : p_.system.bc().dofs()) f_applied[d] += r[d];
+    if (contact_) add_contact_forces(*contact_, f_applied);
     external_work_ += 0.5 * (f_applied_prev_ + f_applied).dot(u - u_prev_);
     f_applied_prev_ = f_applied;
     u_prev_ = u;
@@ -328,7 +338,40 @@ class StepRecorder {
       const Vec3 up = u.segment<3>(3 * n);
       s.probes.push_back({up.x(), up.y(), up.z()});
     }
+    if (contact_)
+      for (const ContactBodyState& b : *contact_) s.contact.push_back(contact_values(b));
     return s;
+  }
+
+  static series_names::ContactValues contact_values(const ContactBodyState& b) {
+    series_names::ContactValues c;
+    c.body = b.name;
+    c.position = {b.position.x(), b.position.y(), b.position.z()};
+    c.force = {b.force.x(), b.force.y(), b.force.z()};
+    c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
+    c.area = b.area;
+    c.radius = b.radius_equivalent;
+    c.radius_max = b.radius_max;
+    c.active_nodes = b.active_nodes;
+    for (double pr : b.pressure) c.max_pressure = std::max(c.max_pressure, pr);
+    c.max_penetration = b.max_penetration;
+    return c;
+  }
+
+  /// The contact forces on the sample's nodes, added to f.
+  static void add_contact_forces(const std::vector<ContactBodyState>& states, VecX& f) {
+    for (const ContactBodyState& b : states)
+      for (std::size_t i = 0; i < b.nodes.size(); ++i)
+        f.segment<3>(3 * static_cast<Eigen::Index>(b.nodes[i])) += b.nodal_force[i];
+  }
+
+  /// The nodal contact pressure of all bodies (0 off contact), Pa.
+  std::vector<double> contact_pressure() const {
+    std::vector<double> pr(static_cast<std::size_t>(p_.mesh.num_points()), 0.0);
+    for (const ContactBodyState& b : *contact_)
+      for (std::size_t i = 0; i < b.nodes.size(); ++i)
+        pr[static_cast<std::size_t>(b.nodes[i])] += b.pressure[i];
+    return pr;
   }
 
   /// Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
@@ -347,6 +390,7 @@ class StepRecorder {
       xdmf_->add_cell_scalar("von_mises", c.von_mises);
       xdmf_->add_cell_tensor("green_strain", c.strain);
       xdmf_->add_cell_tensor("cauchy_stress", c.cauchy);
+      if (contact_) xdmf_->add_point_scalar("contact_pressure", contact_pressure());
       xdmf_->flush();
     }
     if (pvd_) {
@@ -359,6 +403,7 @@ class StepRecorder {
       w.add_cell_scalar("von_mises", c.von_mises);
       w.add_cell_tensor("green_strain", c.strain);
       w.add_cell_tensor("cauchy_stress", c.cauchy);
+      if (contact_) w.add_point_scalar("contact_pressure", contact_pressure());
       char name[64];
       std::snprintf(name, sizeof name, "vtu/step_%05d.vtu", frame);
       w.write(out_.file(name));
@@ -374,6 +419,7 @@ class StepRecorder {
   VecX fint_, fext_;
   double external_work_ = 0.0;
   VecX f_applied_prev_, u_prev_;
+  const std::vector<ContactBodyState>* contact_ = nullptr;
 };
 
 /// After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
@@ -491,10 +537,188 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
 }
 
+// ---- Contact (docs/contact.md): the same stepping with the case's rigid bodies. Each function sets
+// up its contact object (surface and grid built once, the rig checked against the mesh), records
+// t = 0 and steps; the contact state changes only inside the solver's accepted steps.
+
+/// What the summary says about the contact enforcement and its bodies at the end.
+class ContactLog {
+ public:
+  explicit ContactLog(const CaseConfig& cfg) : cfg_(cfg) {}
+  void add(const ContactStepReport& r) {
+    outer_.push_back(r.outer_iterations_total);
+    natural_.push_back(r.natural_residual);
+  }
+  nlohmann::json json(const std::string& scheme, double eps, double gap_tol,
+                      const std::vector<ContactBodyState>& final_state) const {
+    nlohmann::json bodies = nlohmann::json::array();
+    for (std::size_t b = 0; b < final_state.size(); ++b) {
+      const ContactBodyState& st = final_state[b];
+      const ContactBodySpec& spec = cfg_.contact.bodies[b];
+      double pmax = 0.0;
+      for (double pr : st.pressure) pmax = std::max(pmax, pr);
+      bodies.push_back({{"name", st.name},
+                        {"type", to_string(spec.shape)},
+                        {"mode", to_string(spec.mode)},
+                        {"final_position_m", {st.position.x(), st.position.y(), st.position.z()}},
+                        {"final_force_N", {st.force.x(), st.force.y(), st.force.z()}},
+                        {"final_moment_Nm", {st.moment.x(), st.moment.y(), st.moment.z()}},
+                        {"final_area_m2", st.area},
+                        {"final_radius_m", st.radius_equivalent},
+                        {"final_radius_max_m", st.radius_max},
+                        {"final_active_nodes", st.active_nodes},
+                        {"final_max_pressure_Pa", pmax},
+                        {"final_max_penetration_m", st.max_penetration}});
+    }
+    nlohmann::json j = {{"scheme", scheme}, {"gap_tol_m", gap_tol}, {"bodies", bodies}};
+    if (eps > 0.0) {
+      j["method"] = to_string(cfg_.contact.method);
+      j["stiffness_N_per_m"] = eps;
+      j["outer_iterations_per_step"] = outer_;
+      j["natural_residual_per_step_m"] = natural_;
+    }
+    return j;
+  }
+
+ private:
+  const CaseConfig& cfg_;
+  std::vector<int> outer_;
+  std::vector<double> natural_;
+};
+
+/// Static load stepping with contact (ContactStaticSolver: augmented Lagrangian or penalty around
+/// the static Newton; a viscoelastic model's history advances once per accepted increment).
+nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
+  ContactStaticSolver solver(p.system, p.mesh, cs.bodies, cs.options, newton_options(cfg.solver), 0.0, s.u,
+                             cfg.solver.max_cutbacks);
+  check_contact_rig(p.mesh, solver.surface(), solver.bodies(), cs.options.max_initial_gap, 0.0,
+                    cfg.solver.t_end, s.u);
+  rec.set_contact(&solver.state());
+  rec.record(0, 0.0, s.u, s.v, 0, true);
+  const int n_steps = cfg.solver.steps;
+  NewtonLog newton_log;
+  ContactLog contact_log(cfg);
+  long total_newton = 0, total_cutbacks = 0;
+  for (int k = 1; k <= n_steps; ++k) {
+    const double t0 = cfg.solver.t_end * (k - 1) / n_steps, t1 = cfg.solver.t_end * k / n_steps;
+    const ContactStepReport rep = solver.advance(t0, t1, s.u);
+    total_newton += rep.solver.newton_iterations;
+    total_cutbacks += rep.solver.cutbacks;
+    newton_log.add(rep.solver.newton, rep.solver.newton_iterations, rep.solver.cutbacks,
+                   rep.solver.sub_increments, rep.solver.at_roundoff);
+    contact_log.add(rep);
+    rec.record(k, t1, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
+    progress(k, t1);
+  }
+  return {{"type", "static"},
+          {"load_steps", n_steps},
+          {"newton_iterations", total_newton},
+          {"cutbacks", total_cutbacks},
+          {"newton", newton_log.json(cfg.solver)},
+          {"contact", contact_log.json("augmented_lagrangian_static", solver.stiffness(), solver.gap_tol(),
+                                       solver.state())}};
+}
+
+/// Explicit central differences with kinematic contact (KinematicContact: penetrating nodes are
+/// put back on the body after each predictor; no stiffness, so the stable step is the sample's).
+nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const int n_steps = cfg.solver.steps;
+  const double dt = cfg.solver.dt;
+  const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
+  CentralDifference integ(p.system, dt, cfg.solver.check_stability);
+  integ.set_displacement_limit(10.0 * p.size);
+  KinematicContact contact(p.system, p.mesh, cs.bodies, cs.options, 0.0, s.u);
+  check_contact_rig(p.mesh, contact.surface(), contact.bodies(), cs.options.max_initial_gap, 0.0,
+                    cfg.solver.t_end, s.u);
+  rec.set_contact(&contact.state());
+  rec.record(0, 0.0, s.u, s.v, 0, true);
+  integ.initialize(0.0, s.u, s.v);
+  const int series_every = std::max(1, n_steps / 4000);
+  double t = 0.0;
+  for (int k = 1; k <= n_steps; ++k) {
+    integ.step(t, dt);
+    t = integ.time();
+    integ.correct(contact.correct(t, dt, integ.displacement()));
+    const bool fields = field_step(cfg, k);
+    if (fields || k % series_every == 0) {
+      s.u = integ.displacement();
+      s.v = integ.velocity();
+      rec.record(k, t, s.u, s.v, 0, fields);
+      progress(k, t);
+    }
+  }
+  const auto& st = integ.stability();
+  return {{"type", "explicit"},
+          {"scheme", "central_difference"},
+          {"dt", dt},
+          {"steps", n_steps},
+          {"dt_critical_estimate", st.dt_critical},
+          {"dt_guaranteed", st.dt_guaranteed},
+          {"omega_max", st.omega_max},
+          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
+          {"contact", ContactLog(cfg).json("kinematic_explicit", 0.0, contact.gap_tol(), contact.state())}};
+}
+
+/// Implicit dynamics with contact (ContactImplicitDynamics: the augmented-Lagrangian loop around the
+/// implicit step's Newton solve).
+nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  const CaseConfig& cfg = p.cfg;
+  const int n_steps = cfg.solver.steps;
+  const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
+  ContactImplicitDynamics integ(p.system, p.mesh, cs.bodies, cs.options, cfg.solver.scheme,
+                                newton_options(cfg.solver), cfg.solver.dt);
+  integ.initialize(0.0, s.u, s.v);
+  check_contact_rig(p.mesh, integ.contact().surface(), integ.contact().bodies(), cs.options.max_initial_gap,
+                    0.0, cfg.solver.t_end, s.u);
+  rec.set_contact(&integ.contact().state());
+  rec.record(0, 0.0, s.u, s.v, 0, true);
+  NewtonLog newton_log;
+  ContactLog contact_log(cfg);
+  long total_newton = 0;
+  double t = 0.0;
+  for (int k = 1; k <= n_steps; ++k) {
+    const double dt = std::min(cfg.solver.dt, cfg.solver.t_end - t);
+    const ContactStepReport rep = integ.step(t, dt);
+    t = integ.time();
+    total_newton += rep.solver.newton_iterations;
+    newton_log.add(rep.solver.newton, rep.solver.newton_iterations, 0, 1, rep.solver.at_roundoff);
+    contact_log.add(rep);
+    s.u = integ.displacement();
+    s.v = integ.velocity();
+    rec.record(k, t, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
+    progress(k, t);
+  }
+  return {{"type", "implicit"},
+          {"scheme", to_string(cfg.solver.scheme)},
+          {"dt", cfg.solver.dt},
+          {"steps", n_steps},
+          {"newton_iterations", total_newton},
+          {"newton", newton_log.json(cfg.solver)},
+          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
+          {"contact", contact_log.json("augmented_lagrangian_implicit", integ.contact().stiffness(),
+                                       integ.contact().gap_tol(), integ.contact().state())}};
+}
+
+/// Steps a case with a `contact` section (t = 0 recorded by the stepping function, once the
+/// contact outputs exist).
+nlohmann::json step_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+  if (p.cfg.solver.type == SolverSpec::Type::Static) return step_static_contact(p, rec, progress, s);
+  if (p.cfg.solver.type == SolverSpec::Type::Explicit) return step_explicit_contact(p, rec, progress, s);
+  return step_implicit_contact(p, rec, progress, s);
+}
+
 /// Steps the case's solver from rest, recording t = 0 first; returns the summary's solver block.
 nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log) {
   Progress progress(p.cfg, log);
   State s{VecX::Zero(p.system.num_dofs()), VecX::Zero(p.system.num_dofs())};
+  if (p.cfg.contact.enabled) {
+    nlohmann::json info = step_contact(p, rec, progress, s);
+    progress.finish();
+    return info;
+  }
   rec.record(0, 0.0, s.u, s.v, 0, true);
   nlohmann::json solver_info;
   if (p.cfg.solver.type == SolverSpec::Type::Static)
@@ -556,6 +780,10 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
                             {"plots", plot_status},
                             {"run_seconds", wall}};
   summary.update(rec.recorder().summary_blocks());
+  if (summary["solver"].contains("contact")) {  // the contact block at the top level
+    summary["contact"] = summary["solver"]["contact"];
+    summary["solver"].erase("contact");
+  }
   const SeriesTable& table = rec.recorder().table();
   const double stored = table.last(series_names::kElasticEnergy);
   const double kinetic = table.last(series_names::kKineticEnergy);

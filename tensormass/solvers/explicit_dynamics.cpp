@@ -132,6 +132,13 @@ void CentralDifference::step(double t, double dt) {
   }
 }
 
+void CentralDifference::correct(const VecX& du) {
+  if (du.size() != u_.size()) throw Error("CentralDifference::correct: correction has the wrong size");
+  u_ += du;
+  v_half_ += du / dt_;
+  v_ += 0.5 * du / dt_;  // v^{n+1} = (v^{n-1/2} + v^{n+1/2}) / 2
+}
+
 double CentralDifference::kinetic_energy() const { return 0.5 * v_.dot(system_.mass().cwiseProduct(v_)); }
 
 }  // namespace tmlab::tm

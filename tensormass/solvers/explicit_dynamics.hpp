@@ -34,6 +34,11 @@ class CentralDifference {
   /// Advances from t (must equal time()) to t + dt (the dt given at construction).
   void step(double t, double dt);
 
+  /// A kinematic correction of the step just taken (contact, tensormass/contact/kinematic_contact):
+  /// u^{n+1} += du, with the half-step velocity kept consistent, v^{n+1/2} += du / dt (and the
+  /// integer-level velocity by half that). du must vanish on prescribed DOFs.
+  void correct(const VecX& du);
+
   double time() const { return t_; }
   long steps() const { return n_; }
   const VecX& displacement() const { return u_; }

@@ -32,6 +32,28 @@ TEST_F(CliRig, UnconfinedRigRunsAndReportsThePlatenForce) {
   EXPECT_GT(std::abs(s["final_reactions_N"]["top_platen"][2].get<double>()), 0.0);
 }
 
+TEST_F(CliRig, IndentationRigRunsWithItsContactBody) {
+  const Result w =
+      run_argv({"rig", "indentation", "--out", (dir_ / "rig").string(), "--name", "ind", "--depth", "0.0005",
+                "--cells", "6", "--layers", "4", "--steps-per-segment", "4"},
+               dir_ / "rig.log");
+  ASSERT_EQ(w.status, 0) << w.output;
+  const Result r = run_argv(
+      {"run", (dir_ / "rig" / "ind.json").string(), "--results", (dir_ / "results").string(), "--no-plots"},
+      dir_ / "run.log");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir_ / "results" / "ind" / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  const nlohmann::json& body = s["contact"]["bodies"][0];
+  EXPECT_EQ(body["name"], "indenter");
+  EXPECT_EQ(body["type"], "sphere");
+  const double fz = body["final_force_N"][2].get<double>();
+  EXPECT_GT(fz, 0.0);
+  EXPECT_GE(body["final_active_nodes"].get<int>(), 1);
+  // The indenter's force is carried by the bonded bottom.
+  EXPECT_NEAR(fz, s["final_reactions_N"]["bottom"][2].get<double>(), 1e-6 * fz);
+}
+
 TEST_F(CliRig, RefusesImpossibleRigsAndUnknownTests) {
   const Result deep =
       run_argv({"rig", "indentation", "--out", (dir_ / "x").string(), "--depth", "0.05"}, dir_ / "a.log");
