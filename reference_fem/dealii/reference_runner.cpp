@@ -9,7 +9,9 @@
 //   * nodal_force: the total force split equally over the selected vertices (vertex DoFs);
 //   * pressure: dead load on the selected boundary faces (a surface group's triangles, or the
 //     boundary faces all of whose vertices are selected), integrated with the face quadrature;
-//   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses).
+//   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses);
+//   * contact: the case's rigid bodies at the mesh vertices by the fast model's nodal augmented
+//     Lagrangian (contact.hpp), the same rule and stopping test, so P1 runs agree to round-off.
 #include "reference_fem/dealii/reference_runner.hpp"
 
 #include "core/base/error.hpp"
@@ -20,6 +22,7 @@
 #include "core/mesh/mesh_quality.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
+#include "reference_fem/dealii/contact.hpp"
 #include "reference_fem/dealii/ida_dae.hpp"
 #include "reference_fem/dealii/solid.hpp"
 
@@ -104,8 +107,10 @@ namespace {
 void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned n_ranks) {
   if (cfg.solver.type != SolverSpec::Type::Static)
     throw Error(cfg.file +
-                ": key 'solver.type': the deal.II reference solves quasi-static problems only (got a dynamic "
-                "solver)");
+                ": key 'solver.type': the deal.II reference solves quasi-static problems only (got '" +
+                std::string(cfg.solver.type == SolverSpec::Type::Explicit ? "explicit" : "implicit") +
+                "'; explicit and implicit dynamics" +
+                (cfg.contact.enabled ? ", with or without contact," : "") + " run in the fast model only)");
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled && vs.history == PronyHistory::NodalForce)
     throw Error(
@@ -137,6 +142,14 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
           "'direct_klu'; got '" +
           to_string(ro.linear_solver) + "')");
   }
+  if (cfg.contact.enabled && ro.cells == CellType::Hex)
+    throw Error(cfg.file +
+                ": key 'contact': contact is applied at the case mesh's vertices, which the hex cells "
+                "(cells 'hex') do not have; run contact cases on the case's tets");
+  if (cfg.contact.enabled && use_ida)
+    throw Error(cfg.file +
+                ": key 'contact': the IDA time integration has no contact (its outer loop of multiplier "
+                "updates needs fixed steps); use time_integration 'fixed_step'");
   for (const auto& l : cfg.loads)
     if (l.type == LoadSpec::Type::Pressure && l.follower)
       throw Error(cfg.file + ": load '" + l.name +
@@ -170,6 +183,7 @@ struct Problem {
   std::unique_ptr<Solid> solid;
   std::vector<std::vector<unsigned>> vmap;  ///< (cell, vertex) -> node
   std::vector<Index> probe_nodes;
+  std::unique_ptr<NodalContact> contact;  ///< the case's contact section, if any
 };
 
 /// The coarse triangulation: vertex i = tmlab node i and cell c = tet c (tet mode), or the
@@ -354,6 +368,30 @@ void add_loads(Problem& p) {
   }
 }
 
+/// The case's contact bodies on the mesh vertices: each node's vertex DoFs where this rank sees them
+/// (owned: the rank owns them), the contact object started at t = 0 from the rest state, and the
+/// Solid told to run its outer loop.
+void add_contact(Problem& p) {
+  const Index n = p.mesh.num_points();
+  std::vector<std::array<global_dof_index, 3>> node_dofs(
+      static_cast<std::size_t>(n),
+      {numbers::invalid_dof_index, numbers::invalid_dof_index, numbers::invalid_dof_index});
+  std::vector<char> owned(static_cast<std::size_t>(n), 0);
+  for (const auto& cell : p.solid->dof_handler().active_cell_iterators()) {
+    if (cell->is_artificial()) continue;
+    const auto& vm = p.vmap[cell->active_cell_index()];
+    for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+      auto& d = node_dofs[vm[v]];
+      for (unsigned c = 0; c < 3; ++c) d[c] = cell->vertex_dof_index(v, c);
+      owned[vm[v]] = p.solid->locally_owned_dofs().is_element(d[0]) ? 1 : 0;
+    }
+  }
+  p.contact = std::make_unique<NodalContact>(p.cfg.contact, p.cfg.file, p.mesh, std::move(node_dofs),
+                                             std::move(owned), p.comm);
+  p.contact->start(*p.solid, 0.0, std::vector<double>(3 * static_cast<std::size_t>(n), 0.0));
+  p.solid->set_nodal_constraints(p.contact.get());
+}
+
 Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_Comm communicator,
                  std::ostream* log)
     : cfg(config),
@@ -377,6 +415,7 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
   add_loads(*this);
   solid->finalize_setup();
   for (const auto& pr : cfg.output.probes) probe_nodes.push_back(probe_node(nodes(), pr, cfg.file));
+  if (cfg.contact.enabled) add_contact(*this);
 }
 
 /// Vertex values in node order, gathered from the DoF owners.
@@ -483,6 +522,10 @@ class StepRecorder {
       const std::size_t i = 3 * static_cast<std::size_t>(n);
       s.probes.push_back({U[i], U[i + 1], U[i + 2]});
     }
+    if (p_.contact) {
+      contact_ = p_.contact->outputs(solid.solution(), t);
+      for (const ContactBodyOutput& b : contact_) s.contact.push_back(contact_values(b));
+    }
     rec_.record(s);
     if (!write_fields) return;
     const int frame = rec_.field_frames();
@@ -502,8 +545,25 @@ class StepRecorder {
   }
 
   const Recorder& recorder() const { return rec_; }
+  /// The contact outputs of the last recorded step (one per body; empty without contact).
+  const std::vector<ContactBodyOutput>& contact() const { return contact_; }
 
  private:
+  static series_names::ContactValues contact_values(const ContactBodyOutput& b) {
+    series_names::ContactValues c;
+    c.body = b.name;
+    c.position = {b.position.x(), b.position.y(), b.position.z()};
+    c.force = {b.force.x(), b.force.y(), b.force.z()};
+    c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
+    c.area = b.area;
+    c.radius = b.radius_equivalent;
+    c.radius_max = b.radius_max;
+    c.active_nodes = b.active_nodes;
+    c.max_pressure = b.max_pressure;
+    c.max_penetration = b.max_penetration;
+    return c;
+  }
+
   /// The displacement, volume ratio, von Mises stress and MPI subdomain of frame `frame`.
   void write_vtu(double t, int frame) {
     const Solid& solid = *p_.solid;
@@ -529,6 +589,7 @@ class StepRecorder {
   const Problem& p_;
   std::string staging_;
   Recorder rec_;
+  std::vector<ContactBodyOutput> contact_;
   std::vector<std::pair<double, std::string>> pvd_;
 };
 
@@ -537,7 +598,9 @@ struct SteppingReport {
   nlohmann::json per_step = nlohmann::json::array();
   long newton = 0, linear = 0, cutbacks = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0, newton_seconds = 0.0;
-  nlohmann::json ida;  ///< IDA runs only
+  nlohmann::json ida;           ///< IDA runs only
+  std::vector<int> outer;       ///< contact: outer (multiplier-update) iterations per step
+  std::vector<double> natural;  ///< contact: natural complementarity residual at the end of each step, m
 };
 
 bool field_step(const CaseConfig& cfg, int k) { return k % cfg.output.every == 0 || k == cfg.solver.steps; }
@@ -569,6 +632,11 @@ SteppingReport step_fixed(Problem& p, StepRecorder& rec) {
                           {"solve_seconds", st.solve_seconds},
                           {"newton_seconds", st.newton_seconds},
                           {"residuals", st.residuals}});
+    if (p.contact) {
+      r.outer.push_back(st.outer_iterations);
+      r.natural.push_back(p.contact->natural_residual());
+      r.per_step.back()["outer_iterations"] = st.outer_iterations;
+    }
     rec.record(k, t1, st.newton_iterations, field_step(cfg, k));
     // A safe point for SIGINT/SIGTERM; every rank agrees, so all stop at the same step.
     const int sig = Utilities::MPI::max(pending_interrupt(), p.comm);
@@ -649,7 +717,41 @@ SteppingReport step_ida(Problem& p, StepRecorder& rec, std::ostream* log) {
 }
 
 /// summary.json: the case, mesh, material, discretisation, solver and the recorder's common blocks.
-nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingReport& r, double wall) {
+/// The contact block of the summary: the enforcement and each body's final outputs, with the fast
+/// model's keys (tmlab run and the reference summaries read alike).
+nlohmann::json contact_summary(const Problem& p, const std::vector<ContactBodyOutput>& last,
+                               const SteppingReport& r) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (std::size_t b = 0; b < last.size(); ++b) {
+    const ContactBodyOutput& o = last[b];
+    const ContactBodySpec& spec = p.cfg.contact.bodies[b];
+    bodies.push_back({{"name", o.name},
+                      {"type", to_string(spec.shape)},
+                      {"mode", to_string(spec.mode)},
+                      {"final_position_m", {o.position.x(), o.position.y(), o.position.z()}},
+                      {"final_force_N", {o.force.x(), o.force.y(), o.force.z()}},
+                      {"final_moment_Nm", {o.moment.x(), o.moment.y(), o.moment.z()}},
+                      {"final_area_m2", o.area},
+                      {"final_radius_m", o.radius_equivalent},
+                      {"final_radius_max_m", o.radius_max},
+                      {"final_active_nodes", o.active_nodes},
+                      {"final_max_pressure_Pa", o.max_pressure},
+                      {"final_max_penetration_m", o.max_penetration},
+                      {"final_complementarity_Nm", o.complementarity},
+                      {"final_min_multiplier_N", o.min_multiplier}});
+  }
+  return {{"scheme", "augmented_lagrangian_static"},
+          {"method", to_string(p.cfg.contact.method)},
+          {"rule", p.ro.degree == 1 ? "nodal (vertices)" : "nodal at the vertices only (P2 edge nodes free)"},
+          {"gap_tol_m", p.contact->gap_tol()},
+          {"stiffness_N_per_m", p.contact->stiffness()},
+          {"outer_iterations_per_step", r.outer},
+          {"natural_residual_per_step_m", r.natural},
+          {"bodies", bodies}};
+}
+
+nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingReport& r, double wall,
+                         const std::vector<ContactBodyOutput>& contact) {
   const CaseConfig& cfg = p.cfg;
   const ReferenceOptions& ro = p.ro;
   nlohmann::json summary = {{"case", cfg.name},
@@ -701,6 +803,7 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                                            {"relaxation", to_string(vs.relaxation)},
                                            {"history", "pk2"}};
   if (ro.time_integration == TimeIntegration::Ida) summary["solver"]["ida"] = r.ida;
+  if (p.contact) summary["contact"] = contact_summary(p, contact, r);  // top level, as the fast model
   return summary;
 }
 
@@ -736,7 +839,7 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
     if (root) {
       rec.close(*out);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      summary = summarise(p, rec.recorder(), r, wall);
+      summary = summarise(p, rec.recorder(), r, wall, rec.contact());
       out->finalize(summary);
     }
     const std::string text = Utilities::MPI::broadcast(comm, root ? summary.dump() : std::string(), 0);

@@ -1,8 +1,10 @@
 // Checks against the deal.II reference (compiled to a no-op registration without deal.II).
 //
 //   reference.same_mesh   tensor-mass and deal.II P1 St VK on the same mesh, shipped case files
-//                         (static and quasi-static viscoelastic): nodal displacements, reactions and
-//                         energy differences (core result_compare), which must be the solvers' tolerance
+//                         (static and quasi-static viscoelastic, with or without rigid contact bodies):
+//                         nodal displacements, reactions and energy differences, and with contact each
+//                         body's force, area and active nodes (core result_compare), which must be the
+//                         solvers' tolerance
 //   reference.p1_vs_p2    tensor-mass P1 on nested box meshes against a deal.II P2 solution on a
 //                         reference level, at the vertices both meshes have: nodal discretisation
 //                         error, its order, and the P2 reference's own error estimated from P2 on a
@@ -135,6 +137,9 @@ Measurements same_mesh(const CheckContext& ctx) {
 
   Measurements m;
   double worst_u = 0.0, worst_r = 0.0, worst_w = 0.0;
+  // Contact cases (a `contact` section): the contact force, area and active-node count per body.
+  bool any_contact = false;
+  double worst_f = 0.0, worst_a = 0.0, worst_n = 0.0;
   nlohmann::json rows = nlohmann::json::array();
   for (const std::string& rel : files) {
     const fs::path file = ctx.source_root / rel;
@@ -157,14 +162,34 @@ Measurements same_mesh(const CheckContext& ctx) {
     worst_u = std::max(worst_u, du);
     worst_r = std::max(worst_r, dr);
     worst_w = std::max(worst_w, dw);
+    std::string contact_text;
+    if (cmp.contains("rel_diff_contact_force")) {
+      any_contact = true;
+      const double df = cmp.at("rel_diff_contact_force").get<double>();
+      const double da = cmp.at("rel_diff_contact_area").get<double>();
+      const double dn = cmp.at("max_diff_active_nodes").get<double>();
+      m.set(c.name + "_rel_diff_contact_force", df);
+      m.set(c.name + "_rel_diff_contact_area", da);
+      m.set(c.name + "_max_diff_active_nodes", dn);
+      worst_f = std::max(worst_f, df);
+      worst_a = std::max(worst_a, da);
+      worst_n = std::max(worst_n, dn);
+      contact_text =
+          ", contact force " + fmt(df) + ", area " + fmt(da) + ", active nodes differ by " + short_number(dn);
+    }
     rows.push_back(
         {{"case", rel}, {"comparison", cmp}, {"tensor_mass_seconds", t_tm}, {"reference_seconds", t_ref}});
     ctx.log << "  " << c.name << ": displacement " << fmt(du) << ", reaction " << fmt(dr) << ", energy "
-            << fmt(dw) << " (tensor-mass " << seconds_text(t_tm) << ", deal.II P1 " << seconds_text(t_ref)
-            << ")\n";
+            << fmt(dw) << contact_text << " (tensor-mass " << seconds_text(t_tm) << ", deal.II P1 "
+            << seconds_text(t_ref) << ")\n";
     m.notes.push_back(c.name + ": " + std::to_string(c.solver.steps) + " steps, Newton rtol " +
                       fmt(c.solver.rtol, 1) + "; max rel. differences displacement " + fmt(du) +
-                      ", reaction " + fmt(dr) + ", energy " + fmt(dw));
+                      ", reaction " + fmt(dr) + ", energy " + fmt(dw) + contact_text);
+  }
+  if (any_contact) {
+    m.set("max_rel_diff_contact_force", worst_f);
+    m.set("max_rel_diff_contact_area", worst_a);
+    m.set("max_diff_active_nodes", worst_n);
   }
   m.set("max_rel_diff_displacement", worst_u);
   m.set("max_rel_diff_reaction", worst_r);
