@@ -31,6 +31,8 @@ SeriesTable comparison_table(const ComparisonSeries& s, double floor) {
   for (double v : s.rel_displacement) t.add("rel_diff_displacement", "", std::max(v, floor));
   for (double v : s.rel_reaction) t.add("rel_diff_reaction", "", std::max(v, floor));
   for (double v : s.rel_energy) t.add("rel_diff_energy", "", std::max(v, floor));
+  for (double v : s.rel_contact_force) t.add("rel_diff_contact_force", "", std::max(v, floor));
+  for (double v : s.rel_contact_area) t.add("rel_diff_contact_area", "", std::max(v, floor));
   return t;
 }
 
@@ -93,7 +95,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     std::string plot_status = "skipped (--no-plots)";
     if (!p.has("--no-plots")) {
       write_series_file(out.file("timeseries.h5"), comparison_table(series, 1e-17));
-      const nlohmann::json plots = nlohmann::json::array(
+      nlohmann::json plots = nlohmann::json::array(
           {{{"file", "compare_displacement.png"},
             {"x", "time"},
             {"y", {"rel_diff_displacement"}},
@@ -108,6 +110,14 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
             {"xlabel", "time [s]"},
             {"ylabel", "relative difference"},
             {"logy", true}}});
+      if (!series.rel_contact_force.empty())
+        plots.push_back({{"file", "compare_contact.png"},
+                         {"x", "step_time"},
+                         {"y", {"rel_diff_contact_force", "rel_diff_contact_area"}},
+                         {"title", cfg.name + ": tensor-mass vs " + against + ", contact force and area"},
+                         {"xlabel", "time [s]"},
+                         {"ylabel", "relative difference"},
+                         {"logy", true}});
       out.write_json("plots.json", plots);
       const ProcessStatus ps =
           run_python(fs::path(tmlab_root()) / "core" / "results" / "python" / "tmlab_plot.py",
@@ -121,8 +131,15 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
               << "  quantity                          max over steps\n"
               << "  rel_diff_displacement             " << cmp["rel_diff_displacement"].get<double>() << "\n"
               << "  rel_diff_reaction                 " << cmp["rel_diff_reaction"].get<double>() << "\n"
-              << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n"
-              << "written: " << out.dir().string() << "/ (compare.json, compare.h5, summary.json"
+              << "  rel_diff_energy                   " << cmp["rel_diff_energy"].get<double>() << "\n";
+    if (cmp.contains("rel_diff_contact_force"))
+      std::cout << "  rel_diff_contact_force            " << cmp["rel_diff_contact_force"].get<double>()
+                << "\n"
+                << "  rel_diff_contact_area             " << cmp["rel_diff_contact_area"].get<double>()
+                << "\n"
+                << "  max_diff_active_nodes             " << cmp["max_diff_active_nodes"].get<double>()
+                << "\n";
+    std::cout << "written: " << out.dir().string() << "/ (compare.json, compare.h5, summary.json"
               << (plot_status == "ok" ? ", *.png" : "") << ")\n";
     if (plot_status != "ok" && !p.has("--no-plots"))
       std::cerr << "tmlab compare: plots " << plot_status << "\n";

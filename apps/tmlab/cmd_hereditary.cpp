@@ -6,12 +6,15 @@
 #include "cli_args.hpp"
 #include "commands.hpp"
 
+#include "core/base/format.hpp"
+#include "core/constitutive/prony.hpp"
 #include "core/results/run_output.hpp"
 #include "verification/studies/hereditary_report.hpp"
 
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <sstream>
 
 namespace tmlab::cli {
@@ -48,10 +51,17 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   }
   o.histories = tm::study_histories(groups, o.study);
   // Quick runs only the seed's form (a pk2 liver step costs ~7x a nodal_force one).
+  // The history forms by core/constitutive's names (PronyHistory), parsed once; "both" is all of them.
   const std::string lh = p.get("--liver-history", o.study.quick ? "nodal_force" : "both");
-  if (lh != "nodal_force" && lh != "pk2" && lh != "both")
-    throw UsageError("--liver-history must be nodal_force, pk2 or both (got '" + lh + "')");
-  if (lh != "both") o.liver_histories = {lh};
+  if (lh != "both") {
+    const std::optional<PronyHistory> h = prony_history_from_string(lh);
+    if (!h) {
+      std::vector<std::string> names = prony_history_names();
+      names.push_back("both");
+      throw UsageError("--liver-history must be " + choice_list(names, "") + " (got '" + lh + "')");
+    }
+    o.liver_histories = {to_string(*h)};
+  }
   o.params_file =
       p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
   o.tmlab_root = tmlab_root();

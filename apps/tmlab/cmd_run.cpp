@@ -26,7 +26,7 @@ tmlab::RunResult run_model(const CaseConfig& cfg, const tmlab::RunOptions& opt, 
 #ifdef TMLAB_HAVE_REFERENCE
     ref::ReferenceOptions ro;
     ro.degree = degree;
-    ro.time_integration = time_integration;
+    ro.time_integration = ref::parse_time_integration(time_integration, "--time-integration");
     return ref::run_reference_case(cfg, opt, ro);
 #else
     (void)degree;

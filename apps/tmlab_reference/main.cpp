@@ -1,6 +1,6 @@
 // tmlab_reference: runs one case file with the deal.II reference solver (docs/reference-fem.md).
 //   tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]
-//                   [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]
+//                   [--solver direct|direct_klu|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]
 //                   [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] [--quiet]
 // Works under `mpirun -np N`: every rank runs the case, rank 0 writes the result directory.
 #include "core/config/case_config.hpp"
@@ -18,7 +18,8 @@ int usage(const char* msg) {
     std::cerr
         << "tmlab_reference: " << msg << "\n"
         << "usage: tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]\n"
-           "                       [--solver direct|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]\n"
+           "                       [--solver direct|direct_klu|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] "
+           "[--rtol R]\n"
            "                       [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] "
            "[--quiet]\n";
   return 2;
@@ -45,17 +46,17 @@ int main(int argc, char** argv) {
       if (a == "--degree")
         ro.degree = std::stoi(value());
       else if (a == "--law")
-        ro.law = value();
+        ro.law = tmlab::ref::parse_law(value(), "--law");
       else if (a == "--results")
         opt.results_root = value();
       else if (a == "--solver")
-        ro.linear_solver = value();
+        ro.linear_solver = tmlab::ref::parse_linear_solver(value(), "--solver");
       else if (a == "--cells")
-        ro.cells = value();
+        ro.cells = tmlab::ref::parse_cell_type(value(), "--cells");
       else if (a == "--rtol")
         ro.newton_rtol = std::stod(value());
       else if (a == "--time-integration")
-        ro.time_integration = value();
+        ro.time_integration = tmlab::ref::parse_time_integration(value(), "--time-integration");
       else if (a == "--ida-rtol")
         ro.ida_rtol = std::stod(value());
       else if (a == "--ida-atol")

@@ -107,45 +107,6 @@ void compare_reactions(const fs::path& a, const H5File& ha, const H5File& hb, st
   cs.rel_reaction = rel_reac;
 }
 
-/// The force on each rigid contact body of run b (series contact_<body>_force_{x,y,z}), step by
-/// step: |F_a - F_b| / max_t |F_b| per body; run a must have the same bodies.
-void compare_contact(const fs::path& a, const H5File& ha, const H5File& hb, std::size_t n,
-                     nlohmann::json& out) {
-  const std::string pre = "contact_", suf = "_force_x";
-  nlohmann::json per = nlohmann::json::object();
-  double worst = 0.0;
-  for (const auto& name : hb.list("/series")) {
-    if (name.rfind(pre, 0) != 0 || name.size() <= pre.size() + suf.size() ||
-        name.compare(name.size() - suf.size(), suf.size(), suf) != 0)
-      continue;
-    const std::string body = name.substr(pre.size(), name.size() - pre.size() - suf.size());
-    std::array<std::vector<double>, 3> A, B;
-    for (int k = 0; k < 3; ++k) {
-      const std::string ds = "/series/" + series_names::component(series_names::contact(body) + "_force",
-                                                                  series_names::kComponents[k]);
-      if (!ha.exists(ds))
-        throw Error((a / "timeseries.h5").string() + ": no " + ds + " (different contact bodies?)");
-      A[k] = ha.read_double(ds);
-      B[k] = hb.read_double(ds);
-    }
-    double scale = 0.0, w = 0.0;
-    for (std::size_t s = 0; s < n; ++s)
-      scale = std::max(scale, std::sqrt(B[0][s] * B[0][s] + B[1][s] * B[1][s] + B[2][s] * B[2][s]));
-    if (scale == 0.0) scale = 1.0;
-    for (std::size_t s = 0; s < n; ++s) {
-      const double dx = A[0][s] - B[0][s], dy = A[1][s] - B[1][s], dz = A[2][s] - B[2][s];
-      w = std::max(w, std::sqrt(dx * dx + dy * dy + dz * dz) / scale);
-    }
-    per[body] = {{"rel_diff_force", w},
-                 {"final_a_N", {A[0].back(), A[1].back(), A[2].back()}},
-                 {"final_b_N", {B[0].back(), B[1].back(), B[2].back()}}};
-    worst = std::max(worst, w);
-  }
-  if (per.empty()) return;
-  out["contact"] = per;
-  out["rel_diff_contact_force"] = worst;
-}
-
 /// Elastic energy, step by step: |W_a - W_b| / max_t |W_b|.
 void compare_energy(const H5File& ha, const H5File& hb, std::size_t n, nlohmann::json& out,
                     ComparisonSeries& cs) {
@@ -161,6 +122,96 @@ void compare_energy(const H5File& ha, const H5File& hb, std::size_t n, nlohmann:
   }
   out["rel_diff_energy"] = worst;
   out["steps"] = n;
+}
+
+/// The bodies whose contact outputs a list of series names holds (contact_<body>_force_x).
+std::vector<std::string> contact_bodies(const std::vector<std::string>& names) {
+  const std::string pre = "contact_", suf = "_force_x";
+  std::vector<std::string> out;
+  for (const auto& name : names)
+    if (name.rfind(pre, 0) == 0 && name.size() > pre.size() + suf.size() &&
+        name.compare(name.size() - suf.size(), suf.size(), suf) == 0)
+      out.push_back(name.substr(pre.size(), name.size() - pre.size() - suf.size()));
+  return out;
+}
+
+/// Contact force, area and active nodes per body, step by step. Forces are measured against the
+/// largest contact force of run b (all bodies, all steps), areas against the largest area, as the
+/// reactions: a body that barely touches must not turn round-off into a large relative difference.
+void compare_contact(const fs::path& a, const fs::path& b_dir, const H5File& ha, const H5File& hb,
+                     std::size_t n, nlohmann::json& out, ComparisonSeries& cs) {
+  const std::vector<std::string> bodies = contact_bodies(hb.list("/series"));
+  const std::vector<std::string> bodies_a = contact_bodies(ha.list("/series"));
+  if (bodies.empty() && bodies_a.empty()) return;
+  auto read = [&](const H5File& h, const fs::path& dir, const std::string& name) {
+    const std::string ds = "/series/" + name;
+    if (!h.exists(ds))
+      throw Error((dir / "timeseries.h5").string() + ": no " + ds + " (different contact bodies?)");
+    return h.read_double(ds);
+  };
+  for (const auto& b : bodies_a)
+    if (std::find(bodies.begin(), bodies.end(), b) == bodies.end())
+      throw Error("contact body '" + b + "' of " + a.string() +
+                  " is not in the other run (different contact bodies?)");
+  struct Body {
+    std::array<std::vector<double>, 3> fa, fb;
+    std::vector<double> area_a, area_b, nodes_a, nodes_b;
+  };
+  std::map<std::string, Body> data;
+  double fscale = 0.0, ascale = 0.0;
+  for (const auto& b : bodies) {
+    Body& d = data[b];
+    const std::string base = series_names::component("contact_" + b, "force");
+    for (int k = 0; k < 3; ++k) {
+      const std::string name = series_names::component(base, series_names::kComponents[k]);
+      d.fa[k] = read(ha, a, name);
+      d.fb[k] = read(hb, b_dir, name);
+    }
+    d.area_a = read(ha, a, "contact_" + b + "_area");
+    d.area_b = read(hb, b_dir, "contact_" + b + "_area");
+    d.nodes_a = read(ha, a, "contact_" + b + "_active_nodes");
+    d.nodes_b = read(hb, b_dir, "contact_" + b + "_active_nodes");
+    for (std::size_t s = 0; s < n; ++s) {
+      fscale = std::max(
+          fscale, std::sqrt(d.fb[0][s] * d.fb[0][s] + d.fb[1][s] * d.fb[1][s] + d.fb[2][s] * d.fb[2][s]));
+      ascale = std::max(ascale, d.area_b[s]);
+    }
+  }
+  if (fscale == 0.0) fscale = 1.0;
+  if (ascale == 0.0) ascale = 1.0;
+  cs.rel_contact_force.assign(n, 0.0);
+  cs.rel_contact_area.assign(n, 0.0);
+  double worst_f = 0.0, worst_a = 0.0, worst_nodes = 0.0;
+  nlohmann::json per = nlohmann::json::object();
+  for (const auto& [b, d] : data) {
+    double wf = 0.0, wa = 0.0, wn = 0.0;
+    for (std::size_t s = 0; s < n; ++s) {
+      const double dx = d.fa[0][s] - d.fb[0][s], dy = d.fa[1][s] - d.fb[1][s], dz = d.fa[2][s] - d.fb[2][s];
+      const double ef = std::sqrt(dx * dx + dy * dy + dz * dz) / fscale;
+      const double ea = std::abs(d.area_a[s] - d.area_b[s]) / ascale;
+      cs.rel_contact_force[s] = std::max(cs.rel_contact_force[s], ef);
+      cs.rel_contact_area[s] = std::max(cs.rel_contact_area[s], ea);
+      wf = std::max(wf, ef);
+      wa = std::max(wa, ea);
+      wn = std::max(wn, std::abs(d.nodes_a[s] - d.nodes_b[s]));
+    }
+    per[b] = {{"rel_diff_force", wf},
+              {"rel_diff_area", wa},
+              {"max_diff_active_nodes", wn},
+              {"final_force_a_N", {d.fa[0].back(), d.fa[1].back(), d.fa[2].back()}},
+              {"final_force_b_N", {d.fb[0].back(), d.fb[1].back(), d.fb[2].back()}},
+              {"final_area_a_m2", d.area_a.back()},
+              {"final_area_b_m2", d.area_b.back()},
+              {"final_active_nodes_a", d.nodes_a.back()},
+              {"final_active_nodes_b", d.nodes_b.back()}};
+    worst_f = std::max(worst_f, wf);
+    worst_a = std::max(worst_a, wa);
+    worst_nodes = std::max(worst_nodes, wn);
+  }
+  out["rel_diff_contact_force"] = worst_f;
+  out["rel_diff_contact_area"] = worst_a;
+  out["max_diff_active_nodes"] = worst_nodes;
+  out["contact"] = per;
 }
 
 }  // namespace
@@ -179,7 +230,7 @@ nlohmann::json compare_results(const fs::path& a, const fs::path& b, ComparisonS
     cs.step_time = tb;
     compare_reactions(a, ha, hb, n, out, cs);
     compare_energy(ha, hb, n, out, cs);
-    compare_contact(a, ha, hb, n, out);
+    compare_contact(a, b, ha, hb, n, out, cs);
   }
   if (series) *series = std::move(cs);
   return out;

@@ -282,7 +282,7 @@ void QuasiStaticDae::assemble_newton_matrix(const Vector<double>& y, double alph
   nm.constrained_diagonal = n_free > 0 && diag > 0.0 ? diag / n_free : 1.0;
   nm.K.clear_rows(rows, nm.constrained_diagonal);
   TrilinosWrappers::SolverDirect::AdditionalData data(
-      false, linear_solver_ == "direct_klu" ? "Amesos_Klu" : "Amesos_Mumps");
+      false, linear_solver_ == LinearSolver::DirectKlu ? "Amesos_Klu" : "Amesos_Mumps");
   nm.direct = std::make_unique<TrilinosWrappers::SolverDirect>(control_, data);
   nm.direct->initialize(nm.K);
 }
@@ -426,11 +426,11 @@ IdaStats QuasiStaticDae::integrate(double t0, double t_end, int n_outputs, const
   if (!(p.rtol > 0.0) || !(p.atol_u > 0.0) || !(p.atol_z > 0.0))
     throw Error("reference: IDA tolerances must be > 0 (rtol " + std::to_string(p.rtol) + ", atol " +
                 std::to_string(p.atol_u) + " m, " + std::to_string(p.atol_z) + " Pa)");
-  if (p.linear_solver != "direct" && p.linear_solver != "direct_klu")
+  if (p.linear_solver == LinearSolver::CgAmg)
     throw Error(
         "reference: IDA time integration uses a direct solver: linear_solver must be 'direct' or "
         "'direct_klu' (got '" +
-        p.linear_solver + "')");
+        to_string(p.linear_solver) + "')");
   linear_solver_ = p.linear_solver;
   projection_tolerance_u_ = p.atol_u;
   projection_rtol_ = p.rtol;

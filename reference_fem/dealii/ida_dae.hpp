@@ -38,12 +38,12 @@ namespace tmlab::ref {
 /// from Z and t); their absolute tolerance still weights IDA's Newton convergence test.
 struct IdaParameters {
   double rtol = 1e-6;
-  double atol_u = 1e-9;                  ///< m, on U
-  double atol_z = 1e-3;                  ///< Pa, on Z
-  unsigned max_order = 5;                ///< BDF order limit
-  unsigned max_newton = 4;               ///< Newton iterations per step attempt (the SUNDIALS default)
-  double initial_step = 0.0;             ///< 0: the output interval / 100
-  std::string linear_solver = "direct";  ///< direct (MUMPS) | direct_klu (the reference's direct solvers)
+  double atol_u = 1e-9;       ///< m, on U
+  double atol_z = 1e-3;       ///< Pa, on Z
+  unsigned max_order = 5;     ///< BDF order limit
+  unsigned max_newton = 4;    ///< Newton iterations per step attempt (the SUNDIALS default)
+  double initial_step = 0.0;  ///< 0: the output interval / 100
+  LinearSolver linear_solver = LinearSolver::Direct;  ///< direct (MUMPS) | direct_klu (direct solvers only)
 };
 
 /// What IDA did, counted in the callbacks: deal.II 9.4 keeps the IDA memory private, so the
@@ -129,7 +129,7 @@ class QuasiStaticDae {
   unsigned n_dofs_ = 0, n_q_ = 0, n_terms_ = 0, n_cells_ = 0;
   std::size_t n_z_ = 0;
   double alpha_sum_ = 0.0;
-  std::string linear_solver_ = "direct";
+  LinearSolver linear_solver_ = LinearSolver::Direct;
   dealii::TrilinosWrappers::MPI::Vector f_ext_, rhs_, du_;
   dealii::SolverControl control_;
   NewtonMatrix ida_matrix_, projection_matrix_;

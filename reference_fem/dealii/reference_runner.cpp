@@ -9,7 +9,9 @@
 //   * nodal_force: the total force split equally over the selected vertices (vertex DoFs);
 //   * pressure: dead load on the selected boundary faces (a surface group's triangles, or the
 //     boundary faces all of whose vertices are selected), integrated with the face quadrature;
-//   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses).
+//   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses);
+//   * contact: the case's rigid bodies at the mesh vertices by the fast model's nodal augmented
+//     Lagrangian (contact.hpp), the same rule and stopping test, so P1 runs agree to round-off.
 #include "reference_fem/dealii/reference_runner.hpp"
 
 #include "core/base/error.hpp"
@@ -20,6 +22,7 @@
 #include "core/mesh/mesh_quality.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
+#include "reference_fem/dealii/contact.hpp"
 #include "reference_fem/dealii/ida_dae.hpp"
 #include "reference_fem/dealii/solid.hpp"
 
@@ -92,9 +95,9 @@ std::vector<unsigned> dof_entity_vertices(const DoFHandler<3>::active_cell_itera
 std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions& ro) {
   if (!ro.name_suffix.empty()) return cfg.name + ro.name_suffix;
   std::string s = cfg.name + "-reference";
-  if (ro.cells == "hex") s += "-hex";
+  if (ro.cells == CellType::Hex) s += "-hex";
   if (ro.degree == 2) s += "-p2";
-  if (ro.time_integration == "ida") s += "-ida";
+  if (ro.time_integration == TimeIntegration::Ida) s += "-ida";
   return s;
 }
 
@@ -104,11 +107,11 @@ namespace {
 /// or the command line's override (--law stvk | neo_hookean | yeoh) of a case given by E and nu.
 Material reference_material(const CaseConfig& cfg, const ReferenceOptions& ro) {
   try {
-    if (ro.law.empty()) return Material::make(cfg.material.law, cfg.material.parameters);
+    if (!ro.law) return Material::make(cfg.material.law, cfg.material.parameters);
     if (!law_takes_young_poisson(cfg.material.law))
-      throw Error("the law override '" + ro.law + "' needs a case given by E and nu (material.law is '" +
+      throw Error("the law override '" + to_string(*ro.law) + "' needs a case given by E and nu (material.law is '" +
                   to_string(cfg.material.law) + "')");
-    return Material::make(ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio,
+    return Material::make(*ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio,
                           ro.yeoh_c30_ratio);
   } catch (const Error& e) {
     throw Error(cfg.file + ": " + e.what());
@@ -119,8 +122,10 @@ Material reference_material(const CaseConfig& cfg, const ReferenceOptions& ro) {
 void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned n_ranks) {
   if (cfg.solver.type != SolverSpec::Type::Static)
     throw Error(cfg.file +
-                ": key 'solver.type': the deal.II reference solves quasi-static problems only (got a dynamic "
-                "solver)");
+                ": key 'solver.type': the deal.II reference solves quasi-static problems only (got '" +
+                std::string(cfg.solver.type == SolverSpec::Type::Explicit ? "explicit" : "implicit") +
+                "'; explicit and implicit dynamics" +
+                (cfg.contact.enabled ? ", with or without contact," : "") + " run in the fast model only)");
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled && vs.history == PronyHistory::NodalForce)
     throw Error(
@@ -130,17 +135,13 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
         "nodal_force history is not objective (docs/theory/seed-errata.md) and has no continuum counterpart");
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
-  if (ro.cells != "tet" && ro.cells != "hex") throw Error("reference: cells must be 'tet' or 'hex'");
-  const std::string law = ro.law.empty() ? to_string(cfg.material.law) : ro.law;
-  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && law != "stvk")
+  const MaterialLaw law = ro.law.value_or(cfg.material.law);
+  if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && law != MaterialLaw::StVK)
     throw Error(
         "reference: deviatoric relaxation S_dev = 2 mu dev(E) is defined for St Venant-Kirchhoff only (law "
         "'" +
-        law + "')");
-  const bool use_ida = ro.time_integration == "ida";
-  if (!use_ida && ro.time_integration != "fixed_step")
-    throw Error("reference: time_integration must be 'fixed_step' or 'ida' (got '" + ro.time_integration +
-                "')");
+        to_string(law) + "')");
+  const bool use_ida = ro.time_integration == TimeIntegration::Ida;
   if (use_ida) {
     if (!vs.enabled)
       throw Error(cfg.file +
@@ -151,12 +152,20 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
                   std::to_string(n_ranks) + "); run it without mpirun or with the serial option");
     if (!(ro.ida_rtol > 0.0) || !(ro.ida_atol >= 0.0))
       throw Error("reference: ida_rtol must be > 0 and ida_atol >= 0");
-    if (ro.linear_solver != "direct" && ro.linear_solver != "direct_klu")
+    if (ro.linear_solver == LinearSolver::CgAmg)
       throw Error(
           "reference: the IDA time integration needs a direct linear solver ('direct' or "
           "'direct_klu'; got '" +
-          ro.linear_solver + "')");
+          to_string(ro.linear_solver) + "')");
   }
+  if (cfg.contact.enabled && ro.cells == CellType::Hex)
+    throw Error(cfg.file +
+                ": key 'contact': contact is applied at the case mesh's vertices, which the hex cells "
+                "(cells 'hex') do not have; run contact cases on the case's tets");
+  if (cfg.contact.enabled && use_ida)
+    throw Error(cfg.file +
+                ": key 'contact': the IDA time integration has no contact (its outer loop of multiplier "
+                "updates needs fixed steps); use time_integration 'fixed_step'");
   for (const auto& l : cfg.loads)
     if (l.type == LoadSpec::Type::Pressure && l.follower)
       throw Error(cfg.file + ": load '" + l.name +
@@ -190,6 +199,7 @@ struct Problem {
   std::unique_ptr<Solid> solid;
   std::vector<std::vector<unsigned>> vmap;  ///< (cell, vertex) -> node
   std::vector<Index> probe_nodes;
+  std::unique_ptr<NodalContact> contact;  ///< the case's contact section, if any
 };
 
 /// The coarse triangulation: vertex i = tmlab node i and cell c = tet c (tet mode), or the
@@ -374,6 +384,30 @@ void add_loads(Problem& p) {
   }
 }
 
+/// The case's contact bodies on the mesh vertices: each node's vertex DoFs where this rank sees them
+/// (owned: the rank owns them), the contact object started at t = 0 from the rest state, and the
+/// Solid told to run its outer loop.
+void add_contact(Problem& p) {
+  const Index n = p.mesh.num_points();
+  std::vector<std::array<global_dof_index, 3>> node_dofs(
+      static_cast<std::size_t>(n),
+      {numbers::invalid_dof_index, numbers::invalid_dof_index, numbers::invalid_dof_index});
+  std::vector<char> owned(static_cast<std::size_t>(n), 0);
+  for (const auto& cell : p.solid->dof_handler().active_cell_iterators()) {
+    if (cell->is_artificial()) continue;
+    const auto& vm = p.vmap[cell->active_cell_index()];
+    for (unsigned v = 0; v < cell->n_vertices(); ++v) {
+      auto& d = node_dofs[vm[v]];
+      for (unsigned c = 0; c < 3; ++c) d[c] = cell->vertex_dof_index(v, c);
+      owned[vm[v]] = p.solid->locally_owned_dofs().is_element(d[0]) ? 1 : 0;
+    }
+  }
+  p.contact = std::make_unique<NodalContact>(p.cfg.contact, p.cfg.file, p.mesh, std::move(node_dofs),
+                                             std::move(owned), p.comm);
+  p.contact->start(*p.solid, 0.0, std::vector<double>(3 * static_cast<std::size_t>(n), 0.0));
+  p.solid->set_nodal_constraints(p.contact.get());
+}
+
 Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_Comm communicator,
                  std::ostream* log)
     : cfg(config),
@@ -381,7 +415,7 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
       comm(communicator),
       rank(Utilities::MPI::this_mpi_process(comm)),
       n_ranks(Utilities::MPI::n_mpi_processes(comm)),
-      hex(ro.cells == "hex") {
+      hex(ro.cells == CellType::Hex) {
   check_supported(cfg, ro, n_ranks);
   mesh = load_case_mesh(cfg.mesh, report, repaired);
   build_coarse(*this);
@@ -396,6 +430,7 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
   add_loads(*this);
   solid->finalize_setup();
   for (const auto& pr : cfg.output.probes) probe_nodes.push_back(probe_node(nodes(), pr, cfg.file));
+  if (cfg.contact.enabled) add_contact(*this);
 }
 
 /// Vertex values in node order, gathered from the DoF owners.
@@ -443,13 +478,13 @@ void write_inputs(const RunOutput& out, const Problem& p, const RunOptions& opt)
   mi.command_line = opt.command_line;
   mi.config = effective_case_json(p.cfg);
   mi.config["reference"] = {{"degree", ro.degree},
-                            {"law", ro.law},
-                            {"cells", ro.cells},
-                            {"linear_solver", ro.linear_solver},
+                            {"law", to_string(ro.law.value_or(p.cfg.material.law))},
+                            {"cells", to_string(ro.cells)},
+                            {"linear_solver", to_string(ro.linear_solver)},
                             {"newton_rtol", ro.newton_rtol},
                             {"mpi_ranks", p.n_ranks},
-                            {"time_integration", ro.time_integration}};
-  if (ro.time_integration == "ida") {
+                            {"time_integration", to_string(ro.time_integration)}};
+  if (ro.time_integration == TimeIntegration::Ida) {
     mi.config["reference"]["ida_rtol"] = ro.ida_rtol;
     mi.config["reference"]["ida_atol"] = ro.ida_atol;
   }
@@ -502,6 +537,10 @@ class StepRecorder {
       const std::size_t i = 3 * static_cast<std::size_t>(n);
       s.probes.push_back({U[i], U[i + 1], U[i + 2]});
     }
+    if (p_.contact) {
+      contact_ = p_.contact->outputs(solid.solution(), t);
+      for (const ContactBodyOutput& b : contact_) s.contact.push_back(contact_values(b));
+    }
     rec_.record(s);
     if (!write_fields) return;
     const int frame = rec_.field_frames();
@@ -521,8 +560,25 @@ class StepRecorder {
   }
 
   const Recorder& recorder() const { return rec_; }
+  /// The contact outputs of the last recorded step (one per body; empty without contact).
+  const std::vector<ContactBodyOutput>& contact() const { return contact_; }
 
  private:
+  static series_names::ContactValues contact_values(const ContactBodyOutput& b) {
+    series_names::ContactValues c;
+    c.body = b.name;
+    c.position = {b.position.x(), b.position.y(), b.position.z()};
+    c.force = {b.force.x(), b.force.y(), b.force.z()};
+    c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
+    c.area = b.area;
+    c.radius = b.radius_equivalent;
+    c.radius_max = b.radius_max;
+    c.active_nodes = b.active_nodes;
+    c.max_pressure = b.max_pressure;
+    c.max_penetration = b.max_penetration;
+    return c;
+  }
+
   /// The displacement, volume ratio, von Mises stress and MPI subdomain of frame `frame`.
   void write_vtu(double t, int frame) {
     const Solid& solid = *p_.solid;
@@ -548,6 +604,7 @@ class StepRecorder {
   const Problem& p_;
   std::string staging_;
   Recorder rec_;
+  std::vector<ContactBodyOutput> contact_;
   std::vector<std::pair<double, std::string>> pvd_;
 };
 
@@ -556,7 +613,9 @@ struct SteppingReport {
   nlohmann::json per_step = nlohmann::json::array();
   long newton = 0, linear = 0, cutbacks = 0;
   double assembly_seconds = 0.0, solve_seconds = 0.0, newton_seconds = 0.0;
-  nlohmann::json ida;  ///< IDA runs only
+  nlohmann::json ida;           ///< IDA runs only
+  std::vector<int> outer;       ///< contact: outer (multiplier-update) iterations per step
+  std::vector<double> natural;  ///< contact: natural complementarity residual at the end of each step, m
 };
 
 bool field_step(const CaseConfig& cfg, int k) { return k % cfg.output.every == 0 || k == cfg.solver.steps; }
@@ -588,6 +647,11 @@ SteppingReport step_fixed(Problem& p, StepRecorder& rec) {
                           {"solve_seconds", st.solve_seconds},
                           {"newton_seconds", st.newton_seconds},
                           {"residuals", st.residuals}});
+    if (p.contact) {
+      r.outer.push_back(st.outer_iterations);
+      r.natural.push_back(p.contact->natural_residual());
+      r.per_step.back()["outer_iterations"] = st.outer_iterations;
+    }
     rec.record(k, t1, st.newton_iterations, field_step(cfg, k));
     // A safe point for SIGINT/SIGTERM; every rank agrees, so all stop at the same step.
     const int sig = Utilities::MPI::max(pending_interrupt(), p.comm);
@@ -668,7 +732,41 @@ SteppingReport step_ida(Problem& p, StepRecorder& rec, std::ostream* log) {
 }
 
 /// summary.json: the case, mesh, material, discretisation, solver and the recorder's common blocks.
-nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingReport& r, double wall) {
+/// The contact block of the summary: the enforcement and each body's final outputs, with the fast
+/// model's keys (tmlab run and the reference summaries read alike).
+nlohmann::json contact_summary(const Problem& p, const std::vector<ContactBodyOutput>& last,
+                               const SteppingReport& r) {
+  nlohmann::json bodies = nlohmann::json::array();
+  for (std::size_t b = 0; b < last.size(); ++b) {
+    const ContactBodyOutput& o = last[b];
+    const ContactBodySpec& spec = p.cfg.contact.bodies[b];
+    bodies.push_back({{"name", o.name},
+                      {"type", to_string(spec.shape)},
+                      {"mode", to_string(spec.mode)},
+                      {"final_position_m", {o.position.x(), o.position.y(), o.position.z()}},
+                      {"final_force_N", {o.force.x(), o.force.y(), o.force.z()}},
+                      {"final_moment_Nm", {o.moment.x(), o.moment.y(), o.moment.z()}},
+                      {"final_area_m2", o.area},
+                      {"final_radius_m", o.radius_equivalent},
+                      {"final_radius_max_m", o.radius_max},
+                      {"final_active_nodes", o.active_nodes},
+                      {"final_max_pressure_Pa", o.max_pressure},
+                      {"final_max_penetration_m", o.max_penetration},
+                      {"final_complementarity_Nm", o.complementarity},
+                      {"final_min_multiplier_N", o.min_multiplier}});
+  }
+  return {{"scheme", "augmented_lagrangian_static"},
+          {"method", to_string(p.cfg.contact.method)},
+          {"rule", p.ro.degree == 1 ? "nodal (vertices)" : "nodal at the vertices only (P2 edge nodes free)"},
+          {"gap_tol_m", p.contact->gap_tol()},
+          {"stiffness_N_per_m", p.contact->stiffness()},
+          {"outer_iterations_per_step", r.outer},
+          {"natural_residual_per_step_m", r.natural},
+          {"bodies", bodies}};
+}
+
+nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingReport& r, double wall,
+                         const std::vector<ContactBodyOutput>& contact) {
   const CaseConfig& cfg = p.cfg;
   const ReferenceOptions& ro = p.ro;
   nlohmann::json summary = {{"case", cfg.name},
@@ -700,13 +798,13 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                               {"newton_iterations", r.newton},
                               {"linear_iterations", r.linear},
                               {"cutbacks", r.cutbacks},
-                              {"linear_solver", ro.linear_solver},
+                              {"linear_solver", to_string(ro.linear_solver)},
                               {"newton_rtol", ro.newton_rtol},
                               {"assembly_seconds", r.assembly_seconds},
                               {"solve_seconds", r.solve_seconds},
                               {"newton_seconds", r.newton_seconds},
                               {"steps", r.per_step},
-                              {"time_integration", ro.time_integration}}},
+                              {"time_integration", to_string(ro.time_integration)}}},
                             {"plots", "skipped"},
                             {"run_seconds", wall}};
   summary.update(rec.summary_blocks());
@@ -719,7 +817,8 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                                            {"integration", to_string(vs.integration)},
                                            {"relaxation", to_string(vs.relaxation)},
                                            {"history", "pk2"}};
-  if (ro.time_integration == "ida") summary["solver"]["ida"] = r.ida;
+  if (ro.time_integration == TimeIntegration::Ida) summary["solver"]["ida"] = r.ida;
+  if (p.contact) summary["contact"] = contact_summary(p, contact, r);  // top level, as the fast model
   return summary;
 }
 
@@ -748,13 +847,14 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
     if (log)
       *log << "reference: " << cfg.name << ", " << p.material.name() << ", " << (p.hex ? "Q" : "P")
            << ro.degree << ", " << p.solid->n_dofs() << " DoFs, " << p.n_ranks << " rank(s), "
-           << ro.linear_solver << " solver\n";
-    const SteppingReport r = ro.time_integration == "ida" ? step_ida(p, rec, log) : step_fixed(p, rec);
+           << to_string(ro.linear_solver) << " solver\n";
+    const SteppingReport r =
+        ro.time_integration == TimeIntegration::Ida ? step_ida(p, rec, log) : step_fixed(p, rec);
     nlohmann::json summary;
     if (root) {
       rec.close(*out);
       const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-      summary = summarise(p, rec.recorder(), r, wall);
+      summary = summarise(p, rec.recorder(), r, wall, rec.contact());
       out->finalize(summary);
     }
     const std::string text = Utilities::MPI::broadcast(comm, root ? summary.dump() : std::string(), 0);

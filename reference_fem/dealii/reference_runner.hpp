@@ -8,9 +8,11 @@
 
 #include "core/config/case_config.hpp"
 #include "core/results/run_options.hpp"
+#include "reference_fem/dealii/reference_options.hpp"
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace tmlab::ref {
@@ -18,11 +20,12 @@ namespace tmlab::ref {
 /// What the reference adds to a case: discretisation, constitutive law and solver choices.
 struct ReferenceOptions {
   int degree = 1;  ///< polynomial degree: 1 or 2
-  /// Empty: the case's law (material.law, docs/case-files.md). Otherwise an override of a case given by
+  /// Unset: the case's law (material.law, docs/case-files.md). Set: an override of a case given by
   /// E and nu: stvk | neo_hookean | yeoh (tmlab_reference --law).
-  std::string law;
+  std::optional<MaterialLaw> law;
   double newton_rtol = 1e-10;  ///< |R_free| <= rtol * max(|R_0|, |f_ext|) + atol (atol from the case)
-  std::string linear_solver = "direct";  ///< direct (MUMPS through Trilinos Amesos) | cg_amg (CG + ML AMG)
+  /// direct (MUMPS through Trilinos Amesos) | direct_klu (KLU) | cg_amg (CG + ML AMG)
+  LinearSolver linear_solver = LinearSolver::Direct;
   /// Yeoh law W = C10 (I1b-3) + C20 (I1b-3)^2 + C30 (I1b-3)^3 + kappa/2 (ln J)^2 with C10 = mu/2 and
   /// kappa = lambda + 2 mu / 3 from the case's E, nu; C20 and C30 given as multiples of C10.
   double yeoh_c20_ratio = 1.0;
@@ -31,13 +34,13 @@ struct ReferenceOptions {
   /// GridGenerator::subdivided_hyper_rectangle with hex_subdivisions cells, FE_Q). The hex mode is
   /// for the hex/tet cross-check on box-shaped bodies; its node selectors see the hex vertices, so
   /// group selectors are not available there.
-  std::string cells = "tet";
+  CellType cells = CellType::Tet;
   std::array<unsigned, 3> hex_subdivisions{4, 4, 4};
   /// Time integration of viscoelastic runs: "fixed_step" (the Prony recursion of the case's
   /// 'integration' on solver.steps increments) or "ida" (the quasi-static DAE, equilibrium algebraic
   /// and internal variables differential, by SUNDIALS IDA through deal.II; error-controlled steps,
   /// output at the same solver.steps times; one MPI rank; direct linear solvers only).
-  std::string time_integration = "fixed_step";
+  TimeIntegration time_integration = TimeIntegration::FixedStep;
   double ida_rtol = 1e-6;  ///< IDA relative tolerance
   /// IDA absolute tolerance on the displacements (m); 0: 1e-3 ida_rtol times the bounding-box
   /// diagonal L of the mesh. The internal variables (PK2 stresses) get ida_atol E / L (Pa).

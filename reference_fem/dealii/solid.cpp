@@ -378,6 +378,9 @@ void Solid::assemble(const TrilinosWrappers::MPI::Vector& u_ghost, double t, dou
     r.add(idx, val);
     if (tangent && !idx_rhs.empty()) rhs->add(idx_rhs, val_rhs);
   }
+  // Nodal constraints (contact) inside advance(): their forces and 3x3 blocks at the vertices.
+  if (nodal_ && nodal_active_ && mode != Mode::External)
+    nodal_->add_terms(u_ghost, t, r, constraints, tangent ? K : nullptr, tangent ? rhs : nullptr);
   r.compress(VectorOperation::add);
   if (tangent) {
     K->compress(VectorOperation::add);
@@ -443,17 +446,14 @@ void Solid::set_history(
 
 int Solid::linear_solve(TrilinosWrappers::MPI::Vector& du, const TrilinosWrappers::MPI::Vector& rhs) {
   du = 0.0;
-  if (newton_.linear_solver == "direct" || newton_.linear_solver == "direct_klu") {
+  if (newton_.linear_solver != LinearSolver::CgAmg) {
     SolverControl control(1, 0.0);
     TrilinosWrappers::SolverDirect::AdditionalData data(
-        false, newton_.linear_solver == "direct" ? "Amesos_Mumps" : "Amesos_Klu");
+        false, newton_.linear_solver == LinearSolver::Direct ? "Amesos_Mumps" : "Amesos_Klu");
     TrilinosWrappers::SolverDirect solver(control, data);
     solver.solve(K_, du, rhs);
     return 0;
   }
-  if (newton_.linear_solver != "cg_amg")
-    throw Error("reference: linear_solver must be 'direct', 'direct_klu' or 'cg_amg' (got '" +
-                newton_.linear_solver + "')");
   TrilinosWrappers::PreconditionAMG amg;
   TrilinosWrappers::PreconditionAMG::AdditionalData ad;
   ad.elliptic = true;
@@ -643,7 +643,8 @@ bool Solid::newton(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepSt
   const bool has_potential = !prony_;
   auto potential = [&](const TrilinosWrappers::MPI::Vector& v) {
     g = v;
-    return hyperelastic_energy(g) + (minus_fext * v);
+    const double phi = nodal_ && nodal_active_ ? nodal_->energy(g, t) : 0.0;
+    return hyperelastic_energy(g) + (minus_fext * v) + phi;
   };
 
   double rnorm = residual(u, r);
@@ -715,8 +716,30 @@ void Solid::commit(double dt) {
       for (auto& d : qp_data_.get_data(cell)) d->prony.commit();
 }
 
+bool Solid::solve(double t, double dt, TrilinosWrappers::MPI::Vector& u, StepStats& stats) {
+  if (!nodal_) return newton(t, dt, u, stats);
+  // The outer loop of the nodal constraints: Newton with the multipliers fixed, then their update
+  // and stopping test (contact.hpp), from the committed multipliers of the last accepted increment.
+  nodal_->begin_increment();
+  TrilinosWrappers::MPI::Vector g(owned_, relevant_, comm_);
+  for (int outer = 0; outer < nodal_->max_outer_iterations(); ++outer) {
+    ++stats.outer_iterations;
+    if (!newton(t, dt, u, stats)) return false;
+    g = u;
+    if (nodal_->update(g, t)) return true;
+  }
+  return false;
+}
+
 StepStats Solid::advance(double t0, double t1) {
   if (!setup_done_) finalize_setup();
+  // The nodal terms enter the assembly only inside advance() (reactions() and the tests' residuals
+  // stay f_int - f_ext).
+  struct Active {
+    bool& flag;
+    explicit Active(bool& f) : flag(f) { flag = true; }
+    ~Active() { flag = false; }
+  } active(nodal_active_);
   const auto start = Clock::now();
   StepStats stats;
   stats.t = t1;
@@ -727,7 +750,7 @@ StepStats Solid::advance(double t0, double t1) {
     TrilinosWrappers::MPI::Vector u_try(u_);
     bool ok = false;
     try {
-      ok = newton(t_try, t_try - t_done, u_try, stats);
+      ok = solve(t_try, t_try - t_done, u_try, stats);
     } catch (const Error&) {
       if (depth >= newton_.max_cutbacks) throw;
     } catch (const SolverControl::NoConvergence&) {
@@ -738,6 +761,7 @@ StepStats Solid::advance(double t0, double t1) {
       u_ghost_ = u_;
       t_committed_ = t_try;
       commit(t_try - t_done);
+      if (nodal_) nodal_->commit(u_ghost_, t_try);
       t_done = t_try;
       ++stats.sub_increments;
       if (depth > 0) {  // success after a cut-back: let the increment grow back

@@ -17,6 +17,7 @@
 #include "core/config/line_search.hpp"
 #include "core/config/time_function.hpp"
 #include "reference_fem/dealii/materials.hpp"
+#include "reference_fem/dealii/reference_options.hpp"
 
 #include <deal.II/base/index_set.h>
 #include <deal.II/base/quadrature.h>
@@ -57,10 +58,35 @@ struct NewtonParameters {
   /// sufficient decrease of |R_free| only; None: full steps (core/config/line_search.hpp).
   LineSearch line_search = LineSearch::Energy;
   int max_backtracks = 12;
-  double stagnation_tol = 1e-13;         ///< relative step below which a stalled |R| is round-off
-  int max_cutbacks = 8;                  ///< halvings of a load increment whose Newton solve fails
-  std::string linear_solver = "direct";  ///< direct | cg_amg
-  double cg_rtol = 1e-8;                 ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
+  double stagnation_tol = 1e-13;  ///< relative step below which a stalled |R| is round-off
+  int max_cutbacks = 8;           ///< halvings of a load increment whose Newton solve fails
+  LinearSolver linear_solver = LinearSolver::Direct;  ///< direct | direct_klu | cg_amg
+  double cg_rtol = 1e-8;  ///< CG: |r| <= cg_rtol |b| (inexact Newton: the Newton test decides)
+};
+
+/// Constraints at the mesh vertices imposed by a method with an outer loop around Newton (the nodal
+/// augmented-Lagrangian contact, contact.hpp). During advance() the Solid adds their terms to every
+/// residual, tangent and potential of its Newton solves, and runs the outer loop of each
+/// (sub-)increment: begin_increment(), then Newton and update() until update() says done.
+class NodalConstraints {
+ public:
+  virtual ~NodalConstraints() = default;
+  /// At the ghosted displacement u: r += dPhi/du (rows this rank owns); with K, the 3x3 blocks
+  /// d^2Phi/du^2 and -dPhi/du through `constraints` into K and rhs (as the cell terms).
+  virtual void add_terms(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t,
+                         dealii::TrilinosWrappers::MPI::Vector& r,
+                         const dealii::AffineConstraints<double>* constraints,
+                         dealii::TrilinosWrappers::SparseMatrix* K,
+                         dealii::TrilinosWrappers::MPI::Vector* rhs) const = 0;
+  /// Phi(u), summed over ranks (added to the potential of the energy line search).
+  virtual double energy(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) const = 0;
+  /// A new (sub-)increment starts from the committed multipliers.
+  virtual void begin_increment() = 0;
+  /// After a converged Newton solve at t: the multiplier update; true when the stopping test holds.
+  virtual bool update(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) = 0;
+  /// The (sub-)increment to t is accepted at u.
+  virtual void commit(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) = 0;
+  virtual int max_outer_iterations() const = 0;
 };
 
 /// Per-step statistics, for the summary and docs/performance.md.
@@ -71,6 +97,7 @@ struct StepStats {
   int backtracks = 0;
   int cutbacks = 0;
   int sub_increments = 0;         ///< accepted (sub-)increments (1 without cut-backs)
+  int outer_iterations = 0;       ///< Newton solves of the nodal constraints' outer loops (0 without)
   bool at_roundoff = false;       ///< a sub-increment converged by the round-off stagnation test
   double assembly_seconds = 0.0;  ///< tangent + residual assembly
   double solve_seconds = 0.0;     ///< linear solves (factorisation or AMG setup included)
@@ -113,6 +140,8 @@ class Solid {
                     const dealii::Tensor<1, 3>& traction);
   /// Body force per unit reference volume b0(X) * f(t) (gravity: rho g).
   void add_body_force(std::function<dealii::Tensor<1, 3>(const dealii::Point<3>&)> b0, int load);
+  /// Nodal constraints (contact) for the following advance() calls; null removes them. Not owned.
+  void set_nodal_constraints(NodalConstraints* c) { nodal_ = c; }
   /// Builds the constraints and the sparsity pattern; called by the first advance() if needed.
   void finalize_setup();
 
@@ -202,6 +231,8 @@ class Solid {
                 dealii::TrilinosWrappers::MPI::Vector* rhs);
   double free_norm(const dealii::TrilinosWrappers::MPI::Vector& r) const;
   bool newton(double t, double dt, dealii::TrilinosWrappers::MPI::Vector& u_owned, StepStats& stats);
+  /// Newton, or with nodal constraints their outer loop of Newton solves and updates.
+  bool solve(double t, double dt, dealii::TrilinosWrappers::MPI::Vector& u_owned, StepStats& stats);
   /// The first iteration's constraints: du_c = g(t) - u on the Dirichlet DoFs (into `first` as
   /// inhomogeneities and into du_c); returns max |du_c| over all ranks.
   double prescribed_increments(double t, const dealii::TrilinosWrappers::MPI::Vector& u_ghost,
@@ -238,6 +269,8 @@ class Solid {
   std::vector<Pressure> pressures_;
   std::vector<BodyForce> body_forces_;
   bool setup_done_ = false;
+  NodalConstraints* nodal_ = nullptr;
+  bool nodal_active_ = false;  ///< inside advance(): the assembly adds the nodal terms
 
   dealii::AffineConstraints<double> hom_constraints_;  ///< du = 0 on the Dirichlet DoFs
   dealii::TrilinosWrappers::SparseMatrix K_;

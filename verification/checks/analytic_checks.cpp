@@ -317,7 +317,7 @@ Measurements simple_shear_neohookean(const CheckContext& ctx) {
   ro.tmlab_root = ctx.source_root.string();
   ro.plots = false;
   ref::ReferenceOptions refo;
-  refo.law = "neo_hookean";
+  refo.law = MaterialLaw::NeoHookean;
   refo.newton_rtol = rtol;
   refo.serial = true;
   const auto result = ref::run_reference_case(config, ro, refo);

@@ -1,8 +1,10 @@
 // Checks against the deal.II reference (compiled to a no-op registration without deal.II).
 //
 //   reference.same_mesh   tensor-mass and deal.II P1 St VK on the same mesh, shipped case files
-//                         (static and quasi-static viscoelastic): nodal displacements, reactions and
-//                         energy differences (core result_compare), which must be the solvers' tolerance
+//                         (static and quasi-static viscoelastic, with or without rigid contact bodies):
+//                         nodal displacements, reactions and energy differences, and with contact each
+//                         body's force, area and active nodes (core result_compare), which must be the
+//                         solvers' tolerance
 //   reference.p1_vs_p2    tensor-mass P1 on nested box meshes against a deal.II P2 solution on a
 //                         reference level, at the vertices both meshes have: nodal discretisation
 //                         error, its order, and the P2 reference's own error estimated from P2 on a
@@ -97,7 +99,7 @@ tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
 /// The deal.II run of a case: serial (the harness may run under mpirun; the comparisons are serial
 /// runs), Newton tolerance of the case, result directory <case><suffix>.
 tmlab::RunResult run_reference(const CheckContext& ctx, const CaseConfig& c, int degree,
-                               const std::string& solver, const std::string& suffix) {
+                               ref::LinearSolver solver, const std::string& suffix) {
   ref::ReferenceOptions o;
   o.degree = degree;
   o.linear_solver = solver;
@@ -118,11 +120,13 @@ Eigen::VectorXd final_displacement(const std::string& dir) {
   return out;
 }
 
-std::string require_linear_solver(ConfigReader& p) {
+ref::LinearSolver require_linear_solver(ConfigReader& p) {
   const std::string s = p.get<std::string>("linear_solver", "direct");
-  if (s != "direct" && s != "direct_klu" && s != "cg_amg")
-    throw p.error("linear_solver", "must be direct, direct_klu or cg_amg (got '" + s + "')");
-  return s;
+  try {
+    return ref::parse_linear_solver(s);
+  } catch (const Error& e) {
+    throw p.error("linear_solver", e.what());
+  }
 }
 
 // ------------------------------------------------------------------ reference.same_mesh
@@ -134,6 +138,9 @@ Measurements same_mesh(const CheckContext& ctx) {
 
   Measurements m;
   double worst_u = 0.0, worst_r = 0.0, worst_w = 0.0;
+  // Contact cases (a `contact` section): the contact force, area and active-node count per body.
+  bool any_contact = false;
+  double worst_f = 0.0, worst_a = 0.0, worst_n = 0.0;
   nlohmann::json rows = nlohmann::json::array();
   for (const std::string& rel : files) {
     const fs::path file = ctx.source_root / rel;
@@ -144,7 +151,7 @@ Measurements same_mesh(const CheckContext& ctx) {
     const tmlab::RunResult a = run_tensor_mass(ctx, c);
     const double t_tm = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    const tmlab::RunResult b = run_reference(ctx, c, 1, "direct", "-reference");
+    const tmlab::RunResult b = run_reference(ctx, c, 1, ref::LinearSolver::Direct, "-reference");
     const double t_ref = seconds_since(t1);
     const nlohmann::json cmp = compare_results(a.dir, b.dir);
     const double du = cmp.at("rel_diff_displacement").get<double>();
@@ -156,14 +163,34 @@ Measurements same_mesh(const CheckContext& ctx) {
     worst_u = std::max(worst_u, du);
     worst_r = std::max(worst_r, dr);
     worst_w = std::max(worst_w, dw);
+    std::string contact_text;
+    if (cmp.contains("rel_diff_contact_force")) {
+      any_contact = true;
+      const double df = cmp.at("rel_diff_contact_force").get<double>();
+      const double da = cmp.at("rel_diff_contact_area").get<double>();
+      const double dn = cmp.at("max_diff_active_nodes").get<double>();
+      m.set(c.name + "_rel_diff_contact_force", df);
+      m.set(c.name + "_rel_diff_contact_area", da);
+      m.set(c.name + "_max_diff_active_nodes", dn);
+      worst_f = std::max(worst_f, df);
+      worst_a = std::max(worst_a, da);
+      worst_n = std::max(worst_n, dn);
+      contact_text =
+          ", contact force " + fmt(df) + ", area " + fmt(da) + ", active nodes differ by " + short_number(dn);
+    }
     rows.push_back(
         {{"case", rel}, {"comparison", cmp}, {"tensor_mass_seconds", t_tm}, {"reference_seconds", t_ref}});
     ctx.log << "  " << c.name << ": displacement " << fmt(du) << ", reaction " << fmt(dr) << ", energy "
-            << fmt(dw) << " (tensor-mass " << seconds_text(t_tm) << ", deal.II P1 " << seconds_text(t_ref)
-            << ")\n";
+            << fmt(dw) << contact_text << " (tensor-mass " << seconds_text(t_tm) << ", deal.II P1 "
+            << seconds_text(t_ref) << ")\n";
     m.notes.push_back(c.name + ": " + std::to_string(c.solver.steps) + " steps, Newton rtol " +
                       fmt(c.solver.rtol, 1) + "; max rel. differences displacement " + fmt(du) +
-                      ", reaction " + fmt(dr) + ", energy " + fmt(dw));
+                      ", reaction " + fmt(dr) + ", energy " + fmt(dw) + contact_text);
+  }
+  if (any_contact) {
+    m.set("max_rel_diff_contact_force", worst_f);
+    m.set("max_rel_diff_contact_area", worst_a);
+    m.set("max_diff_active_nodes", worst_n);
   }
   m.set("max_rel_diff_displacement", worst_u);
   m.set("max_rel_diff_reaction", worst_r);
@@ -307,7 +334,7 @@ Measurements p1_vs_p2(const CheckContext& ctx) {
   const std::vector<int> levels = read_levels(p, "levels");
   const int ref_level = p.require<int>("reference_level");
   const int check_level = p.require<int>("reference_check_level");
-  const std::string solver = require_linear_solver(p);
+  const ref::LinearSolver solver = require_linear_solver(p);
   p.finish();
   // Every level is a multiple of the coarsest, so the coarsest mesh's vertices are vertices of all
   // meshes; P1 levels finer than the reference are compared at the reference's vertices.
@@ -479,7 +506,7 @@ Measurements elastica(const CheckContext& ctx) {
     const auto t1 = std::chrono::steady_clock::now();
     ref::ReferenceOptions o;
     o.degree = 2;
-    o.cells = "hex";
+    o.cells = ref::CellType::Hex;
     o.hex_subdivisions = {1u, 1u, unsigned(n)};
     o.newton_rtol = 1e-10;
     o.serial = true;
@@ -529,7 +556,7 @@ Measurements locking(const CheckContext& ctx) {
   const int level = p.require<int>("level");
   const int fine = p.require<int>("p2_check_level");
   const auto nus = p.require<std::vector<double>>("poisson_ratios");
-  const std::string solver = require_linear_solver(p);
+  const ref::LinearSolver solver = require_linear_solver(p);
   p.finish();
   if (level < 1) throw p.error("level", "must be >= 1");
   if (fine <= level || fine % level != 0)

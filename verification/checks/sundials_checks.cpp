@@ -20,11 +20,15 @@
 #include "tensormass/viscoelastic/hereditary_integral.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
+#include "core/base/format.hpp"
+#include "core/config/implicit_scheme.hpp"
+#include "core/constitutive/prony.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <ostream>
 
 namespace tmlab::verify {
@@ -61,27 +65,23 @@ Series dt_series(const std::string& y_label) {
   return s;
 }
 
+/// A Prony recursion named in parameter `key` (core/constitutive/prony.hpp's names).
 Integ scheme_from(const ConfigReader& p, const std::string& key, const std::string& name) {
-  try {
-    return ViscoelasticOptions::parse_integration(name);
-  } catch (const Error& e) {
-    throw p.error(key, e.what());
-  }
+  if (const auto i = prony_integration_from_string(name)) return *i;
+  throw p.error(key, "recursion '" + name + "' must be " + choice_list(prony_integration_names()));
 }
 
-/// "newmark+exact_linear" -> (Newmark, ExactLinear).
+/// "newmark+exact_linear" -> (Newmark, ExactLinear): the implicit scheme by core/config's names,
+/// the recursion by core/constitutive's.
 std::pair<tm::ImplicitScheme, Integ> combination(const ConfigReader& p, const std::string& s) {
   const auto plus = s.find('+');
   if (plus == std::string::npos) throw p.error("schemes", "'" + s + "' must read <time scheme>+<recursion>");
   const std::string ts = s.substr(0, plus);
-  tm::ImplicitScheme scheme;
-  if (ts == "newmark")
-    scheme = tm::ImplicitScheme::Newmark;
-  else if (ts == "backward_euler")
-    scheme = tm::ImplicitScheme::BackwardEuler;
-  else
-    throw p.error("schemes", "time scheme '" + ts + "' must be newmark or backward_euler");
-  return {scheme, scheme_from(p, "schemes", s.substr(plus + 1))};
+  const std::optional<ImplicitScheme> scheme = implicit_scheme_from_string(ts);
+  if (!scheme)
+    throw p.error("schemes",
+                  "time scheme '" + ts + "' must be " + choice_list(enum_names(kImplicitSchemeNames)));
+  return {*scheme, scheme_from(p, "schemes", s.substr(plus + 1))};
 }
 
 // ------------------------------------------------------------------ sundials.dynamic_order

@@ -24,6 +24,8 @@ struct FakeStep {
   std::vector<std::array<double, 3>> reactions;  // one per condition
   double energy = 0.0;
 };
+/// Per step, one ContactValues per rigid body (empty: a run without contact).
+using FakeContact = std::vector<std::vector<series_names::ContactValues>>;
 
 class ResultCompareTest : public tmlab::testing::TempDirTest {
  protected:
@@ -31,7 +33,7 @@ class ResultCompareTest : public tmlab::testing::TempDirTest {
 
   /// A complete result directory (summary.json, displacement.h5, timeseries.h5) of the steps.
   fs::path write_run(const std::string& name, const std::vector<std::string>& conditions,
-                     const std::vector<FakeStep>& steps) {
+                     const std::vector<FakeStep>& steps, const FakeContact& contact = {}) {
     const fs::path dir = root_ / name;
     fs::create_directories(dir);
     Recorder rec(conditions, {}, {});
@@ -41,6 +43,7 @@ class ResultCompareTest : public tmlab::testing::TempDirTest {
       v.time = static_cast<double>(k);
       v.elastic_energy = steps[k].energy;
       v.reactions = steps[k].reactions;
+      if (!contact.empty()) v.contact = contact[k];
       rec.record(v);
       rec.add_field_frame(v.time, steps[k].u);
     }
@@ -131,6 +134,49 @@ TEST_F(ResultCompareTest, DifferentMeshesStepsOrConditionsAreNotComparable) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("/series/reaction_base_x"), std::string::npos) << e.what();
   }
+}
+
+/// For base_steps(): a sphere pressing with force (0, 0, 5 k) N, area k m^2 and 3 k active nodes at step k.
+FakeContact contact_steps() {
+  FakeContact steps;
+  for (std::size_t k = 0; k < 3; ++k) {
+    series_names::ContactValues c;
+    c.body = "indenter";
+    c.force = {0.0, 0.0, 5.0 * k};
+    c.area = 1.0 * k;
+    c.active_nodes = 3.0 * k;
+    steps.push_back({c});
+  }
+  return steps;
+}
+
+TEST_F(ResultCompareTest, ContactForceAreaAndActiveNodesAreCompared) {
+  const auto b = write_run("b", {"bottom", "top"}, base_steps(), contact_steps());
+  const auto same = compare_results(write_run("a0", {"bottom", "top"}, base_steps(), contact_steps()), b);
+  EXPECT_EQ(same.at("rel_diff_contact_force").get<double>(), 0.0);
+  EXPECT_EQ(same.at("rel_diff_contact_area").get<double>(), 0.0);
+  EXPECT_EQ(same.at("max_diff_active_nodes").get<double>(), 0.0);
+
+  FakeContact steps = contact_steps();
+  steps[1][0].force = {0.3, 0.0, 5.4};  // |dF| = 0.5 against max |F_b| = 10
+  steps[2][0].area = 2.5;               // |dA| = 0.5 against max A_b = 2
+  steps[2][0].active_nodes = 7.0;       // 1 node more
+  ComparisonSeries cs;
+  const auto cmp = compare_results(write_run("a", {"bottom", "top"}, base_steps(), steps), b, &cs);
+  EXPECT_NEAR(cmp.at("rel_diff_contact_force").get<double>(), 0.05, 1e-15);
+  EXPECT_NEAR(cmp.at("rel_diff_contact_area").get<double>(), 0.25, 1e-15);
+  EXPECT_EQ(cmp.at("max_diff_active_nodes").get<double>(), 1.0);
+  EXPECT_NEAR(cmp.at("contact").at("indenter").at("final_area_a_m2").get<double>(), 2.5, 0.0);
+  ASSERT_EQ(cs.rel_contact_force.size(), 3u);
+  EXPECT_NEAR(cs.rel_contact_force[1], 0.05, 1e-15);
+  EXPECT_EQ(cs.rel_contact_area[1], 0.0);
+
+  // Without contact in either run there are no contact keys; in one run only, an error.
+  EXPECT_FALSE(compare_results(write_run("n1", {"bottom", "top"}, base_steps()),
+                               write_run("n2", {"bottom", "top"}, base_steps()))
+                   .contains("rel_diff_contact_force"));
+  EXPECT_THROW(compare_results(write_run("n3", {"bottom", "top"}, base_steps()), b), Error);
+  EXPECT_THROW(compare_results(b, write_run("n4", {"bottom", "top"}, base_steps())), Error);
 }
 
 }  // namespace

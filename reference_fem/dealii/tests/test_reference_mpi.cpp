@@ -108,7 +108,7 @@ TEST(ReferenceMpi, LiverP1DirectReproducesSerial) {
 TEST(ReferenceMpi, CubeP2CgAmgReproducesSerialDirect) {
   ReferenceOptions par, ser;
   par.degree = ser.degree = 2;
-  par.linear_solver = "cg_amg";
+  par.linear_solver = LinearSolver::CgAmg;
   EXPECT_LE(parallel_vs_serial(cube_case(false, "meshes/cube_n4.msh"), par, ser, "cube_p2_amg"), 1e-8);
 }
 
@@ -122,7 +122,7 @@ TEST(ReferenceMpi, IdaTimeIntegrationRefusesTwoRanksAndRunsWithTheSerialOption) 
   o.results_root = (dir / "results").string();
   o.plots = false;
   ReferenceOptions ida;
-  ida.time_integration = "ida";
+  ida.time_integration = TimeIntegration::Ida;
   try {
     run_reference_case(cube_case(true), o, ida);
     ADD_FAILURE() << "IDA accepted two ranks";

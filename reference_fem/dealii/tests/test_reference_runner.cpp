@@ -4,11 +4,17 @@
 //   (2) homogeneous closed forms: uniaxial St VK (P1 and P2), neo-Hookean simple shear, Prony
 //       relaxation of a stretched cube, no relaxation of a hydrostatic stretch (deviatoric);
 //   (5) a hex (FE_Q2) and a tet (FE_SimplexP2) run of a beam converge to the same answer;
+//   (6) contact: the reference's gap and contact boundary equal the fast model's (tensormass/contact);
+//       a frictionless platen pressing a cube gives the solution and force of the same prescribed
+//       displacement; P2 contact runs; dynamic, hex and IDA contact runs are refused;
 //   and the inputs the reference refuses.
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
+#include "reference_fem/dealii/contact_geometry.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
+#include "tensormass/contact/rigid_body.hpp"
+#include "tensormass/contact/surface_grid.hpp"
 #include "tensormass/runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
@@ -258,7 +264,7 @@ TEST_F(ReferenceRunnerTest, NeoHookeanSimpleShearStressIsMuGamma) {
   j["boundary"] = nlohmann::json::array({layer("top", L, true), layer("bottom", 0.0, true)});
   for (int k = 1; k < n; ++k) j["boundary"].push_back(layer("layer" + std::to_string(k), L * k / n, false));
   ReferenceOptions ro;
-  ro.law = "neo_hookean";
+  ro.law = MaterialLaw::NeoHookean;
   const auto r = run_ref(j, ro);
   const double fx = r.summary["final_reactions_N"]["top"][0].get<double>();
   const double fy = r.summary["final_reactions_N"]["top"][1].get<double>();
@@ -354,7 +360,7 @@ TEST_F(ReferenceRunnerTest, HexAndTetRunsOfABeamConverge) {
         {"output", {{"vtu", false}, {"probes", {{{"name", "tip"}, {"point", {0.04, 0.005, 0.005}}}}}}}};
     ReferenceOptions tet, hex;
     tet.degree = hex.degree = 2;
-    hex.cells = "hex";
+    hex.cells = CellType::Hex;
     hex.hex_subdivisions = {static_cast<unsigned>(nx), static_cast<unsigned>(ny), static_cast<unsigned>(nz)};
     const auto a = run_ref(j, tet), b = run_ref(j, hex);
     const double za = a.summary["probes"]["tip"]["displacement_m"][2].get<double>();
@@ -385,9 +391,30 @@ TEST_F(ReferenceRunnerTest, RejectsTheSeedNodalForceHistoryAndDynamics) {
   nlohmann::json k = cube_all_loads();
   k["solver"] = {{"type", "explicit"}, {"dt", 1e-5}};
   EXPECT_THROW(run_ref(k), Error);
-  ReferenceOptions bad;
-  bad.law = "ogden";
-  EXPECT_THROW(run_ref(cube_all_loads(), bad), Error);
+}
+
+TEST(ReferenceOptionsTest, ParsesEachChoiceOnceWithMessagesListingTheNames) {
+  EXPECT_EQ(parse_law("neo_hookean"), MaterialLaw::NeoHookean);
+  EXPECT_EQ(parse_cell_type("hex"), CellType::Hex);
+  EXPECT_EQ(parse_time_integration("ida"), TimeIntegration::Ida);
+  EXPECT_EQ(parse_linear_solver("direct_klu"), LinearSolver::DirectKlu);
+  for (auto s : {LinearSolver::Direct, LinearSolver::DirectKlu, LinearSolver::CgAmg})
+    EXPECT_EQ(parse_linear_solver(to_string(s)), s);
+  try {
+    parse_law("ogden", "--law");
+    FAIL() << "ogden accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "reference: --law must be 'stvk', 'neo_hookean' or 'yeoh' (got 'ogden')");
+  }
+  try {
+    parse_linear_solver("gmres");
+    FAIL() << "gmres accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "reference: linear_solver must be 'direct', 'direct_klu' or 'cg_amg' (got 'gmres')");
+  }
+  EXPECT_THROW(parse_cell_type("prism"), Error);
+  EXPECT_THROW(parse_time_integration("rk4"), Error);
 }
 
 TEST_F(ReferenceRunnerTest, WritesTheTensorMassResultFiles) {
@@ -409,6 +436,157 @@ TEST_F(ReferenceRunnerTest, WritesTheTensorMassResultFiles) {
     EXPECT_TRUE(h5.has_attribute(std::string("/series/") + s, "unit")) << s;
   }
   EXPECT_GT(r.summary["solver"]["steps"][0]["assembly_seconds"].get<double>(), 0.0);
+}
+
+// ---- (6) contact -----------------------------------------------------------------------------------
+
+TEST(ReferenceContactGeometry, GapAndBoundaryEqualTheFastModels) {
+  // Points around each body (outside, inside, beyond a punch's rim, on its axis).
+  std::vector<Vec3> points;
+  for (int i = -3; i <= 3; ++i)
+    for (int j = -3; j <= 3; ++j)
+      for (int k = -3; k <= 3; ++k) points.emplace_back(0.0021 * i + 1e-4, 0.0017 * j, 0.0013 * k + 0.0203);
+  points.emplace_back(0.0, 0.0, 0.03);
+  ContactBodySpec sphere, punch, plane;
+  sphere.shape = ContactShape::Sphere;
+  sphere.reference = Vec3(0.0, 0.0, 0.025);
+  sphere.radius = 0.005;
+  sphere.displacement = Vec3(0.0, 0.0, -0.002);
+  sphere.function = TimeFunction::ramp(0.0, 1.0);
+  punch.shape = ContactShape::Punch;
+  punch.reference = Vec3(0.001, 0.0, 0.02);
+  punch.axis = Vec3(0.1, 0.0, -1.0);
+  punch.radius = 0.004;
+  punch.edge_radius = 0.001;
+  plane.shape = ContactShape::Plane;
+  plane.reference = Vec3(0.0, 0.0, 0.021);
+  plane.axis = Vec3(0.0, 0.2, -1.0);
+  const tm::RigidBody fast[] = {
+      [&] {
+        tm::RigidBody b = tm::RigidBody::sphere("s", sphere.reference, sphere.radius);
+        b.displacement = sphere.displacement;
+        b.function = sphere.function;
+        return b;
+      }(),
+      tm::RigidBody::punch("p", punch.reference, punch.axis, punch.radius, punch.edge_radius),
+      tm::RigidBody::plane("q", plane.reference, plane.axis)};
+  const ContactBodySpec* ref[] = {&sphere, &punch, &plane};
+  for (int b = 0; b < 3; ++b)
+    for (double t : {0.0, 0.5}) {
+      double worst = 0.0;
+      for (const Vec3& x : points) {
+        const tm::GapPoint g = fast[b].gap(x, t);
+        const BodyGap h = body_gap(*ref[b], x, t);
+        worst =
+            std::max({worst, std::abs(g.g - h.g) / 0.01, (g.normal - h.normal).norm(),
+                      (g.closest - h.closest).norm() / 0.01, (g.hessian - h.hessian).norm() * 1e-3,
+                      std::abs(fast[b].radial_distance(x, t) - body_radial_distance(*ref[b], x, t)) / 0.01});
+      }
+      EXPECT_LE(worst, 1e-13) << "body " << b << " t = " << t;
+    }
+  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3(0.02, 0.01, 0.01), 4, 3, 2);
+  const tm::ContactSurface s = tm::ContactSurface::extract(mesh);
+  const ContactBoundary r = ContactBoundary::extract(mesh);
+  ASSERT_EQ(s.nodes, r.nodes);
+  EXPECT_NEAR(s.mean_edge, r.mean_edge, 1e-15);
+  for (std::size_t k = 0; k < r.nodes.size(); ++k)
+    for (const Vec3& n : {Vec3(0, 0, -1), Vec3(0.6, 0, 0.8), Vec3(-1, 0, 0)})
+      EXPECT_NEAR(s.contact_area(static_cast<Index>(k), n), r.contact_area(k, n), 1e-18);
+}
+
+/// A cube (10 mm, 4^3 cells) on frictionless symmetry planes (x0, y0, z0), its top pressed 0.5 mm
+/// down by `top`: a Dirichlet condition (prescribed) or a frictionless rigid plane (contact).
+nlohmann::json pressed_cube(bool contact) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "name": "pressed",
+    "mesh": {"file": "box.msh"},
+    "material": {"E": 10000, "nu": 0.3, "density": 1000},
+    "boundary": [
+      {"name": "x0", "nodes": {"group": "xmin"}, "components": "x"},
+      {"name": "y0", "nodes": {"group": "ymin"}, "components": "y"},
+      {"name": "z0", "nodes": {"group": "zmin"}, "components": "z"}
+    ],
+    "solver": {"type": "static", "steps": 2}
+  })");
+  if (contact)
+    j["contact"] =
+        nlohmann::json::parse(R"({"bodies": [{"name": "platen", "type": "plane", "point": [0, 0, 0.01],
+      "normal": [0, 0, -1], "displacement": [0, 0, -0.0005], "function": {"type": "ramp", "t0": 0, "t1": 1}}]})");
+  else
+    j["boundary"].push_back(
+        nlohmann::json::parse(R"({"name": "top", "nodes": {"group": "zmax"}, "components": "z",
+      "value": [0, 0, -0.0005], "function": {"type": "ramp", "t0": 0, "t1": 1}})"));
+  return j;
+}
+
+TEST_F(ReferenceRunnerTest, FrictionlessPlatenEqualsThePrescribedDisplacement) {
+  write_box("box.msh", Vec3(0.01, 0.01, 0.01), 4, 4, 4);
+  for (int degree : {1, 2}) {
+    ReferenceOptions ro;
+    ro.degree = degree;
+    ro.name_suffix = "-p" + std::to_string(degree);
+    const auto prescribed = run_ref(pressed_cube(false), ro);
+    ro.name_suffix += "-contact";
+    const auto contact = run_ref(pressed_cube(true), ro);
+    // P1: every top vertex is in contact, so the two problems are the same (to the contact
+    // tolerance gap_tol = 1e-8 x 2.5 mm against 0.5 mm of travel) and the platen carries the top's
+    // reaction. P2: the vertex rule leaves the top's edge nodes free (docs/reference-fem.md), so the
+    // contact problem is a relaxation of the prescribed one: its minimum energy is lower, and the
+    // solution visibly differs (measured: 18 % in the vertex displacements, force 23 % lower). If P2
+    // contact is ever made consistent, this test says to update the documentation.
+    const double d = max_rel_diff(contact.dir, prescribed.dir);
+    const auto f = series(contact.dir, "contact_platen_force_z");
+    const auto r = series(prescribed.dir, "reaction_top_z");
+    ASSERT_EQ(f.size(), 3u);
+    EXPECT_GT(f.back(), 0.0);  // the sample pushes the platen up
+    EXPECT_LE(series(contact.dir, "contact_platen_max_penetration").back(), 2.5e-11);
+    EXPECT_EQ(series(contact.dir, "contact_platen_active_nodes").back(), 25.0);
+    if (degree == 1) {
+      EXPECT_LE(d, 1e-7);
+      EXPECT_NEAR(f.back(), -r.back(), 1e-7 * std::abs(r.back()));
+      EXPECT_NEAR(series(contact.dir, "contact_platen_area").back(), 1e-4, 1e-16);
+    } else {
+      EXPECT_GT(d, 1e-3);
+      EXPECT_LE(series(contact.dir, "elastic_energy").back(),
+                series(prescribed.dir, "elastic_energy").back() * (1.0 + 1e-9));
+    }
+    const auto& c = contact.summary.at("contact");
+    EXPECT_EQ(c.at("method"), "augmented_lagrangian");
+    EXPECT_GT(c.at("stiffness_N_per_m").get<double>(), 0.0);
+  }
+}
+
+TEST_F(ReferenceRunnerTest, RefusesContactItCannotRun) {
+  write_box("box.msh", Vec3(0.01, 0.01, 0.01), 2, 2, 2);
+  nlohmann::json dyn = pressed_cube(true);
+  dyn["solver"] = {{"type", "explicit"}, {"dt", 1e-5}, {"t_end", 1e-4}};
+  try {
+    run_ref(dyn);
+    FAIL() << "explicit contact accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("run in the fast model only"), std::string::npos) << e.what();
+  }
+  ReferenceOptions hex;
+  hex.cells = CellType::Hex;
+  EXPECT_THROW(run_ref(pressed_cube(true), hex), Error);
+  nlohmann::json visco = pressed_cube(true);
+  visco["material"]["viscoelastic"] = {{"scheme", "objective"},
+                                       {"prony", {{"terms", {{{"weight", 0.3}, {"tau", 1.0}}}}}}};
+  ReferenceOptions ida;
+  ida.time_integration = TimeIntegration::Ida;
+  try {
+    run_ref(visco, ida);
+    FAIL() << "IDA contact accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'contact'"), std::string::npos) << e.what();
+  }
+  // A platen that starts inside the sample, and one far above it.
+  nlohmann::json deep = pressed_cube(true);
+  deep["contact"]["bodies"][0]["point"] = {0, 0, 0.009};
+  EXPECT_THROW(run_ref(deep), Error);
+  nlohmann::json far = pressed_cube(true);
+  far["contact"]["bodies"][0]["point"] = {0, 0, 0.02};
+  EXPECT_THROW(run_ref(far), Error);
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ struct Errors {
   global_dof_index dofs;
 };
 
-Errors mms_errors(unsigned degree, unsigned n, const std::string& solver = "direct") {
+Errors mms_errors(unsigned degree, unsigned n, LinearSolver solver = LinearSolver::Direct) {
   Triangulation<3> coarse;
   make_cube(coarse, true, n);
   const Material m = Material::make("neo_hookean", 1000.0, 0.3);
@@ -177,7 +177,7 @@ Errors mms_errors(unsigned degree, unsigned n, const std::string& solver = "dire
 }
 
 void refinement_study(unsigned degree, const std::vector<unsigned>& ns,
-                      const std::string& solver = "direct") {
+                      LinearSolver solver = LinearSolver::Direct) {
   std::vector<Errors> e;
   for (unsigned n : ns) {
     e.push_back(mms_errors(degree, n, solver));
@@ -200,7 +200,7 @@ TEST(ReferenceSolid, ManufacturedSolutionConvergesAtTheExpectedRates) {
   refinement_study(2, {2, 4, 8});
 }
 
-TEST(ReferenceSolidSlow, ManufacturedSolutionP2Fine) { refinement_study(2, {8, 16}, "cg_amg"); }
+TEST(ReferenceSolidSlow, ManufacturedSolutionP2Fine) { refinement_study(2, {8, 16}, LinearSolver::CgAmg); }
 
 // ---- GridIn ---------------------------------------------------------------------------------------
 
