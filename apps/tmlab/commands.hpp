@@ -41,5 +41,7 @@ int cmd_rig(const std::vector<std::string>& args);
 int cmd_data(const std::vector<std::string>& args);
 // Inverse identification (cmd_fit.cpp, docs/identification.md).
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line);
+// Model discovery (cmd_discover.cpp, docs/discover.md).
+int cmd_discover(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

@@ -81,6 +81,12 @@ void print_usage(std::ostream& os) {
         "                            fit a law to tmlab-measured/1 data with error bars; SPEC is\n"
         "                            LAW[:N][+prony:M][,NAME=VALUE...], e.g. ogden:2,poisson=0.49;\n"
         "                            results/fit/NAME-LAW/ (fit.json, fit.h5, PNG; docs/identification.md)\n"
+        "  discover DATA.csv [--out DIR] [--poisson V] [--free-poisson] [--effects A,B] [--rounds N]\n"
+        "      [--max-samples N] [--starts N] [--threads N] [--seed N] [--no-plots] [--quiet]\n"
+        "  discover --benchmark [--quick] [--out DIR]\n"
+        "                            baseline St VK + 2 Prony terms, the residual studied, effects from\n"
+        "                            a library added when BIC and held-out prediction support them;\n"
+        "                            results/discover/NAME/ (index.html, report.json; docs/discover.md)\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -123,6 +129,7 @@ int main(int argc, char** argv) {
     if (cmd == "data") return tmlab::cli::cmd_data(args);
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);
     if (cmd == "fit") return tmlab::cli::cmd_fit(args, command_line);
+    if (cmd == "discover") return tmlab::cli::cmd_discover(args, command_line);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

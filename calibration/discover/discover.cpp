@@ -131,6 +131,42 @@ double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
   return n ? std::sqrt(sse / double(n)) : kNaN;
 }
 
+std::vector<std::string> protocol_notes(const Prepared& p) {
+  std::vector<std::string> notes;
+  std::size_t hold = 0, unload = 0, n = 0;
+  double rmin = 1e300, rmax = 0.0;
+  for (const auto& s : p.series) {
+    const PhaseLabels pl = classify_phases(s.t, s.d, p.sign);
+    double sum = 0.0;
+    int cnt = 0;
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+      hold += pl.phase[i] == Phase::hold ? 1 : 0;
+      unload += pl.phase[i] == Phase::unload ? 1 : 0;
+      if (pl.phase[i] == Phase::ramp) {
+        sum += pl.rate[i];
+        ++cnt;
+      }
+    }
+    n += s.t.size();
+    if (cnt) {
+      rmin = std::min(rmin, sum / cnt);
+      rmax = std::max(rmax, sum / cnt);
+    }
+  }
+  if (unload == 0 && double(hold) < 0.05 * double(n) && rmax <= 1.1 * rmin)
+    notes.push_back(
+        "every test is a monotonic ramp at one rate (no hold, no unloading): relaxation effects (Prony "
+        "terms, "
+        "strain-dependent relaxation) are confounded with the shape of the elastic law, so an accepted "
+        "relaxation effect here means a better curve shape, not evidence of viscoelasticity; tests at other "
+        "rates or with holds would separate them");
+  if (p.series.size() == 1)
+    notes.push_back(
+        "one test: the held-out check leaves out time blocks of it (interpolation), a weaker check than "
+        "leaving out whole tests");
+  return notes;
+}
+
 Report run(const measured::DataSet& data, const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Report r;
@@ -139,6 +175,8 @@ Report run(const measured::DataSet& data, const Options& o) {
   const Prepared& p = r.data;
   held_out_folds(p, &r.held_out_scheme);
   r.exactness = exactness(p);
+  r.notes = protocol_notes(p);
+  for (const auto& n : r.notes) say(o, "note: " + n);
   Structure base;
   base.law = o.baseline_law;
   base.prony_terms = o.baseline_prony;
@@ -365,6 +403,7 @@ nlohmann::json to_json(const Report& r) {
                         significant(r.options.bic_threshold, 3) + " and the held-out RMS falls below " +
                         significant(r.options.held_out_ratio, 3) + " x the current model's";
   j["held_out"] = r.held_out_scheme;
+  j["notes"] = r.notes;
   j["not_applicable"] = json::array();
   for (const auto& [e, why] : r.not_applicable) j["not_applicable"].push_back({{"effect", e}, {"why", why}});
   j["library"] = json::array();

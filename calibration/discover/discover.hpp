@@ -76,6 +76,7 @@ struct Report {
   std::string stop_reason;
   std::string forward_model, exactness;
   std::string held_out_scheme;
+  std::vector<std::string> notes;  ///< what the data cannot separate, and similar caveats
   double seconds = 0.0;
 };
 
@@ -90,6 +91,9 @@ Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Par
 /// The pooled held-out RMS of `f`'s structure: each fold refitted from f's optimum without its
 /// held-out samples, which it then predicts.
 double held_out_rms(const Prepared& p, const Fitted& f, const Options& o);
+
+/// Caveats the data's protocol imposes on what the loop can conclude (e.g. one rate, no hold).
+std::vector<std::string> protocol_notes(const Prepared& p);
 
 /// Runs the loop on `data`.
 Report run(const measured::DataSet& data, const Options& o);
