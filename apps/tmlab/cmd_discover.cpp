@@ -206,10 +206,10 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
 }  // namespace
 
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(
-      args,
-      {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads", "--seed", "--effects"},
-      {"--benchmark", "--quick", "--free-poisson", "--no-plots", "--quiet"});
+  const Parsed p = parse(args,
+                         {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads",
+                          "--seed", "--effects", "--baseline-prony"},
+                         {"--benchmark", "--quick", "--free-poisson", "--no-plots", "--quiet"});
   discover::Options o;
   auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
     if (!p.has(key)) return fallback;
@@ -223,6 +223,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
   o.starts = whole("--starts", o.starts, 1, 1000);
   o.threads = whole("--threads", 2, 1, 64);
   o.seed = (unsigned long)whole("--seed", 1, 1, 1000000);
+  o.baseline_prony = whole("--baseline-prony", o.baseline_prony, 0, 4);
   if (p.has("--poisson")) {
     o.poisson = parse_double("--poisson", p.get("--poisson"));
     if (!(o.poisson > 0.0 && o.poisson < 0.4999)) throw UsageError("--poisson must lie in (0, 0.4999)");
