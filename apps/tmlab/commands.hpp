@@ -45,5 +45,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
 int cmd_bench(const std::vector<std::string>& args, const std::string& command_line);
 // The real-time haptic / control / visual loop (cmd_realtime.cpp, docs/realtime.md).
 int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line);
+// Model discovery (cmd_discover.cpp, docs/discover.md).
+int cmd_discover(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

@@ -99,6 +99,13 @@ void print_usage(std::ostream& os) {
         "                            every force kernel and whole step side by side with the\n"
         "                            machine's limits; results/bench/ (bench.json, bench.md, PNG;\n"
         "                            docs/performance.md). --large adds the 2.4M-tet cube (~6 GB, minutes)\n"
+        "  discover DATA.csv [--out DIR] [--poisson V] [--free-poisson] [--effects A,B] [--rounds N]\n"
+        "      [--baseline-prony M] [--max-samples N] [--starts N] [--threads N] [--seed N] [--no-plots]\n"
+        "      [--quiet]\n"
+        "  discover --benchmark [--quick] [--out DIR]\n"
+        "                            baseline St VK + 2 Prony terms, the residual studied, effects from\n"
+        "                            a library added when BIC and held-out prediction support them;\n"
+        "                            results/discover/NAME/ (index.html, report.json; docs/discover.md)\n"
         "  version                   git SHA and build of this binary\n"
         "  help                      this text\n"
         "\n"
@@ -143,6 +150,7 @@ int main(int argc, char** argv) {
     if (cmd == "rig") return tmlab::cli::cmd_rig(args);
     if (cmd == "fit") return tmlab::cli::cmd_fit(args, command_line);
     if (cmd == "realtime") return tmlab::cli::cmd_realtime(args, command_line);
+    if (cmd == "discover") return tmlab::cli::cmd_discover(args, command_line);
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;

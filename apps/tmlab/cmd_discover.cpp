@@ -1,0 +1,336 @@
+// tmlab discover DATA.csv | --benchmark: model discovery from measured data (issue 15;
+// docs/discover.md). Thin: tmlab::discover does the work; this file reads the options, writes
+// report.json, discover.h5, the plots, index.html and the manifest through the result protocol
+// (a failed run leaves FAILED), and prints progress on standard error.
+#include "commands.hpp"
+
+#include "cli_args.hpp"
+
+#include "calibration/data/measured_data.hpp"
+#include "calibration/discover/benchmark.hpp"
+#include "calibration/discover/discover.hpp"
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/base/process.hpp"
+#include "core/io/hdf5_file.hpp"
+#include "core/results/run_output.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace tmlab::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string html_escape(const std::string& s) {
+  std::string o;
+  for (const char c : s) {
+    if (c == '<')
+      o += "&lt;";
+    else if (c == '>')
+      o += "&gt;";
+    else if (c == '&')
+      o += "&amp;";
+    else if (c == '"')
+      o += "&quot;";
+    else
+      o += c;
+  }
+  return o;
+}
+
+std::string cell(const nlohmann::json& v, int digits = 4) {
+  if (v.is_null()) return "-";
+  if (v.is_number()) return significant(v.get<double>(), digits);
+  if (v.is_boolean()) return v.get<bool>() ? "yes" : "no";
+  if (v.is_string()) return html_escape(v.get<std::string>());
+  return html_escape(v.dump());
+}
+
+/// The page a reader opens first: what was found, the error before and after, the figures, each
+/// step with its evidence, the diagnostics, the parameters.
+std::string report_html(const nlohmann::json& j, bool plots) {
+  std::ostringstream h;
+  const auto& b = j["baseline"];
+  const auto& f = j["final"];
+  h << "<!doctype html><html><head><meta charset=\"utf-8\"><title>tmlab discover: " << cell(j["dataset"])
+    << "</title><style>body{font-family:sans-serif;max-width:1100px;margin:auto;padding:1em}"
+       "table{border-collapse:collapse;margin:0.5em 0}td,th{border:1px solid #bbb;padding:2px "
+       "6px;font-size:90%}"
+       "th{background:#eee}.yes{background:#dfd}.no{background:#fdd}img{max-width:100%}</style></"
+       "head><body>\n";
+  h << "<h1>tmlab discover: " << cell(j["dataset"]) << "</h1>\n";
+  h << "<p><b>Selected effects:</b> ";
+  if (j["selected_effects"].empty()) h << "none";
+  for (std::size_t i = 0; i < j["selected_effects"].size(); ++i)
+    h << (i ? ", " : "") << "<code>" << cell(j["selected_effects"][i]) << "</code>";
+  h << ". <b>Unexplained structure:</b> " << (j["unexplained_structure"].get<bool>() ? "yes: " : "no")
+    << cell(j["unexplained_signature"]) << "</p>\n";
+  h << "<p>Stopped: " << cell(j["stop_reason"]) << ". Selection rule: " << cell(j["selection_rule"])
+    << "; held-out: " << cell(j["held_out"]) << ".</p>\n";
+  for (const auto& n : j["notes"]) h << "<p><b>Note:</b> " << cell(n) << "</p>\n";
+  h << "<p>Forward model <code>" << cell(j["forward_model"]["name"])
+    << "</code>: " << cell(j["forward_model"]["exact_where"]) << ".</p>\n";
+  h << "<h2>Error before and after</h2><table><tr><th></th><th>model</th><th>RMS [N]</th><th>% of peak</th>"
+       "<th>max |residual| [N]</th><th>BIC</th><th>free parameters</th><th>residual is noise</th></tr>\n";
+  for (const auto& [name, m] : {std::pair<std::string, const nlohmann::json&>{"before", b}, {"after", f}})
+    h << "<tr><td>" << name << "</td><td><code>" << cell(m["model"]) << "</code></td><td>" << cell(m["rms_N"])
+      << "</td><td>" << cell(m["rms_percent_of_peak"], 3) << "</td><td>" << cell(m["max_abs_N"])
+      << "</td><td>" << cell(m["bic"], 7) << "</td><td>" << cell(m["free_parameters"]) << "</td><td>"
+      << (m["residual"]["structured"].get<bool>() ? "no" : "yes") << "</td></tr>\n";
+  h << "</table><p>Peak force " << cell(j["peak_force_N"]) << " N; " << cell(j["samples"]) << " samples in "
+    << cell(j["tests"]) << " tests (every " << cell(j["decimation_stride"]) << "th sample kept).</p>\n";
+  if (plots)
+    for (const char* p : {"discover_fits.png", "discover_residuals.png", "discover_residual_vs_strain.png"})
+      h << "<p><img src=\"" << p << "\" alt=\"" << p << "\"></p>\n";
+  h << "<h2>Steps</h2><table><tr><th>round</th><th>effect</th><th>model</th><th>RMS [N]</th><th>dBIC</th>"
+       "<th>held-out RMS [N]</th><th>current held-out [N]</th><th>accepted</th><th>why</th></tr>\n";
+  for (const auto& s : j["steps"])
+    h << "<tr class=\"" << (s["accepted"].get<bool>() ? "yes" : "") << "\"><td>" << cell(s["round"])
+      << "</td><td><code>" << cell(s["effect"]) << "</code></td><td>" << cell(s["model"]) << "</td><td>"
+      << cell(s["rms_N"]) << "</td><td>" << cell(s["criterion"]["delta_bic"]) << "</td><td>"
+      << cell(s["held_out_rms_N"]) << "</td><td>" << cell(s["criterion"]["current_held_out_rms_N"])
+      << "</td><td>" << cell(s["accepted"]) << "</td><td>" << cell(s["reason"]) << "</td></tr>\n";
+  h << "</table>\n";
+  for (const auto& [name, m] : {std::pair<std::string, const nlohmann::json&>{"baseline", b}, {"final", f}}) {
+    h << "<h2>Residual diagnostics, " << name
+      << "</h2><table><tr><th>diagnostic</th><th>statistic</th>"
+         "<th>p</th><th>threshold</th><th>passed</th><th>decisive</th><th>note</th></tr>\n";
+    for (const auto& d : m["residual"]["diagnostics"])
+      h << "<tr class=\"" << (d["passed"].get<bool>() ? "yes" : "no") << "\"><td>" << cell(d["name"])
+        << "</td><td>" << cell(d["statistic"]) << "</td><td>" << cell(d["p_value"], 2) << "</td><td>"
+        << cell(d["threshold"]) << "</td><td>" << cell(d["passed"]) << "</td><td>" << cell(d["decisive"])
+        << "</td><td>" << cell(d["note"]) << "</td></tr>\n";
+    h << "</table><p>Where: " << cell(m["residual"]["where"])
+      << "</p><table><tr><th>group</th><th>n</th>"
+         "<th>RMS [N]</th><th>mean [N]</th></tr>\n";
+    for (const char* g : {"by_phase", "by_cycle", "by_test", "by_strain"})
+      for (const auto& x : m["residual"][g])
+        h << "<tr><td>" << cell(x["group"]) << "</td><td>" << cell(x["n"]) << "</td><td>"
+          << cell(x["rms_N"], 3) << "</td><td>" << cell(x["mean_N"], 3) << "</td></tr>\n";
+    h << "</table>\n";
+  }
+  h << "<h2>Final parameters</h2><table><tr><th>name</th><th>value</th><th>unit</th><th>standard error</th>"
+       "<th>95 % interval</th></tr>\n";
+  for (const auto& q : f["parameters"])
+    h << "<tr><td>" << cell(q["name"]) << "</td><td>" << cell(q["value"], 5) << "</td><td>" << cell(q["unit"])
+      << "</td><td>" << (q["fixed"].get<bool>() ? "fixed" : cell(q["standard_error"], 3)) << "</td><td>"
+      << (q["fixed"].get<bool>()
+              ? ""
+              : "[" + cell(q["interval95"][0], 4) + ", " + cell(q["interval95"][1], 4) + "]")
+      << "</td></tr>\n";
+  h << "</table>\n<h2>The library</h2><table><tr><th>effect</th><th>kind</th><th>change of the forward "
+       "model</th>"
+       "<th>residual signature it explains</th></tr>\n";
+  for (const auto& e : j["library"])
+    h << "<tr><td><code>" << cell(e["effect"]) << "</code></td><td>" << cell(e["kind"]) << "</td><td>"
+      << cell(e["change"]) << "</td><td>" << cell(e["signature"]) << "</td></tr>\n";
+  h << "</table>\n<p>Not applicable here:</p><ul>";
+  for (const auto& e : j["not_applicable"])
+    h << "<li><code>" << cell(e["effect"]) << "</code>: " << cell(e["why"]) << "</li>";
+  h << "</ul><p>Method and thresholds: docs/discover.md. Full numbers: <a "
+       "href=\"report.json\">report.json</a>.</p>"
+       "</body></html>\n";
+  return h.str();
+}
+
+std::string benchmark_text(const discover::BenchmarkResult& b) {
+  std::ostringstream s;
+  s << "confusion matrix (rows: truth; columns: effects found, only columns with a count)\n";
+  std::vector<std::size_t> used;
+  for (std::size_t c = 0; c < b.columns.size(); ++c) {
+    bool any = false;
+    for (const auto& r : b.confusion) any |= r[c] > 0;
+    if (any) used.push_back(c);
+  }
+  s << "truth";
+  for (const std::size_t c : used) s << "," << b.columns[c];
+  s << "\n";
+  for (std::size_t r = 0; r < b.rows.size(); ++r) {
+    s << b.rows[r];
+    for (const std::size_t c : used) s << "," << b.confusion[r][c];
+    s << "\n";
+  }
+  return s.str();
+}
+
+int run_benchmark_command(const Parsed& p, const discover::Options& o, const std::string& command_line) {
+  const bool quick = p.has("--quick");
+  const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
+                                      : fs::path(tmlab_root()) / "results" / "discover" /
+                                            (quick ? "benchmark-quick" : "benchmark");
+  RunOutput out(dir, &std::cerr);
+  try {
+    ManifestInput mi;
+    mi.command_line = split_words(command_line);
+    mi.config = {{"quick", quick}, {"seed", o.seed}, {"starts", o.starts}, {"threads", o.threads}};
+    out.write_json("manifest.json", make_manifest(mi));
+    const auto sets = discover::benchmark_sets(quick);
+    const discover::BenchmarkResult b = discover::run_benchmark(sets, o);
+    const nlohmann::json j = discover::to_json(b);
+    out.write_json("benchmark.json", j);
+    const std::string text = benchmark_text(b);
+    {
+      std::ofstream f(out.file("confusion_matrix.csv"));
+      f << text.substr(text.find('\n') + 1);
+      if (!f) throw Error("discover: cannot write " + out.file("confusion_matrix.csv").string());
+    }
+    std::cout << text << "library sets: " << b.library_correct << " / " << b.library_sets
+              << " right (diagonal fraction " << significant(b.diagonal_fraction, 3) << "; "
+              << b.library_exact << " with the exact law, no family credit)\n"
+              << "noise-only sets: " << b.noise_false_positives << " false positives of " << b.noise_sets
+              << "\n"
+              << "outside-library sets: " << b.outside_flagged << " of " << b.outside_sets
+              << " flagged as unexplained structure, " << b.outside_forced << " with an effect added\n"
+              << "median error reduction (library sets): " << significant(100.0 * b.median_error_reduction, 3)
+              << " %\n";
+    out.finalize({{"diagonal_fraction", b.diagonal_fraction},
+                  {"noise_only_false_positives", b.noise_false_positives},
+                  {"outside_library_flagged", b.outside_flagged},
+                  {"median_error_reduction", b.median_error_reduction}});
+    std::cout << "written: " << out.dir().string() << "/ (benchmark.json, confusion_matrix.csv)\n";
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  return 0;
+}
+
+}  // namespace
+
+int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args,
+                         {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads",
+                          "--seed", "--effects", "--baseline-prony"},
+                         {"--benchmark", "--quick", "--free-poisson", "--no-plots", "--quiet"});
+  discover::Options o;
+  auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
+    if (!p.has(key)) return fallback;
+    const double v = parse_double(key, p.get(key));
+    if (!(v >= lo && v <= hi && v == std::floor(v)))
+      throw UsageError(key + " must be a whole number " + std::to_string(lo) + ".." + std::to_string(hi));
+    return int(v);
+  };
+  o.max_samples = std::size_t(whole("--max-samples", int(o.max_samples), 50, 1000000));
+  o.max_rounds = whole("--rounds", o.max_rounds, 1, 20);
+  o.starts = whole("--starts", o.starts, 1, 1000);
+  o.threads = whole("--threads", 2, 1, 64);
+  o.seed = (unsigned long)whole("--seed", 1, 1, 1000000);
+  o.baseline_prony = whole("--baseline-prony", o.baseline_prony, 0, 4);
+  if (p.has("--poisson")) {
+    o.poisson = parse_double("--poisson", p.get("--poisson"));
+    if (!(o.poisson > 0.0 && o.poisson < 0.4999)) throw UsageError("--poisson must lie in (0, 0.4999)");
+  }
+  o.fix_poisson = !p.has("--free-poisson");
+  if (p.has("--effects")) {
+    std::string s = p.get("--effects");
+    std::size_t a = 0;
+    for (;;) {
+      const std::size_t b = s.find(',', a);
+      const std::string e = s.substr(a, b == std::string::npos ? std::string::npos : b - a);
+      discover::effect_info(e);  // tmlab::Error naming the known effects
+      o.effects.push_back(e);
+      if (b == std::string::npos) break;
+      a = b + 1;
+    }
+  }
+  if (!p.has("--quiet"))
+    o.progress = [](const std::string& line) { std::cerr << line << "\n" << std::flush; };
+  if (p.has("--benchmark")) {
+    if (!p.positional.empty()) throw UsageError("discover --benchmark takes no DATA.csv");
+    return run_benchmark_command(p, o, command_line);
+  }
+  if (p.has("--quick")) throw UsageError("--quick is for --benchmark");
+  if (p.positional.size() != 1) throw UsageError("discover needs exactly one DATA.csv (or --benchmark)");
+  const fs::path csv = p.positional[0];
+  const measured::DataSet data = measured::read_data_set(csv);
+  const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
+                                      : fs::path(tmlab_root()) / "results" / "discover" / data.meta.name;
+  if (!p.has("--out")) {
+    const std::string why = result_name_problem(data.meta.name);
+    if (!why.empty()) throw Error("discover: result name: " + why);
+  }
+  RunOutput out(dir, &std::cerr);
+  try {
+    ManifestInput mi;
+    mi.command_line = split_words(command_line);
+    mi.config = {{"poisson", o.poisson},
+                 {"fix_poisson", o.fix_poisson},
+                 {"max_samples", o.max_samples},
+                 {"rounds", o.max_rounds},
+                 {"starts", o.starts},
+                 {"threads", o.threads},
+                 {"seed", o.seed},
+                 {"effects", o.effects},
+                 {"bic_threshold", o.bic_threshold},
+                 {"held_out_ratio", o.held_out_ratio},
+                 {"alpha", o.thresholds.alpha}};
+    mi.input_files = {csv, measured::metadata_path(csv)};
+    out.write_json("manifest.json", make_manifest(mi));
+    const discover::Report r = discover::run(data, o);
+    const nlohmann::json j = discover::to_json(r);
+    out.write_json("report.json", j);
+    {
+      H5File h5 = H5File::create(out.file("discover.h5").string());
+      for (std::size_t k = 0; k < r.data.series.size(); ++k) {
+        const discover::Series& s = r.data.series[k];
+        char g[32];
+        std::snprintf(g, sizeof g, "/tests/%03zu", k);
+        const std::string gs(g);
+        h5.write(gs + "/time_s", s.t, {s.t.size()});
+        h5.write(gs + "/displacement_m", s.d, {s.t.size()});
+        h5.write(gs + "/force_N", s.f, {s.t.size()});
+        h5.write(gs + "/baseline_N", r.baseline.prediction[k], {s.t.size()});
+        h5.write(gs + "/final_N", r.final.prediction[k], {s.t.size()});
+        h5.set_attribute(g, "id", s.id);
+      }
+      h5.close();
+    }
+    bool plots_ok = false;
+    std::string plots = "skipped (--no-plots)";
+    if (!p.has("--no-plots")) {
+      const ProcessStatus ps = run_python(
+          fs::path(tmlab_root()) / "calibration" / "discover" / "python" / "tmlab_discover_plot.py",
+          {out.staging_dir().string()}, ProcessOutput::discard());
+      plots_ok = ps.ok();
+      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+      if (!ps.ok()) std::cerr << "tmlab discover: plots " << plots << "\n";
+    }
+    {
+      std::ofstream f(out.file("index.html"));
+      f << report_html(j, plots_ok);
+      if (!f) throw Error("discover: cannot write " + out.file("index.html").string());
+    }
+    std::cout << "baseline " << r.baseline.structure.label() << ": RMS " << significant(r.baseline.fit.rms, 4)
+              << " N (" << significant(r.baseline.fit.rms_percent_peak, 3) << " % of peak), max "
+              << significant(r.baseline.max_abs, 4) << " N\n";
+    for (const auto& s : r.steps)
+      if (s.accepted) std::cout << "round " << s.round << ": added " << s.effect << " (" << s.reason << ")\n";
+    std::cout << "final " << r.final.structure.label() << ": RMS " << significant(r.final.fit.rms, 4)
+              << " N (" << significant(r.final.fit.rms_percent_peak, 3) << " % of peak), max "
+              << significant(r.final.max_abs, 4) << " N\n"
+              << "unexplained structure: " << (r.unexplained ? "yes: " + r.signature : std::string("no"))
+              << "\n";
+    out.finalize({{"selected_effects", r.selected},
+                  {"unexplained_structure", r.unexplained},
+                  {"baseline_rms_N", r.baseline.fit.rms},
+                  {"final_rms_N", r.final.fit.rms},
+                  {"plots", plots}});
+    std::cout << "written: " << out.dir().string()
+              << "/ (index.html, report.json, discover.h5, manifest.json, summary.json"
+              << (plots_ok ? ", discover_*.png" : "") << ")\n";
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  return 0;
+}
+
+}  // namespace tmlab::cli

@@ -1,0 +1,275 @@
+#include "calibration/discover/benchmark.hpp"
+
+#include "calibration/fit/parameter.hpp"
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <random>
+
+namespace tmlab::discover {
+
+namespace {
+
+using namespace tmlab::measured;
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kHeight = 0.01, kRadius = 0.01, kStrain = 0.25, kHold = 20.0, kRest = 5.0, kRate = 5.0;
+const double kRates[3] = {0.02, 0.05, 0.1};
+
+DataSet protocol(const std::string& name) {
+  DataSet d;
+  d.meta.name = name;
+  d.meta.test = TestType::unconfined_compression;
+  d.meta.sample.shape = SampleShape::cylinder;
+  d.meta.sample.radius_m = kRadius;
+  d.meta.sample.height_m = kHeight;
+  d.meta.sample.bottom = Interface::frictionless;
+  d.meta.sample.platens = Interface::frictionless;
+  d.meta.source = "synthetic: tmlab discover --benchmark";
+  d.meta.license = "CC0-1.0";
+  for (int k = 0; k < 3; ++k) {
+    Test t;
+    t.id = "rate" + std::to_string(k + 1);
+    const double v = kRates[k] * kHeight, tr = kStrain / kRates[k];
+    const double total = 2.0 * tr + kHold + kRest;
+    const int n = int(std::round(total * kRate));
+    for (int i = 0; i <= n; ++i) {
+      const double tt = double(i) / kRate;
+      double u = 0.0;
+      if (tt <= tr)
+        u = v * tt;
+      else if (tt <= tr + kHold)
+        u = kStrain * kHeight;
+      else if (tt <= 2.0 * tr + kHold)
+        u = kStrain * kHeight - v * (tt - tr - kHold);
+      t.time_s.push_back(tt);
+      t.displacement_m.push_back(std::max(u, 0.0));
+      t.force_N.push_back(1.0);
+    }
+    d.tests.push_back(std::move(t));
+  }
+  return d;
+}
+
+void set(std::vector<fit::Parameter>& ps, std::vector<double>& x, const std::string& name, double v) {
+  x[fit::index_of(ps, name)] = v;
+}
+
+}  // namespace
+
+const std::vector<std::string>& outside_effects() {
+  static const std::vector<std::string> v = {"actuator_resonance", "preconditioning"};
+  return v;
+}
+
+SyntheticSet make_set(const std::string& truth, unsigned seed) {
+  SyntheticSet s;
+  s.truth = truth;
+  s.name = "bench-" + truth + "-" + std::to_string(seed);
+  const bool outside =
+      std::find(outside_effects().begin(), outside_effects().end(), truth) != outside_effects().end();
+  s.kind = truth == "noise_only" ? Truth::noise_only : outside ? Truth::outside_library : Truth::library;
+  s.data = protocol(s.name);
+  const Prepared p = prepare(s.data, 1u << 30);
+  Structure st;
+  st.law = "stvk";
+  st.prony_terms = 2;
+  if (s.kind == Truth::library) st = with_effect(st, truth);
+  std::vector<fit::Parameter> ps = structure_parameters(st, p, 0.49, true);
+  std::vector<double> x(ps.size());
+  for (std::size_t i = 0; i < ps.size(); ++i) x[i] = ps[i].value;
+  const double E = 30e3;
+  if (st.law == "stvk" || st.law == "neo_hookean") set(ps, x, "young", E);
+  if (st.law == "mooney_rivlin") {
+    set(ps, x, "c10", 1.0e3);
+    set(ps, x, "c01", 4.0e3);
+  }
+  if (st.law == "yeoh") {
+    set(ps, x, "c10", 5.0e3);
+    set(ps, x, "c20", 15.0e3);
+    set(ps, x, "c30", 0.0);
+  }
+  if (st.law == "ogden") {
+    set(ps, x, "mu1", 10.0e3 * 2.0 / 6.0);
+    set(ps, x, "alpha1", 6.0);
+  }
+  if (st.law == "veronda_westmann") {
+    set(ps, x, "c1", 2.5e3);
+    set(ps, x, "c2", 4.0);
+  }
+  set(ps, x, "poisson", 0.49);
+  set(ps, x, "e1", 12e3);
+  set(ps, x, "e2", 8e3);
+  set(ps, x, "tau1", 0.5);
+  set(ps, x, "tau2", 15.0);
+  // The effects' true values (docs/discover.md, "Benchmark").
+  const double fpk = 3.0, dmx = kStrain * kHeight, T = 55.0;
+  if (truth == "extra_prony_term") {
+    set(ps, x, "e3", 10e3);
+    set(ps, x, "tau3", 3.0);
+  }
+  if (truth == "strain_dependent_relaxation") set(ps, x, "relax_strain_slope", 4.0);
+  if (truth == "contact_offset") set(ps, x, "contact_offset", 0.12 * dmx);
+  if (truth == "force_offset") set(ps, x, "force_offset", 0.03 * fpk);
+  if (truth == "force_drift") set(ps, x, "force_drift", 0.03 * fpk / T);
+  if (truth == "displacement_drift") set(ps, x, "displacement_drift", 0.04 * dmx / T);
+  if (truth == "instrument_compliance") set(ps, x, "compliance", 0.06 * dmx / fpk);
+  if (truth == "platen_friction") set(ps, x, "friction_fraction", 0.6);
+  const auto f = DiscoverModel(p, st).predict_series(x);
+  double peak = 0.0;
+  for (const auto& v : f)
+    for (const double y : v) peak = std::max(peak, std::abs(y));
+  std::mt19937_64 rng(seed * 7919u + std::hash<std::string>{}(truth) % 100000u);
+  std::normal_distribution<double> noise(0.0, 0.003 * peak);
+  for (std::size_t k = 0; k < s.data.tests.size(); ++k) {
+    Test& t = s.data.tests[k];
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      double y = f[k][i];
+      if (truth == "actuator_resonance") y += 0.02 * peak * std::sin(2.0 * kPi * 0.7 * t.time_s[i]);
+      if (truth == "preconditioning" && k == 0) y *= 1.15;
+      t.force_N[i] = y + noise(rng);
+    }
+  }
+  validate(s.data);
+  return s;
+}
+
+std::vector<SyntheticSet> benchmark_sets(bool quick) {
+  std::vector<std::string> truths;
+  if (quick) {
+    truths = {"noise_only", "contact_offset", "neo_hookean_hyperelastic", "force_drift",
+              "actuator_resonance"};
+  } else {
+    const Prepared p = prepare(protocol("probe"), 1u << 30);
+    Structure base;
+    for (const auto& e : effect_library())
+      if (not_applicable(e.name, base, p).empty()) truths.push_back(e.name);
+    truths.push_back("noise_only");
+    truths.push_back("noise_only");
+    truths.push_back("noise_only");
+    for (const auto& o : outside_effects()) truths.push_back(o);
+  }
+  std::vector<SyntheticSet> sets;
+  unsigned seed = 1;
+  for (const auto& t : truths) sets.push_back(make_set(t, seed++));
+  return sets;
+}
+
+bool library_match(const std::string& truth, const std::vector<std::string>& found) {
+  if (found.size() != 1) return false;
+  if (found[0] == truth) return true;
+  return !effect_law(truth).empty() && !effect_law(found[0]).empty();
+}
+
+BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Options& o) {
+  BenchmarkResult b;
+  for (const auto& e : effect_library()) b.columns.push_back(e.name);
+  b.columns.push_back("nothing");
+  std::vector<double> reductions;
+  for (std::size_t i = 0; i < sets.size(); ++i) {
+    const SyntheticSet& s = sets[i];
+    if (o.progress)
+      o.progress("benchmark " + std::to_string(i + 1) + "/" + std::to_string(sets.size()) + ": " + s.name);
+    Options oi = o;
+    oi.progress = {};
+    const Report r = run(s.data, oi);
+    BenchmarkEntry e;
+    e.name = s.name;
+    e.truth = s.truth;
+    e.kind = s.kind;
+    e.found = r.final_effects;
+    e.unexplained = r.unexplained;
+    e.signature = r.signature;
+    e.rms_before = r.baseline.fit.rms;
+    e.rms_after = r.final.fit.rms;
+    e.peak = r.data.peak_force;
+    e.seconds = r.seconds;
+    if (s.kind == Truth::library) {
+      e.correct = library_match(s.truth, e.found);
+      ++b.library_sets;
+      b.library_correct += e.correct ? 1 : 0;
+      b.library_exact += e.found.size() == 1 && e.found[0] == s.truth ? 1 : 0;
+      reductions.push_back(1.0 - e.rms_after / e.rms_before);
+    } else if (s.kind == Truth::noise_only) {
+      e.correct = e.found.empty() && !e.unexplained;
+      ++b.noise_sets;
+      b.noise_false_positives += e.correct ? 0 : 1;
+    } else {
+      e.correct = e.unexplained;
+      ++b.outside_sets;
+      b.outside_flagged += e.unexplained ? 1 : 0;
+      b.outside_forced += e.found.empty() ? 0 : 1;
+    }
+    if (o.progress) {
+      std::string f;
+      for (const auto& x : e.found) f += (f.empty() ? "" : ", ") + x;
+      o.progress("  truth " + s.truth + " -> found [" + f + "]" +
+                 (e.unexplained ? " + unexplained structure" : "") + (e.correct ? " (correct)" : " (WRONG)") +
+                 "; RMS " + significant(e.rms_before, 3) + " -> " + significant(e.rms_after, 3) + " N");
+    }
+    auto row = std::find(b.rows.begin(), b.rows.end(), s.truth);
+    if (row == b.rows.end()) {
+      b.rows.push_back(s.truth);
+      b.confusion.emplace_back(b.columns.size(), 0);
+      row = b.rows.end() - 1;
+    }
+    std::vector<int>& counts = b.confusion[std::size_t(row - b.rows.begin())];
+    if (e.found.empty()) counts.back() += 1;
+    for (const auto& x : e.found)
+      counts[std::size_t(std::find(b.columns.begin(), b.columns.end(), x) - b.columns.begin())] += 1;
+    b.entries.push_back(std::move(e));
+  }
+  if (!reductions.empty()) {
+    std::sort(reductions.begin(), reductions.end());
+    const std::size_t m = reductions.size() / 2;
+    b.median_error_reduction =
+        reductions.size() % 2 ? reductions[m] : 0.5 * (reductions[m - 1] + reductions[m]);
+  }
+  b.diagonal_fraction = b.library_sets ? double(b.library_correct) / b.library_sets : 1.0;
+  return b;
+}
+
+nlohmann::json to_json(const BenchmarkResult& b) {
+  using nlohmann::json;
+  json j;
+  j["protocol"] =
+      "unconfined compression, cylinder R 10 mm H 10 mm, frictionless; 3 tests at 0.02, 0.05, 0.1 /s to 25 % "
+      "strain, hold 20 s, unload, rest 5 s, 5 Hz; truth St VK E_inf 30 kPa nu 0.49, Prony e 12, 8 kPa tau "
+      "0.5, "
+      "15 s; white noise 0.3 % of peak";
+  j["confusion"] = {{"rows_truth", b.rows}, {"columns_found", b.columns}, {"counts", b.confusion}};
+  j["library_sets"] = b.library_sets;
+  j["library_correct"] = b.library_correct;
+  j["library_exact"] = b.library_exact;
+  j["diagonal_fraction"] = b.diagonal_fraction;
+  j["noise_only_sets"] = b.noise_sets;
+  j["noise_only_false_positives"] = b.noise_false_positives;
+  j["outside_library_sets"] = b.outside_sets;
+  j["outside_library_flagged"] = b.outside_flagged;
+  j["outside_library_with_an_effect_added"] = b.outside_forced;
+  j["median_error_reduction"] = b.median_error_reduction;
+  j["scoring"] =
+      "library: exactly the planted effect selected (a *_hyperelastic truth: exactly one *_hyperelastic "
+      "effect); "
+      "noise-only: nothing selected and no unexplained structure; outside: unexplained_structure true";
+  j["sets"] = json::array();
+  for (const auto& e : b.entries)
+    j["sets"].push_back({{"name", e.name},
+                         {"truth", e.truth},
+                         {"kind", e.kind == Truth::library      ? "library"
+                                  : e.kind == Truth::noise_only ? "noise_only"
+                                                                : "outside_library"},
+                         {"found", e.found},
+                         {"unexplained_structure", e.unexplained},
+                         {"unexplained_signature", e.signature},
+                         {"rms_before_N", e.rms_before},
+                         {"rms_after_N", e.rms_after},
+                         {"peak_force_N", e.peak},
+                         {"correct", e.correct},
+                         {"wall_seconds", e.seconds}});
+  return j;
+}
+
+}  // namespace tmlab::discover

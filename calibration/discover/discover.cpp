@@ -1,0 +1,425 @@
+#include "calibration/discover/discover.hpp"
+
+#include "core/base/error.hpp"
+#include "core/base/format.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+namespace tmlab::discover {
+
+namespace {
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+void say(const Options& o, const std::string& s) {
+  if (o.progress) o.progress(s);
+}
+
+std::vector<SeriesView> views(const Prepared& p, const std::vector<std::vector<double>>& pred) {
+  std::vector<SeriesView> v;
+  for (std::size_t k = 0; k < p.series.size(); ++k) {
+    SeriesView s;
+    s.id = p.series[k].id;
+    s.t = p.series[k].t;
+    s.d = p.series[k].d;
+    s.force = p.series[k].f;
+    for (std::size_t i = 0; i < s.t.size(); ++i) s.residual.push_back(pred[k][i] - s.force[i]);
+    v.push_back(std::move(s));
+  }
+  return v;
+}
+
+fit::Problem problem(const Prepared& p, const Structure& s, std::vector<fit::Parameter> params,
+                     const std::vector<char>& mask) {
+  fit::Problem pr;
+  pr.data = observations(p, mask);
+  pr.model = std::make_unique<DiscoverModel>(p, s, mask);
+  pr.parameters = params;
+  pr.canonical = [s, params](std::vector<double> x) { return canonical(s, params, std::move(x)); };
+  return pr;
+}
+
+fit::FitOptions fit_options(const Options& o, int starts) {
+  fit::FitOptions f;
+  f.starts = std::max(1, starts);
+  f.local_runs = std::min(f.starts, starts > 8 ? 3 : 2);
+  f.threads = o.threads;
+  f.seed = o.seed;
+  f.max_iterations = 150;
+  f.profile = false;
+  return f;
+}
+
+std::vector<double> values_of(const fit::FitResult& r) {
+  std::vector<double> x;
+  for (const auto& q : r.parameters) x.push_back(q.value);
+  return x;
+}
+
+}  // namespace
+
+std::vector<std::vector<char>> held_out_folds(const Prepared& p, std::string* scheme) {
+  const std::size_t n = p.size();
+  std::vector<std::vector<char>> folds;
+  if (p.series.size() >= 2) {
+    const std::size_t nf = std::min<std::size_t>(3, p.series.size());
+    for (std::size_t f = 0; f < nf; ++f) {
+      std::vector<char> m;
+      for (std::size_t k = 0; k < p.series.size(); ++k)
+        m.insert(m.end(), p.series[k].t.size(), char(k % nf != f));
+      folds.push_back(std::move(m));
+    }
+    if (scheme)
+      *scheme = "tests left out: " + std::to_string(nf) + " folds (test k held out in fold k mod " +
+                std::to_string(nf) + ")";
+  } else {
+    for (int f = 0; f < 2; ++f) {
+      std::vector<char> m(n);
+      for (std::size_t i = 0; i < n; ++i) m[i] = char(int((8 * i) / n) % 2 != f);
+      folds.push_back(std::move(m));
+    }
+    if (scheme)
+      *scheme =
+          "segments left out: the one test cut into 8 time blocks, even and odd blocks held out in turn";
+  }
+  return folds;
+}
+
+Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Parameter> params,
+                     const Options& o, int starts) {
+  Fitted f;
+  f.structure = s;
+  f.parameters = params;
+  const fit::Problem pr = problem(p, s, params, {});
+  f.fit = fit::fit(pr, fit_options(o, starts));
+  f.x = values_of(f.fit);
+  f.prediction = DiscoverModel(p, s).predict_series(f.x);
+  f.study = study_residual(views(p, f.prediction), p.sign, p.strain_scale, o.thresholds);
+  f.max_abs = f.study.max_abs;
+  return f;
+}
+
+double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
+  double sse = 0.0;
+  std::size_t n = 0;
+  for (const auto& mask : held_out_folds(p)) {
+    std::vector<fit::Parameter> params = f.parameters;
+    for (std::size_t i = 0; i < params.size(); ++i) params[i].value = f.x[i];
+    for (auto& q : params) {
+      q.start_low = std::min(q.start_low, q.value);
+      q.start_high = std::max(q.start_high, q.value);
+    }
+    const fit::Problem pr = problem(p, f.structure, params, mask);
+    std::vector<double> x = f.x;
+    try {
+      x = values_of(fit::fit(pr, fit_options(o, 1)));
+    } catch (const Error&) {
+      // The fold cannot be fitted from here: predict with the full-data optimum (conservative).
+    }
+    const auto pred = DiscoverModel(p, f.structure).predict_series(x);
+    std::size_t idx = 0;
+    for (std::size_t k = 0; k < p.series.size(); ++k)
+      for (std::size_t i = 0; i < p.series[k].f.size(); ++i, ++idx)
+        if (!mask[idx]) {
+          sse += std::pow(pred[k][i] - p.series[k].f[i], 2);
+          ++n;
+        }
+  }
+  return n ? std::sqrt(sse / double(n)) : kNaN;
+}
+
+std::vector<std::string> protocol_notes(const Prepared& p) {
+  std::vector<std::string> notes;
+  std::size_t hold = 0, unload = 0, n = 0;
+  double rmin = 1e300, rmax = 0.0;
+  for (const auto& s : p.series) {
+    const PhaseLabels pl = classify_phases(s.t, s.d, p.sign);
+    double sum = 0.0;
+    int cnt = 0;
+    for (std::size_t i = 0; i < s.t.size(); ++i) {
+      hold += pl.phase[i] == Phase::hold ? 1 : 0;
+      unload += pl.phase[i] == Phase::unload ? 1 : 0;
+      if (pl.phase[i] == Phase::ramp) {
+        sum += pl.rate[i];
+        ++cnt;
+      }
+    }
+    n += s.t.size();
+    if (cnt) {
+      rmin = std::min(rmin, sum / cnt);
+      rmax = std::max(rmax, sum / cnt);
+    }
+  }
+  if (unload == 0 && double(hold) < 0.05 * double(n) && rmax <= 1.1 * rmin)
+    notes.push_back(
+        "every test is a monotonic ramp at one rate (no hold, no unloading): relaxation effects (Prony "
+        "terms, "
+        "strain-dependent relaxation) are confounded with the shape of the elastic law, so an accepted "
+        "relaxation effect here means a better curve shape, not evidence of viscoelasticity; tests at other "
+        "rates or with holds would separate them");
+  if (p.series.size() == 1)
+    notes.push_back(
+        "one test: the held-out check leaves out time blocks of it (interpolation), a weaker check than "
+        "leaving out whole tests");
+  return notes;
+}
+
+Report run(const measured::DataSet& data, const Options& o) {
+  const auto t0 = std::chrono::steady_clock::now();
+  Report r;
+  r.options = o;
+  r.data = prepare(data, o.max_samples);
+  const Prepared& p = r.data;
+  held_out_folds(p, &r.held_out_scheme);
+  r.exactness = exactness(p);
+  r.notes = protocol_notes(p);
+  for (const auto& n : r.notes) say(o, "note: " + n);
+  Structure base;
+  base.law = o.baseline_law;
+  base.prony_terms = o.baseline_prony;
+  say(o, "discover " + p.name + ": " + std::to_string(p.size()) + " samples in " +
+             std::to_string(p.series.size()) + " tests (every " + std::to_string(p.stride) +
+             "th kept), forward model " + to_string(p.rig));
+  r.baseline =
+      fit_structure(p, base, structure_parameters(base, p, o.poisson, o.fix_poisson), o, 3 * o.starts);
+  r.forward_model = DiscoverModel(p, base).name();
+  say(o, "baseline " + base.label() + ": RMS " + significant(r.baseline.fit.rms, 4) + " N (" +
+             significant(r.baseline.fit.rms_percent_peak, 3) + " % of peak), BIC " +
+             significant(r.baseline.fit.bic, 7) +
+             (r.baseline.study.structured ? ", residual structured" : ", residual is noise"));
+  Fitted cur = r.baseline;
+  r.stop_reason = "round limit (" + std::to_string(o.max_rounds) + ")";
+  for (int round = 1; round <= o.max_rounds; ++round) {
+    if (!cur.study.structured) {
+      r.stop_reason = "the residual is noise (every decisive diagnostic passes)";
+      break;
+    }
+    std::vector<Fitted> cand;
+    std::vector<std::size_t> step_of;
+    for (const auto& e : effect_library()) {
+      if (!o.effects.empty() && std::find(o.effects.begin(), o.effects.end(), e.name) == o.effects.end())
+        continue;
+      const std::string why = not_applicable(e.name, cur.structure, p);
+      if (!why.empty()) {
+        if (round == 1) r.not_applicable.emplace_back(e.name, why);
+        continue;
+      }
+      const Structure s2 = with_effect(cur.structure, e.name);
+      Step st;
+      st.round = round;
+      st.effect = e.name;
+      st.model = s2.label();
+      try {
+        Fitted f = fit_structure(
+            p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o,
+            o.starts);
+        st.free_parameters = f.fit.k;
+        st.rms = f.fit.rms;
+        st.bic = f.fit.bic;
+        st.delta_bic = f.fit.bic - cur.fit.bic;
+        say(o, "  round " + std::to_string(round) + " " + e.name + ": RMS " + significant(st.rms, 4) +
+                   " N, dBIC " + significant(st.delta_bic, 4));
+        cand.push_back(std::move(f));
+        step_of.push_back(r.steps.size());
+      } catch (const std::exception& ex) {
+        st.reason = std::string("fit failed: ") + ex.what();
+        say(o, "  round " + std::to_string(round) + " " + e.name + ": " + st.reason);
+      }
+      r.steps.push_back(st);
+    }
+    std::vector<std::size_t> order(cand.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(),
+              [&](std::size_t a, std::size_t b) { return cand[a].fit.bic < cand[b].fit.bic; });
+    int tried = 0;
+    bool accepted = false;
+    for (const std::size_t i : order) {
+      Step& st = r.steps[step_of[i]];
+      if (accepted) {
+        st.reason = "a better candidate was accepted";
+        continue;
+      }
+      if (!(st.delta_bic < -o.bic_threshold)) {
+        st.reason =
+            "BIC falls by " + significant(-st.delta_bic, 3) + " <= " + significant(o.bic_threshold, 3);
+        continue;
+      }
+      if (tried >= 3) {
+        st.reason = "not held-out tested (three better-BIC candidates failed it)";
+        continue;
+      }
+      ++tried;
+      if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
+      cand[i].held_out_rms = held_out_rms(p, cand[i], o);
+      st.held_out_rms = cand[i].held_out_rms;
+      st.current_held_out_rms = cur.held_out_rms;
+      if (cand[i].held_out_rms < o.held_out_ratio * cur.held_out_rms) {
+        st.accepted = true;
+        st.reason = "BIC falls by " + significant(-st.delta_bic, 4) + " and the held-out RMS from " +
+                    significant(cur.held_out_rms, 4) + " to " + significant(cand[i].held_out_rms, 4) + " N";
+        accepted = true;
+        r.selected.push_back(st.effect);
+        say(o, "round " + std::to_string(round) + ": accepted " + st.effect + " (" + st.reason + ")");
+        cur = cand[i];
+      } else {
+        st.reason = "held-out RMS " + significant(cand[i].held_out_rms, 4) + " N not below " +
+                    significant(o.held_out_ratio, 3) + " x " + significant(cur.held_out_rms, 4) + " N";
+      }
+    }
+    if (!accepted) {
+      r.stop_reason =
+          cand.empty() ? "no applicable candidate" : "no candidate passes both BIC and held-out prediction";
+      say(o, "round " + std::to_string(round) + ": " + r.stop_reason);
+      break;
+    }
+  }
+  if (!cur.study.structured) r.stop_reason = "the residual is noise (every decisive diagnostic passes)";
+  r.final = cur;
+  r.final_effects = effects_in(cur.structure, base);
+  r.unexplained = cur.study.structured;
+  r.signature = describe_signature(cur.study, o.thresholds);
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  say(o, "final " + cur.structure.label() + ": RMS " + significant(cur.fit.rms, 4) + " N (" +
+             significant(cur.fit.rms_percent_peak, 3) + " % of peak)" +
+             (r.unexplained ? "; unexplained structure: " + r.signature : "; residual is noise"));
+  return r;
+}
+
+namespace {
+
+nlohmann::json study_json(const ResidualStudy& s) {
+  using nlohmann::json;
+  json j;
+  j["rms_N"] = s.rms;
+  j["max_abs_N"] = s.max_abs;
+  j["mean_N"] = s.mean;
+  j["noise_level_N"] = s.noise_sigma;
+  j["structured"] = s.structured;
+  j["diagnostics"] = json::array();
+  for (const auto& d : s.diagnostics)
+    j["diagnostics"].push_back({{"name", d.name},
+                                {"statistic", num(d.statistic)},
+                                {"p_value", num(d.p_value)},
+                                {"threshold", d.threshold},
+                                {"passed", d.passed},
+                                {"decisive", d.decisive},
+                                {"note", d.note}});
+  const auto groups = [](const std::vector<GroupStat>& g) {
+    json a = json::array();
+    for (const auto& x : g)
+      a.push_back({{"group", x.group},
+                   {"n", x.n},
+                   {"rms_N", x.rms},
+                   {"mean_N", x.mean},
+                   {"max_abs_N", x.max_abs},
+                   {"x", num(x.x)}});
+    return a;
+  };
+  j["by_phase"] = groups(s.by_phase);
+  j["by_cycle"] = groups(s.by_cycle);
+  j["by_test"] = groups(s.by_test);
+  j["by_strain"] = groups(s.by_strain);
+  j["spectrum_peak"] = {{"frequency_Hz", s.period.frequency_hz},
+                        {"cycles_per_test", s.period.cycles},
+                        {"fisher_g", s.period.g},
+                        {"p_value", s.period.p}};
+  j["first_cycle_rms_ratio"] = num(s.first_cycle_ratio);
+  j["worst_test_rms_ratio"] = num(s.worst_test_ratio);
+  j["rate_rms_spearman"] = num(s.rate_correlation);
+  j["where"] = s.where;
+  return j;
+}
+
+nlohmann::json model_json(const Fitted& f, double peak) {
+  using nlohmann::json;
+  json j;
+  j["model"] = f.structure.label();
+  j["rms_N"] = f.fit.rms;
+  j["rel_rms"] = f.fit.rms / peak;
+  j["rms_percent_of_peak"] = 100.0 * f.fit.rms / peak;
+  j["max_abs_N"] = f.max_abs;
+  j["held_out_rms_N"] = num(f.held_out_rms);
+  j["bic"] = f.fit.bic;
+  j["aic"] = f.fit.aic;
+  j["free_parameters"] = f.fit.k;
+  j["parameters"] = json::array();
+  for (const auto& q : f.fit.parameters)
+    j["parameters"].push_back({{"name", q.name},
+                               {"value", q.value},
+                               {"unit", q.unit},
+                               {"fixed", q.fixed},
+                               {"standard_error", num(q.standard_error)},
+                               {"interval95", {num(q.lower95), num(q.upper95)}},
+                               {"identifiable", q.identifiable}});
+  j["confounded"] = json::array();
+  for (const auto& c : f.fit.confounded)
+    j["confounded"].push_back({{"a", c.a}, {"b", c.b}, {"correlation", c.correlation}});
+  j["residual"] = study_json(f.study);
+  return j;
+}
+
+}  // namespace
+
+nlohmann::json to_json(const Report& r) {
+  using nlohmann::json;
+  const Prepared& p = r.data;
+  json j;
+  j["dataset"] = p.name;
+  j["rig"] = to_string(p.rig);
+  j["forward_model"] = {{"name", r.forward_model},
+                        {"description", DiscoverModel(p, r.final.structure).description()},
+                        {"exact_where", r.exactness}};
+  j["samples"] = p.size();
+  j["tests"] = p.series.size();
+  j["decimation_stride"] = p.stride;
+  j["peak_force_N"] = p.peak_force;
+  j["baseline"] = model_json(r.baseline, p.peak_force);
+  j["final"] = model_json(r.final, p.peak_force);
+  j["steps"] = json::array();
+  for (const auto& s : r.steps)
+    j["steps"].push_back({{"round", s.round},
+                          {"effect", s.effect},
+                          {"model", s.model},
+                          {"free_parameters", s.free_parameters},
+                          {"rms_N", num(s.rms)},
+                          {"held_out_rms_N", num(s.held_out_rms)},
+                          {"criterion",
+                           {{"bic", num(s.bic)},
+                            {"delta_bic", num(s.delta_bic)},
+                            {"bic_threshold", -r.options.bic_threshold},
+                            {"current_held_out_rms_N", num(s.current_held_out_rms)},
+                            {"held_out_ratio_required", r.options.held_out_ratio}}},
+                          {"accepted", s.accepted},
+                          {"reason", s.reason}});
+  j["selected_effects"] = r.selected;
+  j["final_effects"] = r.final_effects;
+  j["unexplained_structure"] = r.unexplained;
+  j["unexplained_signature"] = r.signature;
+  j["stop_reason"] = r.stop_reason;
+  j["selection_rule"] = "accept the lowest-BIC candidate when BIC falls by more than " +
+                        significant(r.options.bic_threshold, 3) + " and the held-out RMS falls below " +
+                        significant(r.options.held_out_ratio, 3) + " x the current model's";
+  j["held_out"] = r.held_out_scheme;
+  j["notes"] = r.notes;
+  j["not_applicable"] = json::array();
+  for (const auto& [e, why] : r.not_applicable) j["not_applicable"].push_back({{"effect", e}, {"why", why}});
+  j["library"] = json::array();
+  for (const auto& e : effect_library())
+    j["library"].push_back(
+        {{"effect", e.name}, {"kind", to_string(e.kind)}, {"change", e.change}, {"signature", e.signature}});
+  j["options"] = {{"poisson", r.options.poisson},
+                  {"fix_poisson", r.options.fix_poisson},
+                  {"baseline", r.options.baseline_law + "+prony:" + std::to_string(r.options.baseline_prony)},
+                  {"max_rounds", r.options.max_rounds},
+                  {"starts", r.options.starts},
+                  {"seed", r.options.seed},
+                  {"max_samples", r.options.max_samples},
+                  {"alpha", r.options.thresholds.alpha}};
+  j["wall_seconds"] = r.seconds;
+  return j;
+}
+
+}  // namespace tmlab::discover

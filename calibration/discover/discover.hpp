@@ -1,0 +1,104 @@
+// The discovery loop of `tmlab discover` (issue 15; docs/discover.md):
+//   1. baseline: the paper's model (St VK, two Prony terms) on the data's rig, fitted (tmlab::fit);
+//   2. the residual studied (diagnostics.hpp): noise, or structure, and where;
+//   3. every applicable effect of the library (effects.hpp) added in turn and fitted, starting from
+//      the current optimum;
+//   4. the candidate with the lowest BIC is accepted only if BIC drops by more than 10 (Kass and
+//      Raftery's "very strong") AND the held-out RMS (tests left out, or alternate time blocks of a
+//      single test, each fold fitted without them and predicting them) drops below 0.98 x the current
+//      model's; the next two by BIC are tried when it fails the held-out check;
+//   5. repeat until the residual is noise, no candidate passes, or the round limit;
+//   6. whatever structure remains is reported with its signature (describe_signature), not forced
+//      onto an effect.
+#pragma once
+
+#include "calibration/data/measured_data.hpp"
+#include "calibration/discover/diagnostics.hpp"
+#include "calibration/discover/effects.hpp"
+#include "calibration/fit/fitter.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tmlab::discover {
+
+struct Options {
+  std::size_t max_samples = 1500;  ///< the data are decimated to about this many samples
+  double poisson = 0.49;
+  bool fix_poisson = true;
+  std::string baseline_law = "stvk";
+  int baseline_prony = 2;
+  int max_rounds = 4;
+  double bic_threshold = 10.0;   ///< accept only when BIC falls by more than this
+  double held_out_ratio = 0.98;  ///< ... and the held-out RMS falls below this times the current one
+  int starts = 8;                ///< multi-start candidates per candidate fit (3x for the baseline)
+  int threads = 2;
+  unsigned long seed = 1;
+  Thresholds thresholds;
+  std::vector<std::string> effects;  ///< restrict the library to these (empty: all)
+  std::function<void(const std::string&)> progress;
+};
+
+struct Fitted {
+  Structure structure;
+  std::vector<fit::Parameter> parameters;
+  fit::FitResult fit;
+  std::vector<double> x;                        ///< the optimum, physical
+  std::vector<std::vector<double>> prediction;  ///< per test
+  ResidualStudy study;
+  double held_out_rms = kNaN;
+  double max_abs = 0.0;
+};
+
+struct Step {
+  int round = 0;
+  std::string effect, model;
+  std::size_t free_parameters = 0;
+  double rms = kNaN, bic = kNaN, delta_bic = kNaN;
+  double held_out_rms = kNaN, current_held_out_rms = kNaN;
+  bool accepted = false;
+  std::string reason;
+};
+
+struct Report {
+  Prepared data;
+  Options options;
+  Fitted baseline, final;
+  std::vector<Step> steps;
+  std::vector<std::string> selected;       ///< accepted effects, in the order of the steps
+  std::vector<std::string> final_effects;  ///< what the final model has beyond the baseline
+  std::vector<std::pair<std::string, std::string>> not_applicable;  ///< effect, why (first round)
+  bool unexplained = false;
+  std::string signature;
+  std::string stop_reason;
+  std::string forward_model, exactness;
+  std::string held_out_scheme;
+  std::vector<std::string> notes;  ///< what the data cannot separate, and similar caveats
+  double seconds = 0.0;
+};
+
+/// Training masks of the held-out folds: up to 3 folds of whole tests when there are 2 or more
+/// tests, else the even and the odd of 8 time blocks of the one test.
+std::vector<std::vector<char>> held_out_folds(const Prepared& p, std::string* scheme = nullptr);
+
+/// Fits `s` with `params` to `p` (under `mask`, empty: all) and studies the residual.
+Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Parameter> params,
+                     const Options& o, int starts);
+
+/// The pooled held-out RMS of `f`'s structure: each fold refitted from f's optimum without its
+/// held-out samples, which it then predicts.
+double held_out_rms(const Prepared& p, const Fitted& f, const Options& o);
+
+/// Caveats the data's protocol imposes on what the loop can conclude (e.g. one rate, no hold).
+std::vector<std::string> protocol_notes(const Prepared& p);
+
+/// Runs the loop on `data`.
+Report run(const measured::DataSet& data, const Options& o);
+
+/// report.json (docs/discover.md lists every key).
+nlohmann::json to_json(const Report& r);
+
+}  // namespace tmlab::discover
