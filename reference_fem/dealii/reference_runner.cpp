@@ -109,8 +109,8 @@ Material reference_material(const CaseConfig& cfg, const ReferenceOptions& ro) {
   try {
     if (!ro.law) return Material::make(cfg.material.law, cfg.material.parameters);
     if (!law_takes_young_poisson(cfg.material.law))
-      throw Error("the law override '" + to_string(*ro.law) + "' needs a case given by E and nu (material.law is '" +
-                  to_string(cfg.material.law) + "')");
+      throw Error("the law override '" + to_string(*ro.law) +
+                  "' needs a case given by E and nu (material.law is '" + to_string(cfg.material.law) + "')");
     return Material::make(*ro.law, cfg.material.young, cfg.material.poisson, ro.yeoh_c20_ratio,
                           ro.yeoh_c30_ratio);
   } catch (const Error& e) {

@@ -981,7 +981,8 @@ nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log, RunC
     // Contact runs write no checkpoint yet (the active set, multipliers and body positions are not
     // saved): refuse --resume rather than restart silently.
     if (ck.resuming())
-      throw Error(p.cfg.file + ": --resume is not supported for cases with a 'contact' section yet; run again without it");
+      throw Error(p.cfg.file +
+                  ": --resume is not supported for cases with a 'contact' section yet; run again without it");
     nlohmann::json info = step_contact(p, rec, progress, s);
     progress.finish();
     return info;
