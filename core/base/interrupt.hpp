@@ -29,6 +29,8 @@ class Interrupted : public Error {
 };
 
 /// Installs the SIGINT / SIGTERM handlers for its lifetime and restores the previous ones after.
+/// Reads the test stop point TMLAB_TEST_STOP_AFTER_PROGRESS (see note_progress_point); a malformed
+/// value is a tmlab::Error naming the variable.
 class InterruptHandler {
  public:
   InterruptHandler();
@@ -49,5 +51,14 @@ std::string signal_name(int signal);
 void check_interrupt(const std::string& where);
 /// For tests: record `signal` as if it had been delivered (0 clears it).
 void set_pending_interrupt(int signal);
+
+/// A deterministic stop point for tests of --resume. Long commands call this after each unit of
+/// resumable progress (every checkpoint written, every finished run of a paper figure). When the
+/// environment variable TMLAB_TEST_STOP_AFTER_PROGRESS holds "N" or "N:SIGTERM" (read by the
+/// InterruptHandler), the N-th call raises SIGINT (or SIGTERM) in this process: the signal goes
+/// through the installed handler exactly as one from `kill` would, but at a known point of the run,
+/// so a test interrupts a run after its N-th checkpoint without depending on timing. Without the
+/// variable (or without an InterruptHandler) it does nothing.
+void note_progress_point();
 
 }  // namespace tmlab

@@ -2,6 +2,7 @@
 #include "core/results/checkpoint.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/run_output.hpp"
 
@@ -174,6 +175,7 @@ void write_checkpoint(const fs::path& path, const std::string& kind, const nlohm
     throw Error(path.string() + ": cannot move the checkpoint into place: " + ec.message());
   }
   fsync_path(path.has_parent_path() ? path.parent_path() : fs::path("."), true);
+  note_progress_point();  // a unit of resumable progress (the deterministic stop point of tests)
 }
 
 CheckpointData read_checkpoint(const fs::path& path, const std::string& kind,

@@ -36,7 +36,9 @@ RunResult run_one(const PaperFigure& fig, const PaperRun& run, std::size_t k, co
   opt.command_line = o.command_line;
   opt.plots = false;
   try {
-    return run_case(cfg, opt);
+    RunResult r = run_case(cfg, opt);
+    note_progress_point();  // a finished run is what --resume reuses
+    return r;
   } catch (const Interrupted& e) {
     throw Interrupted(e.signal(), std::string(e.what()) + " (run " + run.id + ", " + std::to_string(k - 1) +
                                       " of " + std::to_string(fig.runs.size()) +

@@ -397,7 +397,10 @@ std::vector<WorkPrecisionProblem> run_work_precision(const WorkPrecisionOptions&
     const double ref_rtol = opt.quick ? std::max(opt.reference_rtol, 1e-9) : opt.reference_rtol;
     const std::string ref_key = "ref." + name;
     if (const auto done = ck.point(ref_key); done && ck.trajectory(ref_key, ref)) {
-      P.reference = *done;  // from the checkpoint of the interrupted study
+      P.reference = *done;
+      if (opt.log)
+        *opt.log << "[workprecision] " << name
+                 << ": the reference from the checkpoint of the interrupted study\n";
     } else {
       P.reference =
           run_sundials(s, OdeMethod::CvodeBdf, LinearSolverKind::SpgmrPreconditioned, ref_rtol, ref);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <csignal>
+#include <cstdlib>
 
 TEST(Interrupt, SignalBecomesPendingAndCheckThrows) {
   const tmlab::InterruptHandler handler;
@@ -38,4 +39,36 @@ TEST(Interrupt, Names) {
   EXPECT_EQ(tmlab::signal_name(SIGINT), "SIGINT");
   EXPECT_EQ(tmlab::signal_name(SIGTERM), "SIGTERM");
   EXPECT_EQ(tmlab::signal_name(SIGUSR1), "signal " + std::to_string(SIGUSR1));
+}
+
+TEST(Interrupt, TestStopPointRaisesAtTheNthProgressPoint) {
+  ::setenv("TMLAB_TEST_STOP_AFTER_PROGRESS", "3:SIGTERM", 1);
+  {
+    const tmlab::InterruptHandler handler;
+    tmlab::note_progress_point();
+    tmlab::note_progress_point();
+    EXPECT_EQ(tmlab::pending_interrupt(), 0);
+    tmlab::note_progress_point();  // the third: raised through the handler
+    EXPECT_EQ(tmlab::pending_interrupt(), SIGTERM);
+    tmlab::note_progress_point();  // only once: a second raise would end the process
+    EXPECT_EQ(tmlab::pending_interrupt(), SIGTERM);
+    tmlab::set_pending_interrupt(0);
+  }
+  ::unsetenv("TMLAB_TEST_STOP_AFTER_PROGRESS");
+  const tmlab::InterruptHandler handler;  // without the variable: never
+  for (int i = 0; i < 5; ++i) tmlab::note_progress_point();
+  EXPECT_EQ(tmlab::pending_interrupt(), 0);
+}
+
+TEST(Interrupt, MalformedTestStopPointIsRefusedNamingTheVariable) {
+  for (const char* bad : {"0", "x", "2:SIGKILL", "-1", "3:"}) {
+    ::setenv("TMLAB_TEST_STOP_AFTER_PROGRESS", bad, 1);
+    try {
+      const tmlab::InterruptHandler handler;
+      ADD_FAILURE() << bad << " accepted";
+    } catch (const tmlab::Error& e) {
+      EXPECT_NE(std::string(e.what()).find("TMLAB_TEST_STOP_AFTER_PROGRESS"), std::string::npos) << e.what();
+    }
+  }
+  ::unsetenv("TMLAB_TEST_STOP_AFTER_PROGRESS");
 }
