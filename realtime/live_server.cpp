@@ -93,19 +93,31 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     out_ = frame;
     ws_.binary(true);
     ws_.async_write(net::buffer(*out_), [self = shared_from_this()](beast::error_code ec, std::size_t) {
-      self->writing_ = false;
-      if (!ec) srv_sent(*self);
+      if (!ec) self->srv_.sent.fetch_add(1, std::memory_order_relaxed);
+      self->write_done();
     });
   }
 
+  /// Closes the connection (going away); after the write under way, if any: Beast allows one
+  /// write-type operation (write or close) at a time.
   void close() {
     if (!open_) return;
     open_ = false;
-    ws_.async_close(websocket::close_code::going_away, [self = shared_from_this()](beast::error_code) {});
+    if (writing_)
+      close_after_write_ = true;
+    else
+      do_close();
   }
 
  private:
-  static void srv_sent(WsSession& s) { s.srv_.sent.fetch_add(1, std::memory_order_relaxed); }
+  void write_done() {
+    writing_ = false;
+    if (close_after_write_) do_close();
+  }
+  void do_close() {
+    close_after_write_ = false;
+    ws_.async_close(websocket::close_code::going_away, [self = shared_from_this()](beast::error_code) {});
+  }
 
   void on_accept(beast::error_code ec) {
     if (ec) return srv_.refuse("WebSocket handshake: " + ec.message());
@@ -118,8 +130,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
     ws_.text(true);
     ws_.async_write(net::buffer(srv_.opt.hello),
                     [self = shared_from_this()](beast::error_code e, std::size_t) {
-                      self->writing_ = false;
                       if (e) self->open_ = false;
+                      self->write_done();
                     });
     do_read();
   }
@@ -154,7 +166,7 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   LiveServer::Impl& srv_;
   beast::flat_buffer in_;
   std::shared_ptr<const std::vector<std::uint8_t>> out_;
-  bool writing_ = false, open_ = false;
+  bool writing_ = false, open_ = false, close_after_write_ = false;
 };
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {

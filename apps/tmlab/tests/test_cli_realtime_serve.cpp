@@ -181,6 +181,7 @@ TEST_F(ServeBrowser, PageShowsFramesAndADragChangesTheForce) {
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 1000) << shot;
   EXPECT_EQ(exit_code, 0) << read_file(log);
   const std::string out = read_file(log);
+  std::cout << "server: " << out;  // its timing and page statistics
   EXPECT_NE(out.find("page connected"), std::string::npos) << out;
   EXPECT_EQ(out.find(" 0 probe moves"), std::string::npos) << out;
 }
