@@ -39,17 +39,25 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
   const std::size_t n_visual = static_cast<std::size_t>(std::ceil(opt.duration * opt.visual_hz)) + 16;
   const std::size_t n_dofs = 3 * static_cast<std::size_t>(control.mesh().num_points());
   LoopResult r;
-  for (auto* v : {&r.x, &r.extrapolation, &r.local_model}) v->reserve(n_haptic);
-  r.t.reserve(n_haptic);
-  r.control_probe.reserve(n_control);
-  r.control_force.reserve(n_control);
+  if (opt.keep_log) {
+    for (auto* v : {&r.x, &r.extrapolation, &r.local_model}) v->reserve(n_haptic);
+    r.t.reserve(n_haptic);
+    r.control_probe.reserve(n_control);
+    r.control_force.reserve(n_control);
+  }
   const std::size_t n_frames =
       opt.keep_frames ? n_visual / static_cast<std::size_t>(std::max(1, opt.frame_every)) + 2 : 0;
   r.frames.assign(n_frames, std::vector<float>(n_dofs));
   r.frame_t.reserve(n_frames);
   r.frame_force.reserve(n_frames);
   r.frame_probe.reserve(n_frames);
-  LoopTiming haptic_timing(n_haptic), control_timing(n_control), visual_timing(n_visual);
+  const double window = opt.timing_window > 0.0 ? std::min(opt.timing_window, opt.duration) : opt.duration;
+  const auto timing_samples = [&](std::size_t n, double hz) {
+    return std::min(n, static_cast<std::size_t>(std::ceil(window * hz)) + 16);
+  };
+  LoopTiming haptic_timing(timing_samples(n_haptic, opt.haptic_hz)),
+      control_timing(timing_samples(n_control, 1.0 / dt)),
+      visual_timing(timing_samples(n_visual, opt.visual_hz));
 
   SeqLock<ProbeSample> probe(ProbeSample{0.0, {x0.x(), x0.y(), x0.z()}});
   SeqLock<ProbeSample> rendered_force;  // haptic -> visual (the force shown), t unused

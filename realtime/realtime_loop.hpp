@@ -55,6 +55,12 @@ struct LoopOptions {
   std::function<void(int)> on_phase;
   /// Stops the loop early when set (may be null).
   const std::atomic<bool>* stop = nullptr;
+  /// Keep the per-tick and per-step logs of LoopResult (false for long interactive runs, whose
+  /// logs would need storage for the whole duration reserved up front).
+  bool keep_log = true;
+  /// Timing samples are reserved for the first `timing_window` seconds (0: the whole duration);
+  /// later iterations are counted (rate, missed) but not in the percentiles (`unrecorded`).
+  double timing_window = 0.0;
 };
 
 struct LoopResult {

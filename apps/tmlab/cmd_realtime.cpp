@@ -1,18 +1,27 @@
 // tmlab realtime CASE [--record] [--duration S] [--results DIR] [--coupling extrapolation|local_model]
+// tmlab realtime CASE --serve [--port P] [--duration S] [--coupling ...]
 // The paper's three-thread real-time loop (docs/realtime.md). Without --record: runs the loop for the
 // case's duration and prints each thread's timing. With --record: the same run offscreen, then the
-// coupling measurements, PNG frames and <results>/realtime/timing.json (RunOutput protocol).
+// coupling measurements, PNG frames and <results>/realtime/timing.json (RunOutput protocol). With
+// --serve: the loop with the probe steered from a web page served on 127.0.0.1:P (live_server.hpp)
+// until SIGINT/SIGTERM (or --duration), then the timing.
 #include "cli_args.hpp"
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/results/run_output.hpp"
+#include "realtime/live_server.hpp"
 #include "realtime/realtime_loop.hpp"
 #include "realtime/realtime_record.hpp"
 
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 namespace tmlab::cli {
 
@@ -34,14 +43,91 @@ void print_timing(const rt::ThreadTiming& t) {
       t.name.c_str(), t.target_hz, t.rate_hz, t.p50_us, t.p99_us, t.p999_us, t.missed);
 }
 
+/// --serve: the loop with the interactive probe and the live server, until a signal or `duration`.
+int serve(const rt::RealtimeCase& c, int port, double duration) {
+  const fs::path root = tmlab_root();
+  const fs::path three = root / "build" / "npm" / "node_modules" / "three";
+  rt::LiveServerOptions so;
+  so.port = port;
+  so.files.mount("/", root / "realtime" / "web" / "page");
+  so.files.mount("/vendor/three/", three / "build");
+  so.files.mount("/vendor/three-addons/", three / "examples" / "jsm");
+  so.probe_box = rt::probe_box(c.mesh, 2.0 * c.control.probe_radius);
+  so.hello =
+      rt::hello_message(c.mesh, c.control.probe_radius, c.probe_start, so.probe_box, c.name, c.visual_hz);
+  so.nodes = static_cast<int>(c.mesh.num_points());
+  so.log = [](const std::string& m) { std::cerr << "tmlab realtime --serve: " << m << "\n"; };
+  auto control = c.make_control();
+  rt::SeqLock<rt::ProbeSample> target(
+      rt::ProbeSample{0.0, {c.probe_start.x(), c.probe_start.y(), c.probe_start.z()}});
+  rt::LiveServer server(std::move(so), target);
+  if (!fs::is_regular_file(three / "build" / "three.module.js"))
+    std::cerr
+        << "tmlab realtime --serve: three.js is not installed in " << three.string()
+        << ": the page can only say so. Install it with './tmlab build' (needs npm: apt-get install npm) or "
+           "'npm ci --prefix build/npm' after copying realtime/web/package*.json there (docs/realtime.md)\n";
+  std::cout << "serving http://127.0.0.1:" << server.port() << "/  (Ctrl-C stops)" << std::endl;
+
+  std::atomic<bool> stop{false}, done{false};
+  std::thread watcher([&] {  // a signal only sets a flag (core/base/interrupt.hpp): turn it into the stop
+    while (!done.load()) {
+      if (pending_interrupt() != 0) stop = true;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+  });
+  rt::LoopOptions lo;
+  lo.duration = duration;
+  lo.haptic_hz = c.haptic_hz;
+  lo.visual_hz = c.visual_hz;
+  lo.rendered = c.rendered;
+  lo.interactive = &target;
+  lo.keep_log = false;       // an interactive run may last hours
+  lo.timing_window = 600.0;  // percentiles over the first 10 minutes
+  lo.on_frame = [&server](const std::vector<float>& xyz, const Vec3& f, const Vec3& x) {
+    server.publish(xyz, f, x);
+  };
+  lo.stop = &stop;
+  rt::LoopResult r;
+  try {
+    r = rt::run_realtime_loop(*control, lo);
+  } catch (...) {
+    done = true;
+    watcher.join();
+    throw;
+  }
+  done = true;
+  watcher.join();
+  server.stop();
+  const int sig = pending_interrupt();
+  const rt::LiveServerStats st = server.stats();
+  std::cout << "stopped (" << (sig ? signal_name(sig) : std::string("--duration reached")) << ")\n"
+            << "timing (wall clock, this machine's load included):\n";
+  for (const rt::ThreadTiming* t : {&r.haptic, &r.control, &r.visual}) print_timing(*t);
+  std::printf("  model time reached %.3f s\n", r.model_time);
+  std::printf(
+      "  page: %ld frames published, %ld sent, %ld skipped (busy page), %ld probe moves, %ld refused, %ld "
+      "pages\n",
+      st.frames_published, st.frames_sent, st.frames_skipped, st.probe_moves, st.refused, st.pages);
+  return 0;
+}
+
 }  // namespace
 
 int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p =
-      parse(args, {"--duration", "--results", "--coupling"}, {"--record", "--no-frames", "--serve"});
+  const Parsed p = parse(args, {"--duration", "--results", "--coupling", "--port"},
+                         {"--record", "--no-frames", "--serve"});
   if (p.positional.size() != 1)
     throw UsageError("realtime needs one case (a file or a name in cases/realtime/)");
-  if (p.has("--serve")) throw UsageError("realtime --serve is not built yet (docs/realtime.md, 'Not done')");
+  if (p.has("--serve") && p.has("--record")) throw UsageError("--serve and --record exclude each other");
+  if (p.has("--port") && !p.has("--serve")) throw UsageError("--port goes with --serve");
+  int port = 8765;
+  if (p.has("--port")) {
+    const double v = parse_double("--port", p.get("--port"));
+    if (!(v >= 0.0 && v <= 65535.0) || v != std::floor(v))
+      throw UsageError("--port must be a whole number in 0..65535 (0: any free port), not '" +
+                       p.get("--port") + "'");
+    port = static_cast<int>(v);
+  }
   const std::string file = resolve_realtime_case(p.positional[0]);
   rt::RealtimeCase c = rt::load_realtime_case(file, tmlab_root());
   double duration = c.duration;
@@ -55,6 +141,12 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
     } catch (const tmlab::Error& e) {
       throw UsageError(e.what());
     }
+  }
+  if (p.has("--serve")) {
+    std::cerr << "tmlab realtime --serve: " << c.name << " (" << c.mesh.num_points() << " nodes), haptic "
+              << c.haptic_hz << " Hz, control dt " << c.control.dt << " s, visual " << c.visual_hz << " Hz\n";
+    // Without --duration: until SIGINT/SIGTERM (a day at most).
+    return serve(c, port, p.has("--duration") ? duration : 86400.0);
   }
   std::cerr << "tmlab realtime: " << c.name << " (" << c.mesh.num_points() << " nodes), haptic "
             << c.haptic_hz << " Hz, control dt " << c.control.dt << " s, visual " << c.visual_hz << " Hz, "
