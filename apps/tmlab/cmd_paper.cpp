@@ -1,13 +1,17 @@
-// tmlab paper fig5|fig6|fig7: the liver experiments of Xu et al. 2011 (verification/studies/paper_run.hpp).
+// tmlab paper fig2|fig3|table1|table2: the identification of Xu et al. 2011, Section IV-A
+// (verification/studies/paper_fit.hpp); tmlab paper fig5|fig6|fig7: the liver experiments
+// (verification/studies/paper_run.hpp).
 #include "commands.hpp"
 
 #include "cli_args.hpp"
 
 #include "core/config/config_reader.hpp"
 #include "core/results/run_output.hpp"
+#include "verification/studies/paper_fit.hpp"
 #include "verification/studies/paper_run.hpp"
 
 #include <filesystem>
+#include <fstream>
 #include <iomanip>
 #include <iostream>
 
@@ -15,9 +19,55 @@ namespace tmlab::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+/// fig2|fig3|table1|table2: the Section IV-A identification, one result directory per target.
+int paper_fit(const Parsed& p, const std::string& target, const std::string& command_line) {
+  tm::PaperFitOptions o;
+  o.params_file =
+      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_indentation.json").string());
+  const nlohmann::json params = ConfigReader::parse_file(o.params_file);
+  const bool quick = p.has("--quick");
+  const tm::PaperFitSettings s = tm::paper_fit_settings(params, o.params_file, quick);
+  o.tmlab_root = tmlab_root();
+  o.plots = !p.has("--no-plots");
+  o.resume = p.has("--resume");
+  o.log = &std::cerr;
+  const fs::path dir =
+      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / target;
+  // Same protocol as the figures below; --resume reuses the fits an interrupted run finished.
+  RunOutput out(dir, &std::cerr,
+                o.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+  try {
+    ManifestInput mi;
+    mi.command_line = split_words(command_line);
+    mi.config = {{"target", target}, {"quick", quick}, {"params", params}};
+    mi.input_files = {o.params_file};
+    out.write_json("manifest.json", make_manifest(mi));
+    const nlohmann::json summary = tm::run_paper_fit(target, s, o, out.staging_dir());
+    out.finalize(summary);
+    const bool elastic = target == "fig2" || target == "table1";
+    std::ifstream md(out.dir() / (elastic ? "table1.md" : "table2.md"));
+    std::cout << md.rdbuf() << "\n"
+              << summary["fits"].get<std::size_t>() << " fits, " << summary["fe_forward_solves"].get<long>()
+              << " FE forward solves + " << summary["closed_form_solves"].get<long>()
+              << " closed-form solves, " << summary["fit_wall_seconds"].get<double>() << " s of fitting\n"
+              << "written: " << out.dir().string() << "/\n";
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  return 0;
+}
+
+}  // namespace
+
 int cmd_paper(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots", "--resume"});
-  if (p.positional.size() != 1) throw UsageError("paper needs one figure: fig5, fig6 or fig7");
+  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots", "--resume", "--quick"});
+  if (p.positional.size() != 1)
+    throw UsageError("paper needs one target: fig2, fig3, table1, table2, fig5, fig6 or fig7");
+  if (tm::is_paper_fit_target(p.positional[0])) return paper_fit(p, p.positional[0], command_line);
+  if (p.has("--quick")) throw UsageError("--quick applies to fig2, fig3, table1 and table2 only");
   tm::PaperRunOptions o;
   o.params_file =
       p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());

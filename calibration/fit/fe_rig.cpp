@@ -63,7 +63,7 @@ class FeRigModel final : public ForwardModel {
     for (std::size_t k = 0; k < d.tests.size(); ++k) {
       auto r = std::make_unique<TestRig>();
       r->spec = rigs::rig_from_data(d, k, opt_.mesh);
-      r->mesh = rigs::rig_mesh(r->spec);
+      r->mesh = opt_.mesh_builder ? opt_.mesh_builder(r->spec) : rigs::rig_mesh(r->spec);
       r->node_mass = tm::lumped_node_mass(r->mesh, 1000.0);  // inertia plays no part in a static solve
       const nlohmann::json c = rigs::rig_case(r->spec, "in-process.msh");
       const std::string where = d.meta.name + " test " + std::to_string(k + 1) + " rig";
@@ -89,8 +89,9 @@ class FeRigModel final : public ForwardModel {
              : (spec_.prony_terms ? "ViscoelasticHyperelastic (pk2) on the " + spec_.law + " law"
                                   : "the F-based P1 element (HyperelasticTL) with the " + spec_.law + " law");
     return "FE rig: " + m + " on the generated " + rigs::rig_test_name(rigs_.front()->spec.test) + " rig (" +
-           std::to_string(rigs_.size()) + " test(s), " + std::to_string(tets_) +
-           " tets in all), quasi-static, " + std::to_string(opt_.substeps) + " load step(s) per sample" +
+           std::to_string(rigs_.size()) + " test(s), " + std::to_string(tets_) + " tets in all" +
+           (opt_.mesh_builder ? ", study mesh" : "") + "), quasi-static, " + std::to_string(opt_.substeps) +
+           " load step(s) per sample" +
            (indentation_ ? ", augmented-Lagrangian frictionless contact" : ", prescribed platen face");
   }
   double jacobian_step() const override { return 1e-6; }

@@ -30,6 +30,7 @@
 #include "calibration/fit/model_spec.hpp"
 #include "calibration/rigs/data_rig.hpp"
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <utility>
@@ -41,6 +42,11 @@ struct FeRigOptions {
   rigs::DataRigMesh mesh;      ///< the rigs' mesh resolution
   int substeps = 1;            ///< static load steps per data sampling interval
   double newton_rtol = 1e-11;  ///< tight: the fit differentiates the forces numerically
+  /// Builds each test's mesh instead of rigs::rig_mesh(spec) (e.g. a mesh graded for one study,
+  /// verification/studies/paper_fit.cpp). It must cover the rig's sample (the same extent) and name
+  /// the faces as rig_mesh does ("bottom", "top"), since the rig's boundary conditions select them.
+  /// Empty: rigs::rig_mesh with `mesh`.
+  std::function<Mesh(const rigs::RigSpec&)> mesh_builder;
 };
 
 /// The FE-rig forward model of `data` for the law of `spec`; tmlab::Error (naming the data's JSON
