@@ -9,6 +9,7 @@
 #include "calibration/data/measured_data.hpp"
 #include "calibration/discover/benchmark.hpp"
 #include "calibration/discover/discover.hpp"
+#include "calibration/discover/fe_refit.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
@@ -87,6 +88,23 @@ std::string report_html(const nlohmann::json& j, bool plots) {
       << (m["residual"]["structured"].get<bool>() ? "no" : "yes") << "</td></tr>\n";
   h << "</table><p>Peak force " << cell(j["peak_force_N"]) << " N; " << cell(j["samples"]) << " samples in "
     << cell(j["tests"]) << " tests (every " << cell(j["decimation_stride"]) << "th sample kept).</p>\n";
+  if (j.contains("fe_rig")) {
+    // --forward fe_rig: the baseline and the final model refitted on the FE rig.
+    h << "<h2>On the FE rig (--forward fe_rig)</h2><p>" << cell(j["fe_rig"]["description"])
+      << ".</p><table><tr><th></th><th>model</th><th>closed form RMS [N]</th><th>FE rig at the closed-form "
+         "optimum [N]</th><th>FE rig refitted [N]</th><th>% of peak</th><th>s</th></tr>\n";
+    for (const auto& m : j["fe_rig"]["models"]) {
+      h << "<tr><td>" << cell(m["which"]) << "</td><td><code>" << cell(m["model"]) << "</code></td>";
+      if (m["refitted"].get<bool>())
+        h << "<td>" << cell(m["closed_form_rms_N"]) << "</td><td>"
+          << cell(m["fe_rms_at_closed_form_optimum_N"]) << "</td><td>" << cell(m["rms_N"]) << "</td><td>"
+          << significant(100.0 * m["rel_rms"].get<double>(), 3) << "</td><td>" << cell(m["wall_seconds"], 3)
+          << "</td></tr>\n";
+      else
+        h << "<td colspan=\"5\">not refitted: " << cell(m["why_not"]) << "</td></tr>\n";
+    }
+    h << "</table>\n";
+  }
   if (plots)
     for (const char* p : {"discover_fits.png", "discover_residuals.png", "discover_residual_vs_strain.png"})
       h << "<p><img src=\"" << p << "\" alt=\"" << p << "\"></p>\n";
@@ -170,9 +188,38 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
-    mi.config = {{"quick", quick}, {"seed", o.seed}, {"starts", o.starts}, {"threads", o.threads}};
+    mi.config = {{"quick", quick},
+                 {"rig", p.has("--rig") ? p.get("--rig") : "all"},
+                 {"only", p.has("--only") ? p.get("--only") : "all"},
+                 {"seed", o.seed},
+                 {"starts", o.starts},
+                 {"threads", o.threads}};
     out.write_json("manifest.json", make_manifest(mi));
-    const auto sets = discover::benchmark_sets(quick);
+    auto sets = discover::benchmark_sets(quick);
+    if (p.has("--rig")) {
+      // Only the sets of the rigs named (e.g. to rerun the indentation sets alone).
+      const std::string rigs = "," + p.get("--rig") + ",";
+      std::vector<discover::SyntheticSet> kept;
+      for (auto& s : sets)
+        if (rigs.find("," + discover::to_string(s.rig) + ",") != std::string::npos)
+          kept.push_back(std::move(s));
+      if (kept.empty())
+        throw UsageError("--rig: no benchmark set on '" + p.get("--rig") +
+                         "' (unconfined_compression, sphere_indentation, uniaxial_tension)");
+      sets = std::move(kept);
+    }
+    if (p.has("--only")) {
+      // Only the sets whose truth is named (e.g. to rerun one effect's sets).
+      const std::string only = "," + p.get("--only") + ",";
+      std::vector<discover::SyntheticSet> kept;
+      for (auto& s : sets)
+        if (only.find("," + s.truth + ",") != std::string::npos) kept.push_back(std::move(s));
+      if (kept.empty()) throw UsageError("--only: no benchmark set has the truth '" + p.get("--only") + "'");
+      sets = std::move(kept);
+    }
+    if (p.has("--write-sets"))
+      // Each set in the interchange format, so that `tmlab discover sets/NAME.csv` reruns one alone.
+      for (const auto& s : sets) measured::write_data_set(s.data, out.staging_dir() / "sets");
     const discover::BenchmarkResult b = discover::run_benchmark(sets, o);
     const nlohmann::json j = discover::to_json(b);
     out.write_json("benchmark.json", j);
@@ -206,10 +253,12 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
 }  // namespace
 
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args,
-                         {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads",
-                          "--seed", "--effects", "--baseline-prony"},
-                         {"--benchmark", "--quick", "--free-poisson", "--no-plots", "--quiet"});
+  const Parsed p =
+      parse(args,
+            {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads", "--seed",
+             "--effects", "--baseline-prony", "--rig", "--only", "--forward", "--mesh", "--substeps",
+             "--fe-iterations", "--fe-max-samples"},
+            {"--benchmark", "--quick", "--write-sets", "--free-poisson", "--no-plots", "--quiet"});
   discover::Options o;
   auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
     if (!p.has(key)) return fallback;
@@ -241,13 +290,36 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
       a = b + 1;
     }
   }
+  const std::string forward = p.get("--forward", "closed_form");
+  if (forward != "closed_form" && forward != "fe_rig")
+    throw UsageError("--forward must be closed_form or fe_rig (got '" + forward + "')");
+  discover::FeRefitOptions fe;
+  if (p.has("--mesh")) {
+    const std::string m = p.get("--mesh");
+    const std::size_t comma = m.find(',');
+    if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
+    const double c = parse_double("--mesh cells", m.substr(0, comma)),
+                 l = parse_double("--mesh layers", m.substr(comma + 1));
+    if (!(c >= 2 && c <= 400 && l >= 1 && l <= 400 && c == std::floor(c) && l == std::floor(l)))
+      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
+    fe.mesh.cells = int(c);
+    fe.mesh.layers = int(l);
+  }
+  fe.substeps = whole("--substeps", fe.substeps, 1, 100);
+  fe.max_iterations = whole("--fe-iterations", fe.max_iterations, 1, 200);
+  fe.max_samples = std::size_t(whole("--fe-max-samples", int(fe.max_samples), 20, 1000000));
+  if (forward != "fe_rig" &&
+      (p.has("--mesh") || p.has("--substeps") || p.has("--fe-iterations") || p.has("--fe-max-samples")))
+    throw UsageError("--mesh, --substeps, --fe-iterations and --fe-max-samples are for --forward fe_rig");
   if (!p.has("--quiet"))
     o.progress = [](const std::string& line) { std::cerr << line << "\n" << std::flush; };
   if (p.has("--benchmark")) {
     if (!p.positional.empty()) throw UsageError("discover --benchmark takes no DATA.csv");
+    if (forward != "closed_form") throw UsageError("--forward fe_rig is for one DATA.csv, not --benchmark");
     return run_benchmark_command(p, o, command_line);
   }
-  if (p.has("--quick")) throw UsageError("--quick is for --benchmark");
+  if (p.has("--quick") || p.has("--rig") || p.has("--only") || p.has("--write-sets"))
+    throw UsageError("--quick, --rig, --only and --write-sets are for --benchmark");
   if (p.positional.size() != 1) throw UsageError("discover needs exactly one DATA.csv (or --benchmark)");
   const fs::path csv = p.positional[0];
   const measured::DataSet data = measured::read_data_set(csv);
@@ -271,11 +343,17 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
                  {"effects", o.effects},
                  {"bic_threshold", o.bic_threshold},
                  {"held_out_ratio", o.held_out_ratio},
-                 {"alpha", o.thresholds.alpha}};
+                 {"alpha", o.thresholds.alpha},
+                 {"forward", forward}};
     mi.input_files = {csv, measured::metadata_path(csv)};
     out.write_json("manifest.json", make_manifest(mi));
     const discover::Report r = discover::run(data, o);
-    const nlohmann::json j = discover::to_json(r);
+    nlohmann::json j = discover::to_json(r);
+    std::vector<discover::FeRefit> fe_refits;
+    if (forward == "fe_rig") {
+      fe_refits = discover::fe_rig_refit(data, r, o, fe);
+      j["fe_rig"] = discover::to_json(fe_refits, r.data.peak_force, fe);
+    }
     out.write_json("report.json", j);
     {
       H5File h5 = H5File::create(out.file("discover.h5").string());
@@ -289,6 +367,8 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
         h5.write(gs + "/force_N", s.f, {s.t.size()});
         h5.write(gs + "/baseline_N", r.baseline.prediction[k], {s.t.size()});
         h5.write(gs + "/final_N", r.final.prediction[k], {s.t.size()});
+        for (const auto& fr : fe_refits)
+          if (fr.done) h5.write(gs + "/fe_rig_" + fr.which + "_N", fr.prediction[k], {s.t.size()});
         h5.set_attribute(g, "id", s.id);
       }
       h5.close();
@@ -318,6 +398,12 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
               << significant(r.final.max_abs, 4) << " N\n"
               << "unexplained structure: " << (r.unexplained ? "yes: " + r.signature : std::string("no"))
               << "\n";
+    for (const auto& fr : fe_refits)
+      std::cout << "FE rig " << fr.which << " " << fr.model << ": "
+                << (fr.done ? "RMS " + significant(fr.fit.rms, 4) + " N refitted (" +
+                                  significant(fr.fe_rms_at_closed_form, 4) + " N at the closed-form optimum)"
+                            : "not refitted: " + fr.why_not)
+                << "\n";
     out.finalize({{"selected_effects", r.selected},
                   {"unexplained_structure", r.unexplained},
                   {"baseline_rms_N", r.baseline.fit.rms},

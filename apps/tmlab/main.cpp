@@ -109,7 +109,7 @@ void print_usage(std::ostream& os) {
         "  discover DATA.csv [--out DIR] [--poisson V] [--free-poisson] [--effects A,B] [--rounds N]\n"
         "      [--baseline-prony M] [--max-samples N] [--starts N] [--threads N] [--seed N] [--no-plots]\n"
         "      [--quiet]\n"
-        "  discover --benchmark [--quick] [--out DIR]\n"
+        "  discover --benchmark [--quick] [--rig R1,R2] [--only TRUTH1,TRUTH2] [--write-sets] [--out DIR]\n"
         "                            baseline St VK + 2 Prony terms, the residual studied, effects from\n"
         "                            a library added when BIC and held-out prediction support them;\n"
         "                            results/discover/NAME/ (index.html, report.json; docs/discover.md)\n"

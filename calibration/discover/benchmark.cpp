@@ -18,21 +18,53 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kHeight = 0.01, kRadius = 0.01, kStrain = 0.25, kHold = 20.0, kRest = 5.0, kRate = 5.0;
 const double kRates[3] = {0.02, 0.05, 0.1};
 
-DataSet protocol(const std::string& name) {
+// Sphere indentation (half-space, sphere radius 2.5 mm): three tests to depths 0.1, 0.2, 0.3 mm
+// (d/R <= 0.12, the shallow regime of Hertz and Lee-Radok) at 0.1, 0.05, 0.03 mm/s (ramps of 1, 4
+// and 10 s), hold 20 s, unload at the same rate, rest 5 s. The depths differ so that a
+// size-dependent (poroelastic) relaxation time differs between the tests; the ramp times span a
+// decade so that the relaxation times of 0.5 to 15 s are resolved (with ramps of 10 s each, two free
+// Prony terms absorb a third one within the noise).
+constexpr double kSphereRadius = 2.5e-3;
+const double kDepths[3] = {1e-4, 2e-4, 3e-4}, kDepthRates[3] = {1e-4, 5e-5, 3e-5};
+// Uniaxial tension of a strip 5 x 2 mm, gauge length 20 mm, to 25 % stretch at the platen rates.
+constexpr double kStripW = 5e-3, kStripT = 2e-3, kGauge = 0.02;
+
+DataSet protocol(const std::string& name, BenchmarkRig rig) {
   DataSet d;
   d.meta.name = name;
-  d.meta.test = TestType::unconfined_compression;
-  d.meta.sample.shape = SampleShape::cylinder;
-  d.meta.sample.radius_m = kRadius;
-  d.meta.sample.height_m = kHeight;
-  d.meta.sample.bottom = Interface::frictionless;
-  d.meta.sample.platens = Interface::frictionless;
   d.meta.source = "synthetic: tmlab discover --benchmark";
   d.meta.license = "CC0-1.0";
+  if (rig == BenchmarkRig::sphere) {
+    d.meta.test = TestType::indentation;
+    d.meta.indenter = Indenter{IndenterShape::sphere, kSphereRadius, std::nullopt};
+    d.meta.sample.shape = SampleShape::half_space;
+  } else if (rig == BenchmarkRig::tension) {
+    d.meta.test = TestType::uniaxial_tension;
+    d.meta.sample.shape = SampleShape::block;
+    d.meta.sample.size_m = {kStripW, kStripT, kGauge};
+    d.meta.sample.bottom = Interface::bonded;
+  } else {
+    d.meta.test = TestType::unconfined_compression;
+    d.meta.sample.shape = SampleShape::cylinder;
+    d.meta.sample.radius_m = kRadius;
+    d.meta.sample.height_m = kHeight;
+    d.meta.sample.bottom = Interface::frictionless;
+    d.meta.sample.platens = Interface::frictionless;
+  }
   for (int k = 0; k < 3; ++k) {
     Test t;
     t.id = "rate" + std::to_string(k + 1);
-    const double v = kRates[k] * kHeight, tr = kStrain / kRates[k];
+    // Stroke and speed of test k; the sign: displacement is positive into the sample, negative in tension.
+    double stroke = kStrain * kHeight, v = kRates[k] * kHeight, sign = 1.0;
+    if (rig == BenchmarkRig::sphere) {
+      stroke = kDepths[k];
+      v = kDepthRates[k];
+    } else if (rig == BenchmarkRig::tension) {
+      stroke = kStrain * kGauge;
+      v = kRates[k] * kGauge;
+      sign = -1.0;
+    }
+    const double tr = stroke / v;
     const double total = 2.0 * tr + kHold + kRest;
     const int n = int(std::round(total * kRate));
     for (int i = 0; i <= n; ++i) {
@@ -41,12 +73,12 @@ DataSet protocol(const std::string& name) {
       if (tt <= tr)
         u = v * tt;
       else if (tt <= tr + kHold)
-        u = kStrain * kHeight;
+        u = stroke;
       else if (tt <= 2.0 * tr + kHold)
-        u = kStrain * kHeight - v * (tt - tr - kHold);
+        u = stroke - v * (tt - tr - kHold);
       t.time_s.push_back(tt);
-      t.displacement_m.push_back(std::max(u, 0.0));
-      t.force_N.push_back(1.0);
+      t.displacement_m.push_back(sign * std::max(u, 0.0));
+      t.force_N.push_back(sign * (1e-3 + std::max(u, 0.0) / stroke));  // placeholder, replaced by the model
     }
     d.tests.push_back(std::move(t));
   }
@@ -64,14 +96,25 @@ const std::vector<std::string>& outside_effects() {
   return v;
 }
 
-SyntheticSet make_set(const std::string& truth, unsigned seed) {
+std::string to_string(BenchmarkRig r) {
+  return r == BenchmarkRig::sphere    ? "sphere_indentation"
+         : r == BenchmarkRig::tension ? "uniaxial_tension"
+                                      : "unconfined_compression";
+}
+
+SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig) {
   SyntheticSet s;
   s.truth = truth;
-  s.name = "bench-" + truth + "-" + std::to_string(seed);
+  s.rig = rig;
+  s.name = "bench-" +
+           std::string(rig == BenchmarkRig::sphere    ? "sphere-"
+                       : rig == BenchmarkRig::tension ? "tension-"
+                                                      : "") +
+           truth + "-" + std::to_string(seed);
   const bool outside =
       std::find(outside_effects().begin(), outside_effects().end(), truth) != outside_effects().end();
   s.kind = truth == "noise_only" ? Truth::noise_only : outside ? Truth::outside_library : Truth::library;
-  s.data = protocol(s.name);
+  s.data = protocol(s.name, rig);
   const Prepared p = prepare(s.data, 1u << 30);
   Structure st;
   st.law = "stvk";
@@ -104,14 +147,43 @@ SyntheticSet make_set(const std::string& truth, unsigned seed) {
   set(ps, x, "e2", 8e3);
   set(ps, x, "tau1", 0.5);
   set(ps, x, "tau2", 15.0);
-  // The effects' true values (docs/discover.md, "Benchmark").
-  const double fpk = 3.0, dmx = kStrain * kHeight, T = 55.0;
+  // The effects' true values (docs/discover.md, "Benchmark"), scaled by the peak force of the
+  // baseline (3 N for the platen protocol, as the first benchmark), the stroke and the duration.
+  double fpk = 3.0, dmx = p.max_depth, T = p.duration;
+  if (rig != BenchmarkRig::unconfined) {
+    Structure b0;
+    std::vector<fit::Parameter> p0 = structure_parameters(b0, p, 0.49, true);
+    std::vector<double> x0(p0.size());
+    for (std::size_t i = 0; i < p0.size(); ++i) x0[i] = p0[i].value;
+    for (const auto& [n, v] : std::vector<std::pair<std::string, double>>{
+             {"young", 30e3}, {"e1", 12e3}, {"e2", 8e3}, {"tau1", 0.5}, {"tau2", 15.0}})
+      set(p0, x0, n, v);
+    fpk = 0.0;
+    for (const auto& v : DiscoverModel(p, b0).predict_series(x0))
+      for (const double y : v) fpk = std::max(fpk, std::abs(y));
+  }
   if (truth == "extra_prony_term") {
     set(ps, x, "e3", 10e3);
     set(ps, x, "tau3", 3.0);
   }
   if (truth == "strain_dependent_relaxation") set(ps, x, "relax_strain_slope", 4.0);
-  if (truth == "contact_offset") set(ps, x, "contact_offset", 0.12 * dmx);
+  if (truth == "separate_bulk_shear_relaxation") {
+    // Drained Poisson ratio 0.05 after tau_b = 0.06 s: in unconfined compression the force relaxes
+    // by a further 30 % of E_inf at tau' = tau_b (3 K0 + G0) / (3 K_inf + G0) = 2.7 s, the size and
+    // time of the planted extra Prony term. (With 0.2 and 0.2 s, 19 % at 6 s, the two free Prony
+    // terms of the baseline absorbed it within the noise: measured, docs/discover.md.)
+    set(ps, x, "drained_poisson", 0.05);
+    set(ps, x, "tau_bulk", 0.06);
+  }
+  if (truth == "poroelastic_relaxation") {
+    // tau_p = R d / D = 1.5, 3, 4.5 s at the three depths.
+    set(ps, x, "e_poro", 8e3);
+    set(ps, x, "diffusivity", kSphereRadius * kDepths[1] / 3.0);
+  }
+  if (truth == "finite_layer_thickness")
+    set(ps, x, "layer_thickness", 5.0 * std::sqrt(kSphereRadius * kDepths[2]));
+  if (truth == "contact_offset")
+    set(ps, x, "contact_offset", 0.12 * dmx * (rig == BenchmarkRig::tension ? -1.0 : 1.0));
   if (truth == "force_offset") set(ps, x, "force_offset", 0.03 * fpk);
   if (truth == "force_drift") set(ps, x, "force_drift", 0.03 * fpk / T);
   if (truth == "displacement_drift") set(ps, x, "displacement_drift", 0.04 * dmx / T);
@@ -137,29 +209,39 @@ SyntheticSet make_set(const std::string& truth, unsigned seed) {
 }
 
 std::vector<SyntheticSet> benchmark_sets(bool quick) {
-  std::vector<std::string> truths;
+  std::vector<std::pair<std::string, BenchmarkRig>> truths;
+  const auto U = BenchmarkRig::unconfined, S = BenchmarkRig::sphere, T = BenchmarkRig::tension;
   if (quick) {
-    truths = {"noise_only", "contact_offset", "neo_hookean_hyperelastic", "force_drift",
-              "actuator_resonance"};
+    truths = {{"noise_only", U},  {"contact_offset", U},     {"neo_hookean_hyperelastic", U},
+              {"force_drift", U}, {"actuator_resonance", U}, {"finite_layer_thickness", S}};
   } else {
-    const Prepared p = prepare(protocol("probe"), 1u << 30);
+    // Every library effect that applies to platen data, plus separate bulk and shear relaxation
+    // (which the loop cannot tell from a Prony term on one rig's forces: scored as confounded).
+    const Prepared p = prepare(protocol("probe", U), 1u << 30);
     Structure base;
     for (const auto& e : effect_library())
-      if (not_applicable(e.name, base, p).empty()) truths.push_back(e.name);
-    truths.push_back("noise_only");
-    truths.push_back("noise_only");
-    truths.push_back("noise_only");
-    for (const auto& o : outside_effects()) truths.push_back(o);
+      if (not_applicable(e.name, base, p).empty() || e.name == "separate_bulk_shear_relaxation")
+        truths.emplace_back(e.name, U);
+    for (int i = 0; i < 3; ++i) truths.emplace_back("noise_only", U);
+    for (const auto& o : outside_effects()) truths.emplace_back(o, U);
+    // Sphere indentation: the effects only indentation has, and some of every kind.
+    for (const char* e : {"extra_prony_term", "poroelastic_relaxation", "finite_layer_thickness",
+                          "contact_offset", "instrument_compliance", "force_drift", "noise_only"})
+      truths.emplace_back(e, S);
+    // Uniaxial tension.
+    for (const char* e : {"extra_prony_term", "yeoh_hyperelastic", "force_offset", "noise_only"})
+      truths.emplace_back(e, T);
   }
   std::vector<SyntheticSet> sets;
   unsigned seed = 1;
-  for (const auto& t : truths) sets.push_back(make_set(t, seed++));
+  for (const auto& [t, rig] : truths) sets.push_back(make_set(t, seed++, rig));
   return sets;
 }
 
 bool library_match(const std::string& truth, const std::vector<std::string>& found) {
   if (found.size() != 1) return false;
   if (found[0] == truth) return true;
+  if (truth == "separate_bulk_shear_relaxation") return found[0] == "extra_prony_term";
   return !effect_law(truth).empty() && !effect_law(found[0]).empty();
 }
 
@@ -179,6 +261,7 @@ BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Optio
     e.name = s.name;
     e.truth = s.truth;
     e.kind = s.kind;
+    e.rig = to_string(s.rig);
     e.found = r.final_effects;
     e.unexplained = r.unexplained;
     e.signature = r.signature;
@@ -236,9 +319,10 @@ nlohmann::json to_json(const BenchmarkResult& b) {
   json j;
   j["protocol"] =
       "unconfined compression, cylinder R 10 mm H 10 mm, frictionless; 3 tests at 0.02, 0.05, 0.1 /s to 25 % "
-      "strain, hold 20 s, unload, rest 5 s, 5 Hz; truth St VK E_inf 30 kPa nu 0.49, Prony e 12, 8 kPa tau "
-      "0.5, "
-      "15 s; white noise 0.3 % of peak";
+      "strain, hold 20 s, unload, rest 5 s, 5 Hz; sphere indentation (bench-sphere-*): R 2.5 mm on a "
+      "half-space, depths 0.1, 0.2, 0.3 mm at 0.1, 0.05, 0.03 mm/s, same hold, rest and sampling; "
+      "uniaxial tension (bench-tension-*): strip 5 x 2 mm, gauge 20 mm, to 25 % stretch at the platen "
+      "rates; truth St VK E_inf 30 kPa nu 0.49, Prony e 12, 8 kPa tau 0.5, 15 s; white noise 0.3 % of peak";
   j["confusion"] = {{"rows_truth", b.rows}, {"columns_found", b.columns}, {"counts", b.confusion}};
   j["library_sets"] = b.library_sets;
   j["library_correct"] = b.library_correct;
@@ -258,6 +342,7 @@ nlohmann::json to_json(const BenchmarkResult& b) {
   for (const auto& e : b.entries)
     j["sets"].push_back({{"name", e.name},
                          {"truth", e.truth},
+                         {"rig", e.rig},
                          {"kind", e.kind == Truth::library      ? "library"
                                   : e.kind == Truth::noise_only ? "noise_only"
                                                                 : "outside_library"},

@@ -2,6 +2,7 @@
 
 #include "calibration/closed_forms/homogeneous.hpp"
 #include "calibration/closed_forms/indentation.hpp"
+#include "calibration/discover/bulk_shear.hpp"
 #include "calibration/fit/model_spec.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -48,6 +49,7 @@ fit::ModelSpec spec_of(const Structure& s) {
 std::vector<std::string> effect_parameter_names(const std::string& e) {
   if (e == "strain_dependent_relaxation") return {"relax_strain_slope"};
   if (e == "poroelastic_relaxation") return {"e_poro", "diffusivity"};
+  if (e == "separate_bulk_shear_relaxation") return {"drained_poisson", "tau_bulk"};
   if (e == "contact_offset") return {"contact_offset"};
   if (e == "force_offset") return {"force_offset"};
   if (e == "force_drift") return {"force_drift"};
@@ -131,6 +133,15 @@ const std::vector<EffectInfo>& effect_library() {
         {"poroelastic_relaxation", m,
          "a relaxation term alpha_p exp(-t/tau_p) with tau_p = L^2/D, L the contact radius of each test",
          "relaxation whose time scale grows with the contact size: slower at deeper indentation"});
+    v.push_back(
+        {"separate_bulk_shear_relaxation", m,
+         "the bulk modulus relaxes beyond the shear modulus, to the drained Poisson ratio nu_inf with its "
+         "own "
+         "time tau_b (G = G0 g(t), K = K0 g(t) - (K0 - K_inf)(1 - exp(-t/tau_b))); the rig modulus by the "
+         "correspondence principle",
+         "a relaxation whose size depends on the rig (large in confined compression, small in unconfined, "
+         "between for indentation) and a lateral strain that relaxes in a hold (apparent Poisson ratio "
+         "falling); on force data of one rig it looks like one more Prony term"});
     v.push_back({"contact_offset", x, "contact starts at d0: d_sample = d - d0, zero force before",
                  "a residual at the start of loading (toe region) and a strain-shaped error at small depth"});
     v.push_back({"force_offset", x, "the load cell reads F + F0",
@@ -257,6 +268,8 @@ std::string Structure::label() const {
   return s;
 }
 
+fit::ModelSpec model_spec(const Structure& s) { return spec_of(s); }
+
 std::vector<std::string> effects_in(const Structure& s, const Structure& baseline) {
   std::vector<std::string> out;
   if (s.law != baseline.law) out.push_back(s.law + "_hyperelastic");
@@ -292,6 +305,10 @@ std::string not_applicable(const std::string& effect, const Structure& s, const 
   if (s.has(effect)) return "already added";
   if (effect == "strain_dependent_relaxation" && s.prony_terms == 0)
     return "no Prony terms to make strain-dependent";
+  if (effect == "separate_bulk_shear_relaxation")
+    return "on force data of one rig, bulk relaxation is one more exponential of the rig modulus "
+           "(correspondence principle): confounded with extra_prony_term; separating them needs the lateral "
+           "strain of an unconfined test or two rigs on one sample, which the loop does not read";
   if (effect == "poroelastic_relaxation" && platen)
     return "one sample size on platen data: tau = L^2/D is one more Prony term (indentation only)";
   if (effect == "platen_friction" && p.rig != Rig::platen_unconfined)
@@ -364,6 +381,11 @@ std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepa
       const double l = poro_length(p, 0);
       v.push_back(
           param("diffusivity", "m2/s", l * l / std::sqrt(ta * tb), 0.0, kInf, l * l / tb, l * l / ta));
+    } else if (e == "separate_bulk_shear_relaxation") {
+      const double nu0 = std::min(poisson, 0.499);
+      v.push_back(param("drained_poisson", "1", 0.5 * nu0, 0.0, nu0, 0.1 * nu0, 0.9 * nu0));
+      const double mid = std::sqrt(ta * tb);
+      v.push_back(param("tau_bulk", "s", mid, ta, tb, ta, tb));
     } else if (e == "contact_offset") {
       v.push_back(param("contact_offset", "m", 0.0, -0.3 * dmx, 0.5 * dmx, -0.05 * dmx, 0.05 * dmx));
     } else if (e == "force_offset") {
@@ -479,7 +501,8 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
   }
   double slope = 0.0, alpha_p = 0.0, diff = 0.0, d0 = 0.0, f0 = 0.0, fr = 0.0, dv = 0.0, c = 0.0, phi = 0.0,
          layer = p.layer;
-  bool poro = false, layer_bonded = p.layer_bonded;
+  double nu_drained = nu, tau_bulk = 1.0;
+  bool poro = false, bulk = false, layer_bonded = p.layer_bonded;
   for (const auto& e : s_.effects) {
     const double v = x[pos];
     if (e == "strain_dependent_relaxation") slope = v;
@@ -487,6 +510,11 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
       poro = true;
       alpha_p = v / young;
       diff = x[pos + 1];
+    }
+    if (e == "separate_bulk_shear_relaxation") {
+      bulk = true;
+      nu_drained = v;
+      tau_bulk = x[pos + 1];
     }
     if (e == "contact_offset") d0 = v;
     if (e == "force_offset") f0 = v;
@@ -519,9 +547,17 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
           layer_bonded ? closed_forms::LayerSupport::Bonded : closed_forms::LayerSupport::Frictionless);
     return f;
   };
+  if (bulk && slope != 0.0)
+    throw Error("discover: separate_bulk_shear_relaxation with strain_dependent_relaxation is not modelled");
+  const BulkShearRig bulk_rig = p.rig == Rig::platen_confined ? BulkShearRig::confined
+                                : platen                      ? BulkShearRig::uniaxial_stress
+                                                              : BulkShearRig::indentation;
   std::vector<std::vector<double>> out;
   for (std::size_t k = 0; k < p.series.size(); ++k) {
     const Series& se = p.series[k];
+    // Separate bulk and shear relaxation replaces the Prony sum (bulk_shear.hpp).
+    std::optional<BulkShearRelaxation> bs;
+    if (bulk) bs.emplace(bulk_rig, alpha, tau, nu, nu_drained, tau_bulk);
     const double tau_p = poro ? std::pow(poro_length(p, k), 2) / diff : 1.0;
     std::vector<double> h(m, 0.0);
     double hp = 0.0, xe_prev = 0.0, xs_prev = 0.0, d1_prev = 0.0;
@@ -552,6 +588,7 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
           hn[j] = decay[j] * h[j] + beta[j] * dxe;
           fv += alpha[j] * w * hn[j];
         }
+        if (bs) fv = bs->step(dt, xe);
         hpn = pdecay * hp + pbeta * dxe;
         fv += alpha_p * hpn;
         return fv;
@@ -581,6 +618,7 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
         xs = b;
       }
       fs = force(xs, xe, hn, hpn);
+      if (bs) bs->commit();
       h = hn;
       hp = hpn;
       xe_prev = xe;

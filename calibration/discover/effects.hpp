@@ -9,6 +9,10 @@
 //              strain_dependent_relaxation   Prony weights alpha_j (1 + a eps): nonlinear viscoelasticity
 //              poroelastic_relaxation        a relaxation term with tau = L^2 / D, L the contact radius
 //                                            of each test: size-dependent (indentation only)
+//              separate_bulk_shear_relaxation the bulk modulus relaxes to a drained Poisson ratio with
+//                                            its own time (bulk_shear.hpp); on one rig's forces it is
+//                                            confounded with extra_prony_term, so the loop does not try
+//                                            it (not_applicable); the benchmark plants it
 //   experiment contact_offset                the sample is touched at d0: d_sample = d - d0, no force before
 //              force_offset                  the load cell reads F + F0
 //              force_drift                   the load cell reads F + r t
@@ -30,6 +34,7 @@
 
 #include "calibration/data/measured_data.hpp"
 #include "calibration/fit/forward_model.hpp"
+#include "calibration/fit/model_spec.hpp"
 #include "calibration/fit/parameter.hpp"
 
 #include <string>
@@ -94,6 +99,9 @@ struct Structure {
   /// e.g. "stvk+prony:2" or "yeoh+prony:2 + contact_offset + force_drift".
   std::string label() const;
 };
+
+/// The law and Prony terms of `s` as a fit::ModelSpec (one Ogden term), e.g. for the FE rig.
+fit::ModelSpec model_spec(const Structure& s);
 
 /// The effects that make `s` differ from `baseline`: its law's effect when the law differs,
 /// extra_prony_term once per added term, then the other effects (a law swapped twice is one effect).
