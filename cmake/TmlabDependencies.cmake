@@ -21,3 +21,14 @@ endif()
 if(TMLAB_BUILD_BENCHMARKS)
   find_package(benchmark REQUIRED)
 endif()
+
+# SuiteSparse CHOLMOD (libsuitesparse-dev): the sparse Cholesky of the Newton solves with
+# solver.linear = "cholmod" (tensormass/solvers/newton.hpp), through Eigen's CholmodSupport.
+# Debian 12 ships SuiteSparse 5.12 without CMake package files: header and libraries by path.
+find_path(TMLAB_CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse REQUIRED)
+find_library(TMLAB_CHOLMOD_LIBRARY cholmod REQUIRED)
+find_library(TMLAB_SUITESPARSECONFIG_LIBRARY suitesparseconfig REQUIRED)
+add_library(tmlab_cholmod INTERFACE)
+add_library(tmlab::cholmod ALIAS tmlab_cholmod)
+target_include_directories(tmlab_cholmod SYSTEM INTERFACE ${TMLAB_CHOLMOD_INCLUDE_DIR})
+target_link_libraries(tmlab_cholmod INTERFACE ${TMLAB_CHOLMOD_LIBRARY} ${TMLAB_SUITESPARSECONFIG_LIBRARY})

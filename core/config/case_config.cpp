@@ -364,6 +364,17 @@ SolverSpec parse_solver(ConfigReader& root) {
     throw s.error("type", "unknown solver '" + type + "' (expected static, explicit or implicit)");
   }
   if (s.has("newton")) parse_newton(s, solver);
+  if (s.has("linear")) {
+    if (solver.type == SolverSpec::Type::Explicit)
+      throw s.error("linear", "is not used by the explicit solver (no linear solves)");
+    const std::string linear = s.get<std::string>("linear", "ldlt");
+    if (linear == "ldlt")
+      solver.linear = SolverSpec::Linear::Ldlt;
+    else if (linear == "cholmod")
+      solver.linear = SolverSpec::Linear::Cholmod;
+    else
+      throw s.error("linear", "must be \"ldlt\" or \"cholmod\" (got \"" + linear + "\")");
+  }
   s.finish();
   return solver;
 }
@@ -515,6 +526,7 @@ json solver_json(const SolverSpec& sv) {
     solver["damping"] = {{"alpha", sv.damping_alpha}, {"beta", sv.damping_beta}};
   }
   if (sv.type != SolverSpec::Type::Explicit) {
+    solver["linear"] = sv.linear == SolverSpec::Linear::Cholmod ? "cholmod" : "ldlt";
     solver["newton"] = {{"max_iterations", sv.max_iterations},
                         {"rtol", sv.rtol},
                         {"atol", sv.atol},

@@ -88,6 +88,10 @@ struct SolverSpec {
   LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_cutbacks = 8;
   bool check_stability = true;
+  /// solver.linear (static, implicit): the sparse direct solver of the Newton steps, "ldlt" (Eigen's
+  /// SimplicialLDLT, the default) | "cholmod" (SuiteSparse CHOLMOD LL^T; docs/case-files.md).
+  enum class Linear { Ldlt, Cholmod };
+  Linear linear = Linear::Ldlt;
 };
 
 struct ProbeSpec {

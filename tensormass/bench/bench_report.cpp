@@ -118,6 +118,23 @@ json bench_targets(const json& b) {
              per_tet_visco > 0 ? 1000.0 / per_tet_visco : NAN, 40000.0, false, "tets",
              "1 ms over the per-tet cost of the cheapest viscoelastic explicit step on the largest mesh "
              "measured (1 thread: the viscoelastic models are serial)"));
+  // Implicit steps: CHOLMOD's LL^T against Eigen's LDL^T on the largest mesh that has both.
+  double chol_ratio = NAN;
+  long chol_tets = 0;
+  std::string chol_mesh = "none";
+  for (const json& r : b.at("records")) {
+    if (r.at("kind") != "step" || r.at("step") != "implicit" || r.value("linear", "") != "cholmod") continue;
+    const json* d =
+        find(b, {{"kind", "step"}, {"step", "implicit"}, {"linear", "ldlt"}, {"mesh", r.at("mesh")}});
+    if (d && r.at("tets").get<long>() > chol_tets) {
+      chol_tets = r.at("tets").get<long>();
+      chol_mesh = r.at("mesh").get<std::string>();
+      chol_ratio = r.at("us_per_step").get<double>() / d->at("us_per_step").get<double>();
+    }
+  }
+  t.push_back(
+      target("implicit step, CHOLMOD / Eigen LDL^T (" + chol_mesh + ")", chol_ratio, 1.0, true, "x",
+             "Newmark step of the tensor-mass model, us per step with solver.linear cholmod over ldlt"));
   t.push_back(target("cost linear in tets (fast, ns/tet cube_240k / cube_2k)",
                      F("fast", "none", "cube_240k") / F("fast", "none", "cube_2k"), 1.5, true, "x",
                      "1 = perfectly linear"));
@@ -175,21 +192,25 @@ std::string bench_markdown(const json& b) {
   for (const json& r : b.at("records")) {
     if (r.at("kind") != "step") continue;
     const bool book = r.value("energy_bookkeeping", false);
-    const std::string key = r.at("step").get<std::string>() + "|" + r.at("kernel").get<std::string>() + "|" +
+    const std::string linear = r.value("linear", std::string("none"));
+    const std::string step = r.at("step").get<std::string>() + (linear == "none" ? "" : " (" + linear + ")");
+    const std::string key = step + "|" + r.at("kernel").get<std::string>() + "|" +
                             r.at("history").get<std::string>() + "|" +
                             std::to_string(r.at("threads").get<int>()) + (book ? "|b" : "");
     if (!seen.insert(key).second) continue;
-    md << "| " << r.at("step").get<std::string>() << " | " << r.at("kernel").get<std::string>() << " | "
+    md << "| " << step << " | " << r.at("kernel").get<std::string>() << " | "
        << r.at("history").get<std::string>() << " | " << r.at("threads").get<int>() << " | "
        << (book ? "on" : "off") << " |";
     for (const auto& m : meshes) {
-      const json* s = find(b, {{"kind", "step"},
-                               {"step", r.at("step")},
-                               {"kernel", r.at("kernel")},
-                               {"history", r.at("history")},
-                               {"threads", r.at("threads")},
-                               {"mesh", m},
-                               {"energy_bookkeeping", book}});
+      json fields = {{"kind", "step"},
+                     {"step", r.at("step")},
+                     {"kernel", r.at("kernel")},
+                     {"history", r.at("history")},
+                     {"threads", r.at("threads")},
+                     {"mesh", m},
+                     {"energy_bookkeeping", book}};
+      if (r.contains("linear")) fields["linear"] = linear;  // records before issue 16's CHOLMOD have none
+      const json* s = find(b, fields);
       md << " " << (s ? fmt(s->at("us_per_step").get<double>()) : "-") << " |";
     }
     md << "\n";

@@ -93,25 +93,30 @@ class NewtonLog {
   }
   void save(CheckpointData& d) const;
   void restore(const CheckpointData& d);
-  nlohmann::json json(const SolverSpec& s) const {
+  /// `fallbacks`: the solves of a "cholmod" run that met a tangent that is not positive definite
+  /// and used LDL^T (since the start or the resume of the run; -1: not known).
+  nlohmann::json json(const SolverSpec& s, int fallbacks = -1) const {
     int roundoff_steps = 0, max_its = 0;
     for (bool b : roundoff_) roundoff_steps += b ? 1 : 0;
     for (int i : iterations_) max_its = std::max(max_its, i);
-    return {{"line_search", to_string(s.line_search)},
-            {"rtol", s.rtol},
-            {"atol", s.atol},
-            {"max_iterations", s.max_iterations},
-            {"max_iterations_in_a_step", max_its},
-            {"steps_at_roundoff", roundoff_steps},
-            {"per_step",
-             {{"iterations", iterations_},
-              {"cutbacks", cutbacks_},
-              {"sub_increments", sub_increments_},
-              {"backtracks_last_solve", backtracks_},
-              {"residual_final", residual_},
-              {"residual_target", target_},
-              {"at_roundoff", roundoff_},
-              {"residual_history_last_solve", history_}}}};
+    nlohmann::json j = {{"line_search", to_string(s.line_search)},
+                        {"linear", s.linear == SolverSpec::Linear::Cholmod ? "cholmod" : "ldlt"},
+                        {"rtol", s.rtol},
+                        {"atol", s.atol},
+                        {"max_iterations", s.max_iterations},
+                        {"max_iterations_in_a_step", max_its},
+                        {"steps_at_roundoff", roundoff_steps},
+                        {"per_step",
+                         {{"iterations", iterations_},
+                          {"cutbacks", cutbacks_},
+                          {"sub_increments", sub_increments_},
+                          {"backtracks_last_solve", backtracks_},
+                          {"residual_final", residual_},
+                          {"residual_target", target_},
+                          {"at_roundoff", roundoff_},
+                          {"residual_history_last_solve", history_}}}};
+    if (s.linear == SolverSpec::Linear::Cholmod && fallbacks >= 0) j["linear_fallbacks_to_ldlt"] = fallbacks;
+    return j;
   }
 
  private:
@@ -729,7 +734,7 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver)}};
+          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())}};
 }
 
 /// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
@@ -796,7 +801,7 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver)},
+          {"newton", newton_log.json(cfg.solver, integ.linear_solver().fallbacks())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
 }
 
@@ -1088,6 +1093,8 @@ NewtonOptions newton_options(const SolverSpec& s) {
   o.rtol = s.rtol;
   o.atol = s.atol;
   o.line_search = s.line_search;
+  o.linear_solver =
+      s.linear == SolverSpec::Linear::Cholmod ? NewtonLinearSolver::Cholmod : NewtonLinearSolver::Direct;
   return o;
 }
 

@@ -66,7 +66,7 @@ bool ImplicitStepResidual::potential(const VecX& u, double& value) {
 
 ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme,
                                    NewtonOptions options)
-    : system_(system), scheme_(scheme), options_(options) {}
+    : system_(system), scheme_(scheme), options_(options), linear_(options.linear_solver) {}
 
 void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
   t_ = t0;

@@ -62,6 +62,8 @@ class ImplicitDynamics {
   void restore(double t, const VecX& u, const VecX& v, const VecX& a);
 
   double time() const { return t_; }
+  /// The linear solver of the Newton steps (NewtonOptions::linear_solver; its fallback count).
+  const ConstrainedLinearSolver& linear_solver() const { return linear_; }
   const VecX& displacement() const { return u_; }
   const VecX& velocity() const { return v_; }
   const VecX& acceleration() const { return a_; }

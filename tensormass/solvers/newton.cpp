@@ -2,11 +2,28 @@
 
 #include "core/base/error.hpp"
 
+#include <Eigen/CholmodSupport>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
 namespace tmlab::tm {
+
+struct ConstrainedLinearSolver::Cholmod {
+  Cholmod() {
+    // Failures are reported through info() and handled here (LDL^T fallback); CHOLMOD's own
+    // warning on stderr ("not positive definite") would only confuse a run's log.
+    llt.cholmod().print = 0;
+  }
+  Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> llt;
+  Eigen::Index nnz = -1;  ///< the pattern last analysed
+};
+
+ConstrainedLinearSolver::ConstrainedLinearSolver() = default;
+ConstrainedLinearSolver::ConstrainedLinearSolver(Kind kind, double cg_rtol)
+    : kind_(kind), cg_rtol_(cg_rtol) {}
+ConstrainedLinearSolver::~ConstrainedLinearSolver() = default;
 
 void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c,
                                     bool symmetric, VecX& du) {
@@ -44,9 +61,30 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
     if (!du.allFinite()) throw Error("conjugate gradients produced non-finite values");
     return;
   }
-  const bool reanalyse = analysed_nnz_ != A_.nonZeros() || analysed_symmetric_ != symmetric;
+  const Eigen::Index nnz = A_.nonZeros();
+  if (symmetric && kind_ == Kind::Cholmod) {
+    if (!cholmod_) cholmod_ = std::make_unique<Cholmod>();
+    Cholmod& c = *cholmod_;
+    if (c.nnz != nnz) {
+      c.llt.analyzePattern(A_);
+      c.nnz = nnz;
+    }
+    c.llt.factorize(A_);
+    if (c.llt.info() == Eigen::Success) {
+      du = c.llt.solve(b);
+      if (c.llt.info() != Eigen::Success) throw Error("CHOLMOD solve failed");
+    } else {
+      ++fallbacks_;  // not positive definite: the LDL^T below handles indefinite tangents
+    }
+    if (c.llt.info() == Eigen::Success) {
+      if (!du.allFinite())
+        throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
+      return;
+    }
+  }
   if (symmetric) {
-    if (reanalyse) ldlt_.analyzePattern(A_);
+    if (ldlt_nnz_ != nnz) ldlt_.analyzePattern(A_);
+    ldlt_nnz_ = nnz;
     ldlt_.factorize(A_);
     if (ldlt_.info() != Eigen::Success)
       throw Error(
@@ -54,14 +92,13 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
           "motion?)");
     du = ldlt_.solve(b);
   } else {
-    if (reanalyse) lu_.analyzePattern(A_);
+    if (lu_nnz_ != nnz) lu_.analyzePattern(A_);
+    lu_nnz_ = nnz;
     lu_.factorize(A_);
     if (lu_.info() != Eigen::Success)
       throw Error("sparse LU factorisation failed (singular tangent: " + lu_.lastErrorMessage() + ")");
     du = lu_.solve(b);
   }
-  analysed_nnz_ = A_.nonZeros();
-  analysed_symmetric_ = symmetric;
   if (!du.allFinite())
     throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
 }

@@ -53,6 +53,19 @@ class NonlinearSystem {
   virtual bool potential(const VecX& /*u*/, double& /*value*/) { return false; }
 };
 
+/// The linear solver of the Newton steps (a case's solver.linear; docs/performance.md, "Implicit
+/// steps: CHOLMOD").
+enum class NewtonLinearSolver {
+  Direct,             ///< Eigen's SimplicialLDLT (SparseLU for non-symmetric tangents): the default
+  ConjugateGradient,  ///< incomplete-Cholesky preconditioned CG (symmetric tangents only)
+  /// SuiteSparse CHOLMOD's supernodal LL^T (Eigen's CholmodSupport), symbolic analysis reused while
+  /// the pattern is unchanged. LL^T exists only for positive definite matrices: a tangent that is
+  /// not (CHOLMOD meets a non-positive pivot: a buckling or softening state) is solved by the
+  /// Direct LDL^T instead and counted (ConstrainedLinearSolver::fallbacks()); non-symmetric tangents
+  /// (follower pressure) go to SparseLU as with Direct.
+  Cholmod,
+};
+
 struct NewtonOptions {
   int max_iterations = 25;
   double rtol = 1e-10;                          ///< |R_free| <= rtol * max(|R_0|, force scale)
@@ -60,6 +73,7 @@ struct NewtonOptions {
   LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_backtracks = 12;
   double stagnation_tol = 1e-13;  ///< relative step size below which a stalled residual is round-off
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::Direct;  ///< what StaticSolver/ImplicitDynamics use
 };
 
 struct NewtonResult {
@@ -82,9 +96,12 @@ struct NewtonResult {
 /// 3-D beyond ~2e4 DOFs); inexact Newton: Newton's own test decides convergence.
 class ConstrainedLinearSolver {
  public:
-  enum class Kind { Direct, ConjugateGradient };
-  ConstrainedLinearSolver() = default;
-  explicit ConstrainedLinearSolver(Kind kind, double cg_rtol = 1e-12) : kind_(kind), cg_rtol_(cg_rtol) {}
+  using Kind = NewtonLinearSolver;
+  ConstrainedLinearSolver();
+  explicit ConstrainedLinearSolver(Kind kind, double cg_rtol = 1e-12);
+  ~ConstrainedLinearSolver();
+  ConstrainedLinearSolver(const ConstrainedLinearSolver&) = delete;  // Eigen's factorisations are not
+  ConstrainedLinearSolver& operator=(const ConstrainedLinearSolver&) = delete;
 
   /// Throws tmlab::Error when the factorisation fails (singular: e.g. an unconstrained body), when
   /// CG does not converge, or when CG is asked to solve a non-symmetric system.
@@ -92,16 +109,23 @@ class ConstrainedLinearSolver {
              VecX& du);
   /// CG iterations of the last solve (0 for the direct solver).
   int last_iterations() const { return last_iterations_; }
+  Kind kind() const { return kind_; }
+  /// Cholmod: how many solves found the tangent not positive definite and used LDL^T instead.
+  int fallbacks() const { return fallbacks_; }
 
  private:
+  struct Cholmod;  // CHOLMOD's factor (newton.cpp: cholmod.h stays out of this header)
   Kind kind_ = Kind::Direct;
   double cg_rtol_ = 1e-12;
   int last_iterations_ = 0;
+  int fallbacks_ = 0;
   SpMat A_;
   Eigen::SimplicialLDLT<SpMat> ldlt_;
   Eigen::SparseLU<SpMat> lu_;
-  Eigen::Index analysed_nnz_ = -1;
-  bool analysed_symmetric_ = false;
+  std::unique_ptr<Cholmod> cholmod_;
+  // The pattern (its number of non-zeros) each factorisation last analysed: the symbolic analysis
+  // is reused while it is unchanged.
+  Eigen::Index ldlt_nnz_ = -1, lu_nnz_ = -1;
 };
 
 /// Newton iteration from u (overwritten with the solution). `t` is the time at which the

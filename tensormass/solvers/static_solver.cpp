@@ -34,7 +34,7 @@ bool StaticResidual::potential(const VecX& u, double& value) {
 }
 
 StaticSolver::StaticSolver(const MechanicalSystem& system, NewtonOptions options, int max_cutbacks)
-    : system_(system), options_(options), max_cutbacks_(max_cutbacks) {}
+    : system_(system), options_(options), max_cutbacks_(max_cutbacks), linear_(options.linear_solver) {}
 
 NewtonResult StaticSolver::solve(double t, VecX& u) {
   StaticResidual r(system_, t, u);

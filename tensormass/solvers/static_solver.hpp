@@ -48,6 +48,8 @@ class StaticSolver {
   StaticStepReport advance(double t_prev, double t_next, VecX& u);
   /// One Newton solve at time t from u, no cut-backs.
   NewtonResult solve(double t, VecX& u);
+  /// The linear solver of the Newton steps (NewtonOptions::linear_solver; its fallback count).
+  const ConstrainedLinearSolver& linear_solver() const { return linear_; }
 
  private:
   const MechanicalSystem& system_;

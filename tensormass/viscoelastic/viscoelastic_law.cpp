@@ -96,7 +96,10 @@ void ViscoelasticHyperelastic::begin_step(double dt) {
 void ViscoelasticHyperelastic::commit_step(const VecX& u) {
   assert(u.size() == num_dofs());
   const bool book = options_.energy_bookkeeping;
-  if (book) committed_elastic_ = elastic_.energy(u);
+  if (book) {  // the long-term spring W_e(u): computed when asked for (committed_elastic_energy())
+    committed_u_ = u;
+    spring_stale_ = true;
+  }
   if (elastic_only_) {
     step_dissipation_ = 0.0;
     dt_ = 0.0;
@@ -243,11 +246,19 @@ void ViscoelasticHyperelastic::tangent(const VecX& u, SpMat& K) const {
 
 // ---------------------------------------------------------------- checkpoints
 
+double ViscoelasticHyperelastic::committed_elastic_energy() const {
+  if (spring_stale_) {
+    committed_elastic_ = elastic_.energy(committed_u_);
+    spring_stale_ = false;
+  }
+  return committed_elastic_;
+}
+
 std::vector<double> ViscoelasticHyperelastic::committed_state() const {
   std::vector<double> s(hist_);
   s.insert(s.end(), driver_.begin(), driver_.end());
-  s.insert(s.end(),
-           {committed_elastic_, committed_branch_, committed_rate_, step_dissipation_, total_dissipation_});
+  s.insert(s.end(), {committed_elastic_energy(), committed_branch_, committed_rate_, step_dissipation_,
+                     total_dissipation_});
   return s;
 }
 
@@ -262,6 +273,7 @@ void ViscoelasticHyperelastic::restore_committed_state(const std::vector<double>
             driver_.begin());
   const double* e = s.data() + nh + nd;
   committed_elastic_ = e[0];
+  spring_stale_ = false;
   committed_branch_ = e[1];
   committed_rate_ = e[2];
   step_dissipation_ = e[3];

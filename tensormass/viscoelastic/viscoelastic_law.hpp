@@ -67,7 +67,8 @@ class ViscoelasticHyperelastic : public ElasticModel {
   double trial_dt() const { return dt_; }
   double trial_gain() const { return gain_; }  ///< g = sum_j alpha_j c_j
 
-  double committed_elastic_energy() const { return committed_elastic_; }
+  /// W_e(u_c) of the last commit, computed on the first call after it (as ViscoelasticStVK).
+  double committed_elastic_energy() const;
   double committed_branch_energy() const { return committed_branch_; }
   double step_dissipation() const { return step_dissipation_; }
   double total_dissipation() const { return total_dissipation_; }
@@ -89,8 +90,11 @@ class ViscoelasticHyperelastic : public ElasticModel {
   bool elastic_only_ = false;
 
   std::vector<double> hist_, driver_;
-  double committed_elastic_ = 0.0, committed_branch_ = 0.0, committed_rate_ = 0.0;
+  mutable double committed_elastic_ = 0.0;  ///< valid unless spring_stale_
+  double committed_branch_ = 0.0, committed_rate_ = 0.0;
   double step_dissipation_ = 0.0, total_dissipation_ = 0.0;
+  VecX committed_u_;                   ///< u of the last commit while its spring energy is pending
+  mutable bool spring_stale_ = false;  ///< committed_elastic_ is still to be computed
 
   double dt_ = 0.0, gain_ = 0.0;
   std::vector<RecursionFactors> factors_;

@@ -238,7 +238,7 @@ void ViscoelasticStVK::finish_commit(bool book, double psi, double rate) {
 void ViscoelasticStVK::commit_step(const VecX& u) {
   assert(u.size() == num_dofs());
   const bool book = options_.energy_bookkeeping;
-  if (book) committed_elastic_ = elastic_.energy(u);  // long-term spring W_e(u)
+  if (book) defer_spring_energy(u);  // long-term spring W_e(u), computed when asked for
   if (elastic_only_) {
     step_dissipation_ = 0.0;
     dt_ = 0.0;
@@ -279,7 +279,7 @@ void ViscoelasticStVK::force_and_commit(const VecX& u, VecX& f) {
   }
   assert(u.size() == num_dofs());
   ensure_trial();
-  if (book) committed_elastic_ = elastic_.energy(u);  // long-term spring W_e(u), as commit_step
+  if (book) defer_spring_energy(u);  // long-term spring W_e(u), as commit_step
   const std::size_t nt = static_cast<std::size_t>(num_tets());
   const auto& tets = elastic_.tets();
   double x[12];
@@ -513,11 +513,19 @@ void ViscoelasticStVK::tangent(const VecX& u, SpMat& K) const {
 
 // ---------------------------------------------------------------- checkpoints
 
+double ViscoelasticStVK::committed_elastic_energy() const {
+  if (spring_stale_) {
+    committed_elastic_ = elastic_.energy(committed_u_);
+    spring_stale_ = false;
+  }
+  return committed_elastic_;
+}
+
 std::vector<double> ViscoelasticStVK::committed_state() const {
   std::vector<double> s(hist_);
   s.insert(s.end(), driver_.begin(), driver_.end());
-  s.insert(s.end(),
-           {committed_elastic_, committed_branch_, committed_rate_, step_dissipation_, total_dissipation_});
+  s.insert(s.end(), {committed_elastic_energy(), committed_branch_, committed_rate_, step_dissipation_,
+                     total_dissipation_});
   return s;
 }
 
@@ -532,6 +540,7 @@ void ViscoelasticStVK::restore_committed_state(const std::vector<double>& s) {
             driver_.begin());
   const double* e = s.data() + nh + nd;
   committed_elastic_ = e[0];
+  spring_stale_ = false;
   committed_branch_ = e[1];
   committed_rate_ = e[2];
   step_dissipation_ = e[3];

@@ -65,8 +65,12 @@ struct ViscoelasticOptions {
   History history = History::Pk2;
   Integration integration = Integration::Midpoint;
   Relaxation relaxation = Relaxation::Full;
-  /// Update the committed energies and dissipation at every commit (costs about 2-3 elastic force
-  /// evaluations per commit; switch off for long explicit runs that do not report energies).
+  /// Keep the committed energies and the dissipation. Every commit updates the branch energies and
+  /// the dissipation rate (the trapezoidal dissipation needs the rate at every commit); the
+  /// long-term spring energy W_e(u_c) is computed only when it is asked for
+  /// (committed_elastic_energy(), committed_state()), from a copy of the committed u, so a run that
+  /// records every k-th step pays for it every k-th step. Off: none of it (long explicit runs that
+  /// report no energies).
   bool energy_bookkeeping = true;
   /// 0: the trial force on the reference per-tet kernels (results bit-identical to earlier versions).
   /// N >= 1: on FastTetForce (kernels/fast_force.hpp) with N threads: equal to the reference to
@@ -127,11 +131,13 @@ class ViscoelasticStVK : public ElasticModel {
   double trial_gain() const { return gain_; }
 
   // ---- committed state and energy bookkeeping (updated by commit_step) ----
-  double committed_elastic_energy() const { return committed_elastic_; }  ///< W_e(u_c), long-term spring
-  double committed_branch_energy() const { return committed_branch_; }    ///< sum of Psi_j at commit
-  double step_dissipation() const { return step_dissipation_; }           ///< of the last commit, >= 0
-  double total_dissipation() const { return total_dissipation_; }         ///< sum over commits
-  double committed_dissipation_rate() const { return committed_rate_; }   ///< D at the last commit, W
+  /// W_e(u_c), the long-term spring at the last commit (computed on the first call after a commit:
+  /// the same function of the same u as at the commit, so the value is identical bit for bit).
+  double committed_elastic_energy() const;
+  double committed_branch_energy() const { return committed_branch_; }   ///< sum of Psi_j at commit
+  double step_dissipation() const { return step_dissipation_; }          ///< of the last commit, >= 0
+  double total_dissipation() const { return total_dissipation_; }        ///< sum over commits
+  double committed_dissipation_rate() const { return committed_rate_; }  ///< D at the last commit, W
   /// Raw committed history h_j^c, per tet [t][j][k] with k < 12 (nodal_force) or 6 (pk2, Voigt
   /// xx,yy,zz,xy,xz,yz), and the committed driver X_e^c per tet [t][k].
   const std::vector<double>& committed_history() const { return hist_; }
@@ -175,10 +181,18 @@ class ViscoelasticStVK : public ElasticModel {
   std::vector<double> kpinv_;  ///< nodal_force: 144 per tet, pseudo-inverse of the rest stiffness
 
   // committed
-  std::vector<double> hist_;    ///< [t][j][k]
-  std::vector<double> driver_;  ///< [t][k]
-  double committed_elastic_ = 0.0, committed_branch_ = 0.0, committed_rate_ = 0.0;
+  std::vector<double> hist_;                ///< [t][j][k]
+  std::vector<double> driver_;              ///< [t][k]
+  mutable double committed_elastic_ = 0.0;  ///< valid unless spring_stale_
+  double committed_branch_ = 0.0, committed_rate_ = 0.0;
   double step_dissipation_ = 0.0, total_dissipation_ = 0.0;
+  VecX committed_u_;                   ///< u of the last commit while its spring energy is pending
+  mutable bool spring_stale_ = false;  ///< committed_elastic_ is still to be computed from committed_u_
+  /// At a commit with bookkeeping: W_e(u) is computed lazily (committed_elastic_energy()).
+  void defer_spring_energy(const VecX& u) {
+    committed_u_ = u;
+    spring_stale_ = true;
+  }
 
   // trial
   double dt_ = 0.0;

@@ -257,3 +257,81 @@ TEST(Newton, ConjugateGradientLinearSolverGivesTheDirectAnswer) {
 
 }  // namespace
 }  // namespace tmlab::tm
+
+namespace tmlab::tm {
+namespace {
+
+TEST(Newton, CholmodLinearSolverGivesTheDirectAnswer) {
+  // Oracle: the first two elastica load steps with CHOLMOD's LL^T inside Newton against Eigen's
+  // LDL^T (the default): the answers equal to round-off (the number of iterations may differ: the
+  // slender beam's round-off floor is reached along slightly different paths).
+  Elastica e;
+  const MechanicalSystem sys = e.system();
+  VecX u_direct = VecX::Zero(sys.model().num_dofs()), u_chol = u_direct;
+  ConstrainedLinearSolver direct, chol(NewtonLinearSolver::Cholmod);
+  for (double t : {0.025, 0.05}) {
+    StaticResidual r1(sys, t, u_direct), r2(sys, t, u_chol);
+    const NewtonResult a = newton_solve(r1, sys.bc(), t, u_direct, NewtonOptions{}, direct);
+    const NewtonResult b = newton_solve(r2, sys.bc(), t, u_chol, NewtonOptions{}, chol);
+    ASSERT_TRUE(a.converged);
+    ASSERT_TRUE(b.converged);
+  }
+  EXPECT_EQ(chol.fallbacks(), 0);
+  EXPECT_GT(u_direct.lpNorm<Eigen::Infinity>(), 0.0);
+  EXPECT_LT((u_chol - u_direct).lpNorm<Eigen::Infinity>(), 1e-10 * u_direct.lpNorm<Eigen::Infinity>());
+
+  // The StaticSolver takes the choice from NewtonOptions.
+  NewtonOptions o;
+  o.linear_solver = NewtonLinearSolver::Cholmod;
+  StaticSolver solver(sys, o);
+  VecX u = VecX::Zero(sys.model().num_dofs());
+  ASSERT_TRUE(solver.advance(0.0, 0.025, u).newton.converged);
+  EXPECT_EQ(solver.linear_solver().kind(), NewtonLinearSolver::Cholmod);
+  VecX u_ref = VecX::Zero(sys.model().num_dofs());
+  StaticResidual r(sys, 0.025, u_ref);
+  ConstrainedLinearSolver direct2;
+  ASSERT_TRUE(newton_solve(r, sys.bc(), 0.025, u_ref, NewtonOptions{}, direct2).converged);
+  EXPECT_LT((u - u_ref).lpNorm<Eigen::Infinity>(), 1e-10 * u_ref.lpNorm<Eigen::Infinity>());
+}
+
+TEST(Newton, CholmodFallsBackToLdltOnAnIndefiniteTangent) {
+  // A symmetric indefinite (non-singular) matrix with one constrained DOF: LL^T does not exist,
+  // the solve is done by LDL^T (counted) and gives the exact solution; an SPD matrix is not counted.
+  DirichletCondition fix;
+  fix.name = "fix";
+  fix.nodes = {1};
+  fix.components = {true, false, false};
+  const DirichletSet bc(2, {fix});
+  SpMat J(6, 6);
+  std::vector<Eigen::Triplet<double>> t;
+  const double d[6] = {2.0, -3.0, 5.0, 7.0, 4.0, 6.0};  // DOF 3 (node 1, x) is constrained
+  for (int i = 0; i < 6; ++i) t.emplace_back(i, i, d[i]);
+  for (int i = 0; i + 1 < 6; ++i) {
+    t.emplace_back(i, i + 1, 0.5);
+    t.emplace_back(i + 1, i, 0.5);
+  }
+  J.setFromTriplets(t.begin(), t.end());
+  const VecX rhs = (VecX(6) << 1.0, 2.0, -1.0, 0.0, 3.0, 0.5).finished();
+  VecX du_c = VecX::Zero(6);
+  du_c[3] = 0.25;
+  ConstrainedLinearSolver chol(NewtonLinearSolver::Cholmod), direct;
+  VecX a, b;
+  chol.solve(J, rhs, bc, du_c, true, a);
+  direct.solve(J, rhs, bc, du_c, true, b);
+  EXPECT_EQ(chol.fallbacks(), 1);
+  EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-14);
+  EXPECT_DOUBLE_EQ(a[3], 0.25);
+  // The free rows hold: (J du)_f = rhs_f.
+  const VecX Jdu = J * a;
+  for (int i : {0, 1, 2, 4, 5}) EXPECT_NEAR(Jdu[i], rhs[i], 1e-13) << i;
+
+  SpMat K = J;
+  K.coeffRef(1, 1) = 3.0;  // now positive definite
+  chol.solve(K, rhs, bc, du_c, true, a);
+  direct.solve(K, rhs, bc, du_c, true, b);
+  EXPECT_EQ(chol.fallbacks(), 1);
+  EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-14);
+}
+
+}  // namespace
+}  // namespace tmlab::tm
