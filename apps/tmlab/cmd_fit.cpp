@@ -13,6 +13,7 @@
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "core/results/json_number.hpp"
 #include "core/results/run_output.hpp"
 
 #include <nlohmann/json.hpp>
@@ -35,9 +36,6 @@ std::pair<std::string, double> name_value(const std::string& option, const std::
   return {s.substr(0, eq), parse_double(option + " " + s.substr(0, eq), s.substr(eq + 1))};
 }
 
-/// A JSON number, or null for infinity / NaN (JSON has neither).
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fit::FitOptions& o,
                        const fit::ModelSpec& spec) {
   using nlohmann::json;
@@ -53,8 +51,8 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                                {"unit", p.unit},
                                {"fixed", p.fixed},
                                {"transform", p.transform},
-                               {"standard_error", num(p.standard_error)},
-                               {"interval95", {num(p.lower95), num(p.upper95)}},
+                               {"standard_error", finite_or_null(p.standard_error)},
+                               {"interval95", {finite_or_null(p.lower95), finite_or_null(p.upper95)}},
                                {"identifiable", p.identifiable}});
   j["correlation"] = {{"parameters", r.free_names}, {"matrix", r.correlation}};
   j["cost"] = {{"kind", r.cost_name}, {"value", r.cost}};
@@ -86,8 +84,8 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                                   {"t_initial", o.siman_t_initial},
                                   {"t_min", o.siman_t_min},
                                   {"energy", "ln(cost)"}};
-  for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(num(c));
-  for (const double c : r.global_costs) j["global_stage"]["surrogate_costs"].push_back(num(c));
+  for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(finite_or_null(c));
+  for (const double c : r.global_costs) j["global_stage"]["surrogate_costs"].push_back(finite_or_null(c));
   j["priors"] = json::array();
   for (const auto& q : pr.priors)
     j["priors"].push_back({{"parameter", q.parameter}, {"mean", q.mean}, {"sd", q.sd}});
@@ -102,12 +100,13 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
   j["notes"] = r.notes;
   if (!r.profile.parameter.empty()) {
     json pts = json::array();
-    for (const auto& q : r.profile.points) pts.push_back({{"value", q.value}, {"sse_N2", num(q.sse)}});
+    for (const auto& q : r.profile.points)
+      pts.push_back({{"value", q.value}, {"sse_N2", finite_or_null(q.sse)}});
     j["profile"] = {{"parameter", r.profile.parameter},
                     {"points", pts},
                     {"interval95",
-                     {r.profile.lower_found ? num(r.profile.lower95) : json(nullptr),
-                      r.profile.upper_found ? num(r.profile.upper95) : json(nullptr)}},
+                     {r.profile.lower_found ? finite_or_null(r.profile.lower95) : json(nullptr),
+                      r.profile.upper_found ? finite_or_null(r.profile.upper95) : json(nullptr)}},
                     {"criterion", "n ln(SSE/SSE_min) <= chi2_1(0.95); null: beyond the grid"}};
   }
   j["tests"] = json::array();
