@@ -13,6 +13,7 @@
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "core/results/json_number.hpp"
 #include "core/results/run_output.hpp"
 
 #include <nlohmann/json.hpp>
@@ -35,9 +36,6 @@ std::pair<std::string, double> name_value(const std::string& option, const std::
   return {s.substr(0, eq), parse_double(option + " " + s.substr(0, eq), s.substr(eq + 1))};
 }
 
-/// A JSON number, or null for infinity / NaN (JSON has neither).
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
 nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fit::FitOptions& o,
                        const fit::ModelSpec& spec) {
   using nlohmann::json;
@@ -53,8 +51,8 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                                {"unit", p.unit},
                                {"fixed", p.fixed},
                                {"transform", p.transform},
-                               {"standard_error", num(p.standard_error)},
-                               {"interval95", {num(p.lower95), num(p.upper95)}},
+                               {"standard_error", finite_or_null(p.standard_error)},
+                               {"interval95", {finite_or_null(p.lower95), finite_or_null(p.upper95)}},
                                {"identifiable", p.identifiable}});
   j["correlation"] = {{"parameters", r.free_names}, {"matrix", r.correlation}};
   j["cost"] = {{"kind", r.cost_name}, {"value", r.cost}};
@@ -86,8 +84,8 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                                   {"t_initial", o.siman_t_initial},
                                   {"t_min", o.siman_t_min},
                                   {"energy", "ln(cost)"}};
-  for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(num(c));
-  for (const double c : r.global_costs) j["global_stage"]["surrogate_costs"].push_back(num(c));
+  for (const double c : r.start_costs) j["global_stage"]["start_costs"].push_back(finite_or_null(c));
+  for (const double c : r.global_costs) j["global_stage"]["surrogate_costs"].push_back(finite_or_null(c));
   j["priors"] = json::array();
   for (const auto& q : pr.priors)
     j["priors"].push_back({{"parameter", q.parameter}, {"mean", q.mean}, {"sd", q.sd}});
@@ -102,18 +100,266 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
   j["notes"] = r.notes;
   if (!r.profile.parameter.empty()) {
     json pts = json::array();
-    for (const auto& q : r.profile.points) pts.push_back({{"value", q.value}, {"sse_N2", num(q.sse)}});
+    for (const auto& q : r.profile.points)
+      pts.push_back({{"value", q.value}, {"sse_N2", finite_or_null(q.sse)}});
     j["profile"] = {{"parameter", r.profile.parameter},
                     {"points", pts},
                     {"interval95",
-                     {r.profile.lower_found ? num(r.profile.lower95) : json(nullptr),
-                      r.profile.upper_found ? num(r.profile.upper95) : json(nullptr)}},
+                     {r.profile.lower_found ? finite_or_null(r.profile.lower95) : json(nullptr),
+                      r.profile.upper_found ? finite_or_null(r.profile.upper95) : json(nullptr)}},
                     {"criterion", "n ln(SSE/SSE_min) <= chi2_1(0.95); null: beyond the grid"}};
   }
   j["tests"] = json::array();
   for (std::size_t k = 0; k < pr.data.test_ids.size(); ++k)
     j["tests"].push_back({{"id", pr.data.test_ids[k]}, {"weight", pr.data.weights[k]}});
   return j;
+}
+
+/// A whole number 1..10000 for option `key`, `fallback` when it is not given.
+int positive_int(const Parsed& p, const std::string& key, int fallback) {
+  if (!p.has(key)) return fallback;
+  const double v = parse_double(key, p.get(key));
+  if (!(v >= 1.0 && v <= 10000.0 && v == std::floor(v)))
+    throw UsageError(key + " must be a whole number 1..10000");
+  return int(v);
+}
+
+/// Every --prior NAME=MEAN:SD.
+std::vector<fit::Prior> parse_priors(const Parsed& p) {
+  std::vector<fit::Prior> priors;
+  for (const auto& s : p.all("--prior")) {
+    const std::size_t eq = s.find('='), colon = s.find(':', eq == std::string::npos ? 0 : eq);
+    if (eq == std::string::npos || eq == 0 || colon == std::string::npos)
+      throw UsageError("--prior needs NAME=MEAN:SD, got '" + s + "'");
+    fit::Prior q;
+    q.parameter = s.substr(0, eq);
+    q.mean = parse_double("--prior " + q.parameter + " mean", s.substr(eq + 1, colon - eq - 1));
+    q.sd = parse_double("--prior " + q.parameter + " sd", s.substr(colon + 1));
+    if (!(q.sd > 0.0)) throw UsageError("--prior " + q.parameter + ": the sd must be positive");
+    priors.push_back(q);
+  }
+  return priors;
+}
+
+/// --mesh CELLS,LAYERS and --substeps of the FE-rig forward model.
+fit::FeRigOptions parse_fe_rig_options(const Parsed& p) {
+  fit::FeRigOptions fe;
+  if (p.has("--mesh")) {
+    const std::string m = p.get("--mesh");
+    const std::size_t comma = m.find(',');
+    if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
+    const double c = parse_double("--mesh cells", m.substr(0, comma)),
+                 l = parse_double("--mesh layers", m.substr(comma + 1));
+    if (!(c >= 2 && c <= 400 && c == std::floor(c) && l >= 1 && l <= 400 && l == std::floor(l)))
+      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
+    fe.mesh.cells = int(c);
+    fe.mesh.layers = int(l);
+  }
+  fe.substeps = positive_int(p, "--substeps", fe.substeps);
+  return fe;
+}
+
+/// What the command line asks for, parsed and checked (UsageError otherwise). The choices keep the
+/// words the user gave: the manifest records them.
+struct FitRequest {
+  fit::ModelSpec spec;
+  std::vector<std::pair<std::string, double>> fixes, weights;
+  std::string cost, global, forward;
+  fit::FitOptions options;
+  std::vector<fit::Prior> priors;
+  fit::FeRigOptions fe;
+};
+
+FitRequest parse_fit_request(const Parsed& p) {
+  FitRequest q;
+  q.spec = fit::parse_model_spec(p.get("--model"));
+  for (const auto& s : p.all("--fix")) q.fixes.push_back(name_value("--fix", s));
+  for (const auto& s : p.all("--weight")) q.weights.push_back(name_value("--weight", s));
+  fit::FitOptions& o = q.options;
+  q.cost = p.get("--cost", "least_squares");
+  if (q.cost == "l1")
+    o.cost = fit::Cost::L1;
+  else if (q.cost != "least_squares")
+    throw UsageError("--cost must be least_squares or l1 (got '" + q.cost + "')");
+  o.starts = positive_int(p, "--starts", o.starts);
+  o.threads = positive_int(p, "--threads", 2);
+  o.seed = (unsigned long)positive_int(p, "--seed", 1);
+  o.geodesic = p.has("--geodesic");
+  o.profile = !p.has("--no-profile");
+  if (!p.has("--quiet"))
+    o.progress = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
+  o.local_runs = positive_int(p, "--local-runs", o.local_runs);
+  o.siman_evaluations = positive_int(p, "--siman-evaluations", o.siman_evaluations);
+  q.global = p.get("--global", "multistart");
+  if (q.global == "siman")
+    o.global = fit::GlobalStage::Siman;
+  else if (q.global != "multistart")
+    throw UsageError("--global must be multistart or siman (got '" + q.global + "')");
+  q.priors = parse_priors(p);
+  q.fe = parse_fe_rig_options(p);
+  // closed_form by default: an FE-rig fit can take minutes, so it is asked for, not fallen into.
+  q.forward = p.get("--forward", "closed_form");
+  if (q.forward != "auto" && q.forward != "closed_form" && q.forward != "fe_rig")
+    throw UsageError("--forward must be auto, closed_form or fe_rig (got '" + q.forward + "')");
+  return q;
+}
+
+/// The problem with the asked forward model, the priors and --noise; `why_closed_form` says why
+/// the closed form does not apply when the FE rig was chosen for that reason.
+fit::Problem build_problem(const Parsed& p, const measured::DataSet& data, const FitRequest& q,
+                           std::string& why_closed_form) {
+  fit::Problem problem;
+  if (q.forward == "closed_form") {
+    problem = fit::make_surrogate_problem(data, q.spec, q.fixes, q.weights);
+  } else if (q.forward == "fe_rig") {
+    problem = fit::make_fe_rig_problem(data, q.spec, q.fixes, q.weights, q.fe, &why_closed_form);
+  } else {
+    // auto: the closed form when it covers the data and the law, else the FE rig.
+    try {
+      problem = fit::make_surrogate_problem(data, q.spec, q.fixes, q.weights);
+    } catch (const Error& e) {
+      why_closed_form = e.what();
+      problem = fit::make_fe_rig_problem(data, q.spec, q.fixes, q.weights, q.fe);
+      std::cout << "no closed form (" << why_closed_form << "): the FE rig forward model\n";
+    }
+  }
+  problem.priors = q.priors;
+  if (p.has("--noise")) {
+    problem.noise_sigma = parse_double("--noise", p.get("--noise"));
+    if (!(problem.noise_sigma > 0.0)) throw UsageError("--noise must be positive (N)");
+  }
+  return problem;
+}
+
+/// --out, or results/fit/<data>-<law tag> (a name checked for the results folder).
+fs::path result_dir(const Parsed& p, const measured::DataSet& data, const fit::ModelSpec& spec) {
+  std::string law_tag = spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
+                        (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
+  const fs::path dir = p.has("--out")
+                           ? fs::path(p.get("--out"))
+                           : fs::path(tmlab_root()) / "results" / "fit" / (data.meta.name + "-" + law_tag);
+  if (!p.has("--out")) {
+    const std::string why = result_name_problem(data.meta.name + "-" + law_tag);
+    if (!why.empty()) throw Error("fit: result name: " + why);
+  }
+  return dir;
+}
+
+void print_fit_plan(const measured::DataSet& data, const FitRequest& q, const fit::Problem& problem,
+                    const std::string& why_closed_form) {
+  std::cout << "fit " << data.meta.name << " with " << q.spec.text << " (" << problem.model->description()
+            << ")\n";
+  if (problem.global_model)
+    std::cout << "global stage (" << q.global
+              << ") on the closed form: " << problem.global_model->description()
+              << "; local stage and every reported number: " << problem.model->name() << "\n";
+  else if (q.forward == "fe_rig" && !why_closed_form.empty())
+    std::cout << "global stage on the FE rig itself (no closed form: " << why_closed_form << ")\n";
+}
+
+/// The manifest's config block: the request as the user wrote it.
+nlohmann::json manifest_config(const Parsed& p, const FitRequest& q) {
+  const fit::FitOptions& o = q.options;
+  return {{"model", q.spec.text},
+          {"cost", q.cost},
+          {"starts", o.starts},
+          {"threads", o.threads},
+          {"seed", o.seed},
+          {"geodesic", o.geodesic},
+          {"profile", o.profile},
+          {"fix", p.all("--fix")},
+          {"weight", p.all("--weight")},
+          {"forward", q.forward},
+          {"global", q.global},
+          {"prior", p.all("--prior")},
+          {"mesh", {q.fe.mesh.cells, q.fe.mesh.layers}},
+          {"substeps", q.fe.substeps}};
+}
+
+/// fit.h5: per test the data, the model's force and the residual; the profile; the correlation.
+void write_fit_h5(const fs::path& path, const measured::DataSet& data, const fit::FitResult& r) {
+  H5File h5 = H5File::create(path.string());
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k < data.tests.size(); ++k) {
+    const measured::Test& t = data.tests[k];
+    char g[32];
+    std::snprintf(g, sizeof g, "/tests/%03zu", k);
+    std::vector<double> model(r.prediction.begin() + long(offset),
+                              r.prediction.begin() + long(offset + t.size()));
+    std::vector<double> res(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) res[i] = model[i] - t.force_N[i];
+    h5.write(std::string(g) + "/time_s", t.time_s, {t.size()});
+    h5.write(std::string(g) + "/displacement_m", t.displacement_m, {t.size()});
+    h5.write(std::string(g) + "/force_N", t.force_N, {t.size()});
+    h5.write(std::string(g) + "/model_force_N", model, {t.size()});
+    h5.write(std::string(g) + "/residual_N", res, {t.size()});
+    h5.set_attribute(g, "id", t.id);
+    offset += t.size();
+  }
+  if (!r.profile.points.empty()) {
+    std::vector<double> v, s;
+    for (const auto& q : r.profile.points) {
+      v.push_back(q.value);
+      s.push_back(q.sse);
+    }
+    h5.write("/profile/value", v, {v.size()});
+    h5.write("/profile/sse_N2", s, {s.size()});
+    h5.set_attribute("/profile", "parameter", r.profile.parameter);
+  }
+  std::vector<double> corr;
+  for (const auto& row : r.correlation) corr.insert(corr.end(), row.begin(), row.end());
+  if (!corr.empty()) h5.write("/correlation", corr, {r.correlation.size(), r.correlation.size()});
+  h5.close();
+}
+
+/// The plots (calibration/fit/python/tmlab_fit_plot.py) into the staging folder: "ok", "failed
+/// (why)" or "skipped (--no-plots)" for the summary.
+std::string make_fit_plots(const Parsed& p, const RunOutput& out, const measured::DataSet& data,
+                           const fit::ModelSpec& spec, const fit::FitResult& r) {
+  if (p.has("--no-plots")) return "skipped (--no-plots)";
+  const ProcessStatus ps =
+      run_python(fs::path(tmlab_root()) / "calibration" / "fit" / "python" / "tmlab_fit_plot.py",
+                 {out.staging_dir().string(), data.meta.name + ": " + spec.text + " (" + r.model_name + ")"},
+                 ProcessOutput::discard());
+  const std::string plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+  if (!ps.ok()) std::cerr << "tmlab fit: plots " << plots << "\n";
+  return plots;
+}
+
+/// The parameter table, the cost and its forward model, the profile, the confounded pairs and notes.
+void print_fit_report(const fit::FitResult& r, const fit::Problem& problem) {
+  std::cout << std::left << std::setw(10) << "parameter" << std::right << std::setw(14) << "value"
+            << std::setw(6) << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval"
+            << "\n";
+  for (const auto& q : r.parameters)
+    std::cout << std::left << std::setw(10) << q.name << std::right << std::setw(14)
+              << significant(q.value, 6) << std::setw(6) << q.unit << std::setw(14)
+              << (q.fixed                           ? "fixed"
+                  : std::isfinite(q.standard_error) ? significant(q.standard_error, 3)
+                                                    : "inf")
+              << std::setw(30)
+              << (q.fixed ? "" : "[" + significant(q.lower95, 5) + ", " + significant(q.upper95, 5) + "]")
+              << "\n";
+  std::cout << "cost (" << r.cost_name << ") " << significant(r.cost, 6) << "; residual RMS "
+            << significant(r.rms, 4) << " N = " << significant(r.rms_percent_peak, 3) << " % of peak "
+            << significant(problem.data.peak_force, 5) << " N; AIC " << significant(r.aic, 7) << ", BIC "
+            << significant(r.bic, 7) << "\n"
+            << r.forward_solves << " forward solves (" << r.model_name << ")"
+            << (r.global_solves ? " + " + std::to_string(r.global_solves) + " (" + r.global_model_name +
+                                      ", " + r.global_stage + " global stage)"
+                                : std::string(" (") + r.global_stage + " global stage)")
+            << " on " << r.threads << " threads in " << significant(r.wall_seconds, 3) << " s\n"
+            << "the numbers above are from the forward model '" << r.model_name << "'\n";
+  if (!r.profile.parameter.empty())
+    std::cout << "profile likelihood of " << r.profile.parameter << ": 95 % interval ["
+              << (r.profile.lower_found ? significant(r.profile.lower95, 5) : std::string("beyond grid"))
+              << ", "
+              << (r.profile.upper_found ? significant(r.profile.upper95, 5) : std::string("beyond grid"))
+              << "]\n";
+  for (const auto& c : r.confounded)
+    std::cout << "confounded: " << c.a << " and " << c.b << " (correlation " << significant(c.correlation, 4)
+              << "): " << c.note << "\n";
+  for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
 }
 
 }  // namespace
@@ -128,205 +374,24 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
   const fs::path csv = p.positional[0];
   const measured::DataSet data = measured::read_data_set(csv);
-  const fit::ModelSpec spec = fit::parse_model_spec(p.get("--model"));
-  std::vector<std::pair<std::string, double>> fixes, weights;
-  for (const auto& s : p.all("--fix")) fixes.push_back(name_value("--fix", s));
-  for (const auto& s : p.all("--weight")) weights.push_back(name_value("--weight", s));
-  fit::FitOptions o;
-  const std::string cost = p.get("--cost", "least_squares");
-  if (cost == "l1")
-    o.cost = fit::Cost::L1;
-  else if (cost != "least_squares")
-    throw UsageError("--cost must be least_squares or l1 (got '" + cost + "')");
-  auto positive_int = [&](const std::string& key, int fallback) {
-    if (!p.has(key)) return fallback;
-    const double v = parse_double(key, p.get(key));
-    if (!(v >= 1.0 && v <= 10000.0 && v == std::floor(v)))
-      throw UsageError(key + " must be a whole number 1..10000");
-    return int(v);
-  };
-  o.starts = positive_int("--starts", o.starts);
-  o.threads = positive_int("--threads", 2);
-  o.seed = (unsigned long)positive_int("--seed", 1);
-  o.geodesic = p.has("--geodesic");
-  o.profile = !p.has("--no-profile");
-  if (!p.has("--quiet"))
-    o.progress = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
-  o.local_runs = positive_int("--local-runs", o.local_runs);
-  o.siman_evaluations = positive_int("--siman-evaluations", o.siman_evaluations);
-  const std::string global = p.get("--global", "multistart");
-  if (global == "siman")
-    o.global = fit::GlobalStage::Siman;
-  else if (global != "multistart")
-    throw UsageError("--global must be multistart or siman (got '" + global + "')");
-  std::vector<fit::Prior> priors;
-  for (const auto& s : p.all("--prior")) {
-    // NAME=MEAN:SD
-    const std::size_t eq = s.find('='), colon = s.find(':', eq == std::string::npos ? 0 : eq);
-    if (eq == std::string::npos || eq == 0 || colon == std::string::npos)
-      throw UsageError("--prior needs NAME=MEAN:SD, got '" + s + "'");
-    fit::Prior q;
-    q.parameter = s.substr(0, eq);
-    q.mean = parse_double("--prior " + q.parameter + " mean", s.substr(eq + 1, colon - eq - 1));
-    q.sd = parse_double("--prior " + q.parameter + " sd", s.substr(colon + 1));
-    if (!(q.sd > 0.0)) throw UsageError("--prior " + q.parameter + ": the sd must be positive");
-    priors.push_back(q);
-  }
-  fit::FeRigOptions fe;
-  if (p.has("--mesh")) {
-    const std::string m = p.get("--mesh");
-    const std::size_t comma = m.find(',');
-    if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
-    const double c = parse_double("--mesh cells", m.substr(0, comma)),
-                 l = parse_double("--mesh layers", m.substr(comma + 1));
-    if (!(c >= 2 && c <= 400 && c == std::floor(c) && l >= 1 && l <= 400 && l == std::floor(l)))
-      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
-    fe.mesh.cells = int(c);
-    fe.mesh.layers = int(l);
-  }
-  fe.substeps = positive_int("--substeps", fe.substeps);
-  // closed_form by default: an FE-rig fit can take minutes, so it is asked for, not fallen into.
-  const std::string forward = p.get("--forward", "closed_form");
-  if (forward != "auto" && forward != "closed_form" && forward != "fe_rig")
-    throw UsageError("--forward must be auto, closed_form or fe_rig (got '" + forward + "')");
-  fit::Problem problem;
+  const FitRequest q = parse_fit_request(p);
   std::string why_closed_form;
-  if (forward == "closed_form") {
-    problem = fit::make_surrogate_problem(data, spec, fixes, weights);
-  } else if (forward == "fe_rig") {
-    problem = fit::make_fe_rig_problem(data, spec, fixes, weights, fe, &why_closed_form);
-  } else {
-    // auto: the closed form when it covers the data and the law, else the FE rig.
-    try {
-      problem = fit::make_surrogate_problem(data, spec, fixes, weights);
-    } catch (const Error& e) {
-      why_closed_form = e.what();
-      problem = fit::make_fe_rig_problem(data, spec, fixes, weights, fe);
-      std::cout << "no closed form (" << why_closed_form << "): the FE rig forward model\n";
-    }
-  }
-  problem.priors = priors;
-  if (p.has("--noise")) {
-    problem.noise_sigma = parse_double("--noise", p.get("--noise"));
-    if (!(problem.noise_sigma > 0.0)) throw UsageError("--noise must be positive (N)");
-  }
-
-  std::string law_tag = spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
-                        (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
-  const fs::path dir = p.has("--out")
-                           ? fs::path(p.get("--out"))
-                           : fs::path(tmlab_root()) / "results" / "fit" / (data.meta.name + "-" + law_tag);
-  if (!p.has("--out")) {
-    const std::string why = result_name_problem(data.meta.name + "-" + law_tag);
-    if (!why.empty()) throw Error("fit: result name: " + why);
-  }
-  std::cout << "fit " << data.meta.name << " with " << spec.text << " (" << problem.model->description()
-            << ")\n";
-  if (problem.global_model)
-    std::cout << "global stage (" << global << ") on the closed form: " << problem.global_model->description()
-              << "; local stage and every reported number: " << problem.model->name() << "\n";
-  else if (forward == "fe_rig" && !why_closed_form.empty())
-    std::cout << "global stage on the FE rig itself (no closed form: " << why_closed_form << ")\n";
+  const fit::Problem problem = build_problem(p, data, q, why_closed_form);
+  const fs::path dir = result_dir(p, data, q.spec);
+  print_fit_plan(data, q, problem, why_closed_form);
   RunOutput out(dir, &std::cerr);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
-    mi.config = {{"model", spec.text},
-                 {"cost", cost},
-                 {"starts", o.starts},
-                 {"threads", o.threads},
-                 {"seed", o.seed},
-                 {"geodesic", o.geodesic},
-                 {"profile", o.profile},
-                 {"fix", p.all("--fix")},
-                 {"weight", p.all("--weight")},
-                 {"forward", forward},
-                 {"global", global},
-                 {"prior", p.all("--prior")},
-                 {"mesh", {fe.mesh.cells, fe.mesh.layers}},
-                 {"substeps", fe.substeps}};
+    mi.config = manifest_config(p, q);
     mi.input_files = {csv, measured::metadata_path(csv)};
     out.write_json("manifest.json", make_manifest(mi));
-    const fit::FitResult r = fit::fit(problem, o);
-    const nlohmann::json fj = to_json(r, problem, o, spec);
-    out.write_json("fit.json", fj);
-    {
-      H5File h5 = H5File::create(out.file("fit.h5").string());
-      std::size_t offset = 0;
-      for (std::size_t k = 0; k < data.tests.size(); ++k) {
-        const measured::Test& t = data.tests[k];
-        char g[32];
-        std::snprintf(g, sizeof g, "/tests/%03zu", k);
-        std::vector<double> model(r.prediction.begin() + long(offset),
-                                  r.prediction.begin() + long(offset + t.size()));
-        std::vector<double> res(t.size());
-        for (std::size_t i = 0; i < t.size(); ++i) res[i] = model[i] - t.force_N[i];
-        h5.write(std::string(g) + "/time_s", t.time_s, {t.size()});
-        h5.write(std::string(g) + "/displacement_m", t.displacement_m, {t.size()});
-        h5.write(std::string(g) + "/force_N", t.force_N, {t.size()});
-        h5.write(std::string(g) + "/model_force_N", model, {t.size()});
-        h5.write(std::string(g) + "/residual_N", res, {t.size()});
-        h5.set_attribute(g, "id", t.id);
-        offset += t.size();
-      }
-      if (!r.profile.points.empty()) {
-        std::vector<double> v, s;
-        for (const auto& q : r.profile.points) {
-          v.push_back(q.value);
-          s.push_back(q.sse);
-        }
-        h5.write("/profile/value", v, {v.size()});
-        h5.write("/profile/sse_N2", s, {s.size()});
-        h5.set_attribute("/profile", "parameter", r.profile.parameter);
-      }
-      std::vector<double> corr;
-      for (const auto& row : r.correlation) corr.insert(corr.end(), row.begin(), row.end());
-      if (!corr.empty()) h5.write("/correlation", corr, {r.correlation.size(), r.correlation.size()});
-      h5.close();
-    }
-    std::string plots = "skipped (--no-plots)";
-    if (!p.has("--no-plots")) {
-      const ProcessStatus ps = run_python(
-          fs::path(tmlab_root()) / "calibration" / "fit" / "python" / "tmlab_fit_plot.py",
-          {out.staging_dir().string(), data.meta.name + ": " + spec.text + " (" + r.model_name + ")"},
-          ProcessOutput::discard());
-      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
-      if (!ps.ok()) std::cerr << "tmlab fit: plots " << plots << "\n";
-    }
-    // Report.
-    std::cout << std::left << std::setw(10) << "parameter" << std::right << std::setw(14) << "value"
-              << std::setw(6) << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval"
-              << "\n";
-    for (const auto& q : r.parameters)
-      std::cout << std::left << std::setw(10) << q.name << std::right << std::setw(14)
-                << significant(q.value, 6) << std::setw(6) << q.unit << std::setw(14)
-                << (q.fixed                           ? "fixed"
-                    : std::isfinite(q.standard_error) ? significant(q.standard_error, 3)
-                                                      : "inf")
-                << std::setw(30)
-                << (q.fixed ? "" : "[" + significant(q.lower95, 5) + ", " + significant(q.upper95, 5) + "]")
-                << "\n";
-    std::cout << "cost (" << r.cost_name << ") " << significant(r.cost, 6) << "; residual RMS "
-              << significant(r.rms, 4) << " N = " << significant(r.rms_percent_peak, 3) << " % of peak "
-              << significant(problem.data.peak_force, 5) << " N; AIC " << significant(r.aic, 7) << ", BIC "
-              << significant(r.bic, 7) << "\n"
-              << r.forward_solves << " forward solves (" << r.model_name << ")"
-              << (r.global_solves ? " + " + std::to_string(r.global_solves) + " (" + r.global_model_name +
-                                        ", " + r.global_stage + " global stage)"
-                                  : std::string(" (") + r.global_stage + " global stage)")
-              << " on " << r.threads << " threads in " << significant(r.wall_seconds, 3) << " s\n"
-              << "the numbers above are from the forward model '" << r.model_name << "'\n";
-    if (!r.profile.parameter.empty())
-      std::cout << "profile likelihood of " << r.profile.parameter << ": 95 % interval ["
-                << (r.profile.lower_found ? significant(r.profile.lower95, 5) : std::string("beyond grid"))
-                << ", "
-                << (r.profile.upper_found ? significant(r.profile.upper95, 5) : std::string("beyond grid"))
-                << "]\n";
-    for (const auto& c : r.confounded)
-      std::cout << "confounded: " << c.a << " and " << c.b << " (correlation "
-                << significant(c.correlation, 4) << "): " << c.note << "\n";
-    for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
-    nlohmann::json summary = {{"model", spec.text},
+    const fit::FitResult r = fit::fit(problem, q.options);
+    out.write_json("fit.json", to_json(r, problem, q.options, q.spec));
+    write_fit_h5(out.file("fit.h5"), data, r);
+    const std::string plots = make_fit_plots(p, out, data, q.spec, r);
+    print_fit_report(r, problem);
+    nlohmann::json summary = {{"model", q.spec.text},
                               {"forward_model", r.model_name},
                               {"residual_rms_percent_of_peak", r.rms_percent_peak},
                               {"aic", r.aic},

@@ -239,11 +239,12 @@ PhaseLabels classify_phases(const std::vector<double>& t, const std::vector<doub
   return out;
 }
 
-ResidualStudy study_residual(const std::vector<SeriesView>& series, double sign, double scale,
-                             const Thresholds& th) {
-  ResidualStudy s;
+namespace {
+
+/// The pooled residual and the size, RMS, mean, largest value and noise level of `s`; the noise
+/// variance of each test weighted by its samples.
+std::vector<double> pool_residuals(const std::vector<SeriesView>& series, ResidualStudy& s) {
   std::vector<double> all;
-  std::vector<double> sig2;  // per-test noise variance, weighted by samples
   double wsum = 0.0, var = 0.0;
   for (const auto& v : series) {
     all.insert(all.end(), v.residual.begin(), v.residual.end());
@@ -256,192 +257,250 @@ ResidualStudy study_residual(const std::vector<SeriesView>& series, double sign,
   s.mean = mean_of(all);
   for (const double v : all) s.max_abs = std::max(s.max_abs, std::abs(v));
   s.noise_sigma = wsum > 0.0 ? std::sqrt(var / wsum) : 0.0;
-  const std::string a = significant(th.alpha, 2);  // the level, as written in the thresholds
+  return all;
+}
 
-  // Autocorrelation and signs: per test, combined (Ljung-Box Q and its lags add over independent
-  // tests; the runs test's counts add likewise), so no lag crosses from one test into the next.
+/// Autocorrelation and signs, per test, combined: Ljung-Box Q and its lags add over independent
+/// tests, the runs test's counts (runs, their mean and variance for noise) likewise, so no lag
+/// crosses from one test into the next; Durbin-Watson's numerator and denominator add too.
+struct SerialSums {
   double q = 0.0;
   int lags = 0;
   double runs = 0.0, mu = 0.0, varr = 0.0;
-  std::vector<double> dw_num_den(2, 0.0);
+  // Durbin-Watson's numerator and denominator. Kept in memory as before the split: as two scalars
+  // the compiler fuses the denominator's multiply-add (FMA) and the last digit of DW changes.
+  std::vector<double> dw_num_den = std::vector<double>(2, 0.0);
+};
+
+SerialSums serial_sums(const std::vector<SeriesView>& series) {
+  SerialSums m;
   for (const auto& v : series) {
     if (v.residual.size() >= 10) {
       const LjungBoxResult lb = ljung_box(v.residual);
-      q += lb.q;
-      lags += lb.lags;
+      m.q += lb.q;
+      m.lags += lb.lags;
     }
     const RunsResult rr = runs_test(v.residual);
     if (rr.positive >= 2 && rr.negative >= 2) {
       const double n1 = double(rr.positive), n2 = double(rr.negative), n = n1 + n2;
-      runs += double(rr.runs);
-      mu += 2.0 * n1 * n2 / n + 1.0;
-      varr += 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n * n * (n - 1.0));
+      m.runs += double(rr.runs);
+      m.mu += 2.0 * n1 * n2 / n + 1.0;
+      m.varr += 2.0 * n1 * n2 * (2.0 * n1 * n2 - n) / (n * n * (n - 1.0));
     }
     for (std::size_t i = 0; i < v.residual.size(); ++i) {
-      dw_num_den[1] += v.residual[i] * v.residual[i];
-      if (i > 0) dw_num_den[0] += std::pow(v.residual[i] - v.residual[i - 1], 2);
+      m.dw_num_den[1] += v.residual[i] * v.residual[i];
+      if (i > 0) m.dw_num_den[0] += std::pow(v.residual[i] - v.residual[i - 1], 2);
     }
   }
-  {
-    Diagnostic d{"runs_test", kNaN, kNaN, "two-sided p < " + a + ": not noise", true, true, ""};
-    if (varr > 0.0) {
-      d.statistic = (runs - mu) / std::sqrt(varr);
-      d.p_value = 2.0 * gsl_cdf_ugaussian_Q(std::abs(d.statistic));
-      d.passed = !(d.p_value < th.alpha);
-      d.note = significant(runs, 6) + " runs of equal sign, " + significant(mu, 6) + " expected for noise";
-    }
-    s.diagnostics.push_back(d);
-  }
-  {
-    Diagnostic d{"ljung_box", kNaN, kNaN, "p = P(chi2_lags > Q) < " + a + ": autocorrelated", true, true, ""};
-    if (lags > 0) {
-      d.statistic = q;
-      d.p_value = gsl_cdf_chisq_Q(q, double(lags));
-      d.passed = !(d.p_value < th.alpha);
-      d.note = std::to_string(lags) + " lags summed over the tests";
-    }
-    s.diagnostics.push_back(d);
-  }
-  {
-    Diagnostic d{"durbin_watson",
-                 kNaN,
-                 kNaN,
-                 "about 2 for noise; < 1 strong positive autocorrelation (reported)",
-                 true,
-                 false,
-                 ""};
-    if (dw_num_den[1] > 0.0) {
-      d.statistic = dw_num_den[0] / dw_num_den[1];
-      d.passed = d.statistic >= 1.0;
-    }
-    s.diagnostics.push_back(d);
-  }
-  {
-    const JarqueBeraResult jb = jarque_bera(all);
-    Diagnostic d{"jarque_bera",
-                 jb.statistic,
-                 jb.p,
-                 "p < " + a + ": not normal (reported; heavy-tailed instrument noise fails it too)",
-                 true,
-                 false,
-                 "skewness " + significant(jb.skewness, 3) + ", kurtosis " + significant(jb.kurtosis, 3)};
-    d.passed = !(jb.p < th.alpha);
-    s.diagnostics.push_back(d);
-  }
-  {
-    Diagnostic d{"noise_ratio",
-                 kNaN,
-                 kNaN,
-                 "residual RMS / noise level > " + significant(th.noise_ratio, 3) + ": more than noise",
-                 true,
-                 false,
-                 "noise level " + significant(s.noise_sigma, 3) + " N from second differences of the data"};
-    if (s.noise_sigma > 0.0) {
-      d.statistic = s.rms / s.noise_sigma;
-      d.passed = d.statistic <= th.noise_ratio;
-    }
-    s.diagnostics.push_back(d);
-  }
-  // Periodicity: the most significant test (Bonferroni over the tests).
-  {
-    double best_p = 2.0;
-    for (const auto& v : series) {
-      const Periodicity pe = fisher_periodicity(v.t, v.residual);
-      if (!pe.uniform) continue;
-      const double p = std::min(1.0, pe.p * double(series.size()));
-      if (pe.cycles >= th.min_period_cycles && p < best_p) {
-        best_p = p;
-        s.period = pe;
-        s.period.p = p;
-      }
-    }
-    Diagnostic d{"periodicity",
-                 kNaN,
-                 kNaN,
-                 "Fisher g with p < " + a + " (Bonferroni over tests) at >= " +
-                     std::to_string(th.min_period_cycles) + " cycles per test: periodic",
-                 true,
-                 true,
-                 ""};
-    if (best_p <= 1.0) {
-      d.statistic = s.period.g;
-      d.p_value = s.period.p;
-      d.passed = !(s.period.p < th.alpha);
-      d.note = "largest ordinate at " + significant(s.period.frequency_hz, 3) + " Hz";
-    } else {
-      d.note =
-          "no uniformly sampled test with a peak at >= " + std::to_string(th.min_period_cycles) + " cycles";
-    }
-    s.diagnostics.push_back(d);
-  }
-  for (const auto& d : s.diagnostics)
-    if (d.decisive && !d.passed) s.structured = true;
+  return m;
+}
 
-  // Where it lives.
-  std::vector<std::vector<double>> ph(3), cyc;
-  std::vector<std::vector<double>> bins(5);
-  std::vector<double> bin_x(5, 0.0);
+// `a` in the rules below: the level th.alpha as written in the thresholds.
+
+Diagnostic runs_diagnostic(const SerialSums& m, const Thresholds& th, const std::string& a) {
+  Diagnostic d{"runs_test", kNaN, kNaN, "two-sided p < " + a + ": not noise", true, true, ""};
+  if (m.varr > 0.0) {
+    d.statistic = (m.runs - m.mu) / std::sqrt(m.varr);
+    d.p_value = 2.0 * gsl_cdf_ugaussian_Q(std::abs(d.statistic));
+    d.passed = !(d.p_value < th.alpha);
+    d.note = significant(m.runs, 6) + " runs of equal sign, " + significant(m.mu, 6) + " expected for noise";
+  }
+  return d;
+}
+
+Diagnostic ljung_box_diagnostic(const SerialSums& m, const Thresholds& th, const std::string& a) {
+  Diagnostic d{"ljung_box", kNaN, kNaN, "p = P(chi2_lags > Q) < " + a + ": autocorrelated", true, true, ""};
+  if (m.lags > 0) {
+    d.statistic = m.q;
+    d.p_value = gsl_cdf_chisq_Q(m.q, double(m.lags));
+    d.passed = !(d.p_value < th.alpha);
+    d.note = std::to_string(m.lags) + " lags summed over the tests";
+  }
+  return d;
+}
+
+Diagnostic durbin_watson_diagnostic(const SerialSums& m) {
+  Diagnostic d{
+      "durbin_watson", kNaN, kNaN, "about 2 for noise; < 1 strong positive autocorrelation (reported)", true,
+      false,           ""};
+  if (m.dw_num_den[1] > 0.0) {
+    d.statistic = m.dw_num_den[0] / m.dw_num_den[1];
+    d.passed = d.statistic >= 1.0;
+  }
+  return d;
+}
+
+Diagnostic jarque_bera_diagnostic(const std::vector<double>& all, const Thresholds& th,
+                                  const std::string& a) {
+  const JarqueBeraResult jb = jarque_bera(all);
+  Diagnostic d{"jarque_bera",
+               jb.statistic,
+               jb.p,
+               "p < " + a + ": not normal (reported; heavy-tailed instrument noise fails it too)",
+               true,
+               false,
+               "skewness " + significant(jb.skewness, 3) + ", kurtosis " + significant(jb.kurtosis, 3)};
+  d.passed = !(jb.p < th.alpha);
+  return d;
+}
+
+Diagnostic noise_ratio_diagnostic(const ResidualStudy& s, const Thresholds& th) {
+  Diagnostic d{"noise_ratio",
+               kNaN,
+               kNaN,
+               "residual RMS / noise level > " + significant(th.noise_ratio, 3) + ": more than noise",
+               true,
+               false,
+               "noise level " + significant(s.noise_sigma, 3) + " N from second differences of the data"};
+  if (s.noise_sigma > 0.0) {
+    d.statistic = s.rms / s.noise_sigma;
+    d.passed = d.statistic <= th.noise_ratio;
+  }
+  return d;
+}
+
+/// Periodicity: the most significant test (Bonferroni over the tests), kept in `period`.
+Diagnostic periodicity_diagnostic(const std::vector<SeriesView>& series, const Thresholds& th,
+                                  const std::string& a, Periodicity& period) {
+  double best_p = 2.0;
+  for (const auto& v : series) {
+    const Periodicity pe = fisher_periodicity(v.t, v.residual);
+    if (!pe.uniform) continue;
+    const double p = std::min(1.0, pe.p * double(series.size()));
+    if (pe.cycles >= th.min_period_cycles && p < best_p) {
+      best_p = p;
+      period = pe;
+      period.p = p;
+    }
+  }
+  Diagnostic d{"periodicity",
+               kNaN,
+               kNaN,
+               "Fisher g with p < " + a + " (Bonferroni over tests) at >= " +
+                   std::to_string(th.min_period_cycles) + " cycles per test: periodic",
+               true,
+               true,
+               ""};
+  if (best_p <= 1.0) {
+    d.statistic = period.g;
+    d.p_value = period.p;
+    d.passed = !(period.p < th.alpha);
+    d.note = "largest ordinate at " + significant(period.frequency_hz, 3) + " Hz";
+  } else {
+    d.note =
+        "no uniformly sampled test with a peak at >= " + std::to_string(th.min_period_cycles) + " cycles";
+  }
+  return d;
+}
+
+/// The residual sorted into groups: by phase (ramp, hold, unload), by cycle, by strain bin (five
+/// equal bins up to the largest strain, with the sum of the strains for their mean), and per test
+/// its mean ramp rate and RMS.
+struct ResidualGroups {
+  std::vector<std::vector<double>> phase = std::vector<std::vector<double>>(3), cycle;
+  std::vector<std::vector<double>> strain_bin = std::vector<std::vector<double>>(5);
+  std::vector<double> strain_sum = std::vector<double>(5, 0.0);
+  std::vector<double> test_rate, test_rms;
+};
+
+/// Sorts the residual into groups; appends each test's GroupStat (x: its mean ramp rate) to `by_test`.
+ResidualGroups group_residuals(const std::vector<SeriesView>& series, double sign, double scale,
+                               std::vector<GroupStat>& by_test) {
+  ResidualGroups g;
   double emax = 0.0;
   for (const auto& v : series)
     for (const double d : v.d) emax = std::max(emax, std::abs(d * scale));
-  std::vector<double> test_rate, test_rms;
   for (const auto& v : series) {
     const PhaseLabels pl = classify_phases(v.t, v.d, sign);
     double rsum = 0.0;
     int rn = 0;
     for (std::size_t i = 0; i < v.residual.size(); ++i) {
-      ph[std::size_t(pl.phase[i])].push_back(v.residual[i]);
+      g.phase[std::size_t(pl.phase[i])].push_back(v.residual[i]);
       const std::size_t c = std::size_t(pl.cycle[i] - 1);
-      if (cyc.size() <= c) cyc.resize(c + 1);
-      cyc[c].push_back(v.residual[i]);
+      if (g.cycle.size() <= c) g.cycle.resize(c + 1);
+      g.cycle[c].push_back(v.residual[i]);
       const double e = std::abs(v.d[i] * scale);
       const std::size_t b = emax > 0.0 ? std::min<std::size_t>(4, std::size_t(5.0 * e / emax)) : 0;
-      bins[b].push_back(v.residual[i]);
-      bin_x[b] += e;
+      g.strain_bin[b].push_back(v.residual[i]);
+      g.strain_sum[b] += e;
       if (pl.phase[i] == Phase::ramp) {
         rsum += std::abs(pl.rate[i]);
         ++rn;
       }
     }
     const double rate = rn ? rsum / rn : 0.0;
-    s.by_test.push_back(group_stat(v.id, v.residual, rate));
-    test_rate.push_back(rate);
-    test_rms.push_back(rms_of(v.residual));
+    by_test.push_back(group_stat(v.id, v.residual, rate));
+    g.test_rate.push_back(rate);
+    g.test_rms.push_back(rms_of(v.residual));
   }
+  return g;
+}
+
+/// The groups' statistics and the ratios that point at an effect: first cycle vs later cycles,
+/// worst test vs the median test, and the rank correlation of the tests' ramp rates and RMS.
+void summarise_groups(const ResidualGroups& g, std::size_t tests, ResidualStudy& s) {
   for (int p = 0; p < 3; ++p)
-    if (!ph[std::size_t(p)].empty())
-      s.by_phase.push_back(group_stat(to_string(Phase(p)), ph[std::size_t(p)]));
-  for (std::size_t c = 0; c < cyc.size(); ++c)
-    if (!cyc[c].empty()) s.by_cycle.push_back(group_stat("cycle " + std::to_string(c + 1), cyc[c]));
+    if (!g.phase[std::size_t(p)].empty())
+      s.by_phase.push_back(group_stat(to_string(Phase(p)), g.phase[std::size_t(p)]));
+  for (std::size_t c = 0; c < g.cycle.size(); ++c)
+    if (!g.cycle[c].empty()) s.by_cycle.push_back(group_stat("cycle " + std::to_string(c + 1), g.cycle[c]));
   for (std::size_t b = 0; b < 5; ++b)
-    if (!bins[b].empty())
-      s.by_strain.push_back(
-          group_stat("strain bin " + std::to_string(b + 1), bins[b], bin_x[b] / double(bins[b].size())));
+    if (!g.strain_bin[b].empty())
+      s.by_strain.push_back(group_stat("strain bin " + std::to_string(b + 1), g.strain_bin[b],
+                                       g.strain_sum[b] / double(g.strain_bin[b].size())));
   if (s.by_cycle.size() >= 2) {
     std::vector<double> later;
-    for (std::size_t c = 1; c < cyc.size(); ++c) later.insert(later.end(), cyc[c].begin(), cyc[c].end());
+    for (std::size_t c = 1; c < g.cycle.size(); ++c)
+      later.insert(later.end(), g.cycle[c].begin(), g.cycle[c].end());
     const double rl = rms_of(later);
     s.first_cycle_ratio = rl > 0.0 ? s.by_cycle[0].rms / rl : kNaN;
   }
-  if (series.size() >= 3) {
+  if (tests >= 3) {
     s.worst_test_ratio =
-        *std::max_element(test_rms.begin(), test_rms.end()) / std::max(median_of(test_rms), 1e-300);
+        *std::max_element(g.test_rms.begin(), g.test_rms.end()) / std::max(median_of(g.test_rms), 1e-300);
     bool rates_differ = false;
-    for (const double r : test_rate)
-      rates_differ |= std::abs(r - test_rate[0]) > 0.05 * std::abs(test_rate[0]);
-    if (rates_differ) s.rate_correlation = pearson(ranks(test_rate), ranks(test_rms));
+    for (const double r : g.test_rate)
+      rates_differ |= std::abs(r - g.test_rate[0]) > 0.05 * std::abs(g.test_rate[0]);
+    if (rates_differ) s.rate_correlation = pearson(ranks(g.test_rate), ranks(g.test_rms));
   }
-  // One sentence: the phase and the strain bin with the largest RMS.
+}
+
+/// One sentence: the phase and the strain bin with the largest RMS ("" without either).
+std::string where_largest(const ResidualStudy& s) {
   const auto worst = [](const std::vector<GroupStat>& g) {
     return std::max_element(g.begin(), g.end(),
                             [](const GroupStat& u, const GroupStat& w) { return u.rms < w.rms; });
   };
-  if (!s.by_phase.empty() && !s.by_strain.empty()) {
-    const auto wp = worst(s.by_phase), ws = worst(s.by_strain);
-    s.where = "largest in the " + wp->group + " phase (RMS " + significant(wp->rms, 3) +
-              " N) and at strain " + significant(ws->x, 3) + " (" + ws->group + ", RMS " +
-              significant(ws->rms, 3) + " N, mean " + significant(ws->mean, 3) + " N)";
-  }
+  if (s.by_phase.empty() || s.by_strain.empty()) return "";
+  const auto wp = worst(s.by_phase), ws = worst(s.by_strain);
+  return "largest in the " + wp->group + " phase (RMS " + significant(wp->rms, 3) + " N) and at strain " +
+         significant(ws->x, 3) + " (" + ws->group + ", RMS " + significant(ws->rms, 3) + " N, mean " +
+         significant(ws->mean, 3) + " N)";
+}
+
+}  // namespace
+
+ResidualStudy study_residual(const std::vector<SeriesView>& series, double sign, double scale,
+                             const Thresholds& th) {
+  ResidualStudy s;
+  const std::vector<double> all = pool_residuals(series, s);
+  const std::string a = significant(th.alpha, 2);  // the level, as written in the thresholds
+
+  // Is it noise? Decisive: runs, Ljung-Box, periodicity; reported: Durbin-Watson, Jarque-Bera, noise ratio.
+  const SerialSums m = serial_sums(series);
+  s.diagnostics.push_back(runs_diagnostic(m, th, a));
+  s.diagnostics.push_back(ljung_box_diagnostic(m, th, a));
+  s.diagnostics.push_back(durbin_watson_diagnostic(m));
+  s.diagnostics.push_back(jarque_bera_diagnostic(all, th, a));
+  s.diagnostics.push_back(noise_ratio_diagnostic(s, th));
+  s.diagnostics.push_back(periodicity_diagnostic(series, th, a, s.period));
+  for (const auto& d : s.diagnostics)
+    if (d.decisive && !d.passed) s.structured = true;
+
+  // Where it lives.
+  const ResidualGroups groups = group_residuals(series, sign, scale, s.by_test);
+  summarise_groups(groups, series.size(), s);
+  s.where = where_largest(s);
   return s;
 }
 

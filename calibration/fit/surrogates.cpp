@@ -179,6 +179,16 @@ std::function<std::vector<double>(std::vector<double>)> canonical_order(
   };
 }
 
+/// The height and cross-section of a platen test's sample (cylinder or block); tmlab::Error naming
+/// the data set `name` for a half-space.
+std::pair<double, double> platen_sample(const Metadata& m, const std::string& name) {
+  const Sample& s = m.sample;
+  if (s.shape == SampleShape::cylinder) return {s.height_m, kPi * s.radius_m * s.radius_m};
+  if (s.shape == SampleShape::block) return {s.size_m[2], s.size_m[0] * s.size_m[1]};
+  throw Error(name + ": a " + to_string(m.test) +
+              " test needs a finite sample (block or cylinder), not a half-space");
+}
+
 }  // namespace
 
 Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
@@ -242,18 +252,7 @@ Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
       modulus = std::max(modulus, estar * (1.0 - 0.45 * 0.45));
     }
   } else {
-    const Sample& s = m.sample;
-    double height = 0.0, area = 0.0;
-    if (s.shape == SampleShape::cylinder) {
-      height = s.height_m;
-      area = kPi * s.radius_m * s.radius_m;
-    } else if (s.shape == SampleShape::block) {
-      height = s.size_m[2];
-      area = s.size_m[0] * s.size_m[1];
-    } else {
-      throw Error(name + ": a " + to_string(m.test) +
-                  " test needs a finite sample (block or cylinder), not a half-space");
-    }
+    const auto [height, area] = platen_sample(m, name);
     if (!(height > 0.0) || !(area > 0.0))
       throw Error(name + ": the sample's height and cross-section must be positive");
     double ss = 0.0, se = 0.0, emax = 0.0;
@@ -336,18 +335,7 @@ std::unique_ptr<ForwardModel> make_surrogate_model(const DataSet& d, const Model
     throw Error(
         name + ": Prony terms on " + to_string(m.test) +
         " data need the FE rig forward model (--forward fe_rig); the homogeneous closed form is elastic");
-  const Sample& s = m.sample;
-  double height = 0.0, area = 0.0;
-  if (s.shape == SampleShape::cylinder) {
-    height = s.height_m;
-    area = kPi * s.radius_m * s.radius_m;
-  } else if (s.shape == SampleShape::block) {
-    height = s.size_m[2];
-    area = s.size_m[0] * s.size_m[1];
-  } else {
-    throw Error(name + ": a " + to_string(m.test) +
-                " test needs a finite sample (block or cylinder), not a half-space");
-  }
+  const auto [height, area] = platen_sample(m, name);
   return std::make_unique<PlatenModel>(d, spec, height, area);
 }
 

@@ -124,24 +124,13 @@ void compare_energy(const H5File& ha, const H5File& hb, std::size_t n, nlohmann:
   out["steps"] = n;
 }
 
-/// The bodies whose contact outputs a list of series names holds (contact_<body>_force_x).
-std::vector<std::string> contact_bodies(const std::vector<std::string>& names) {
-  const std::string pre = "contact_", suf = "_force_x";
-  std::vector<std::string> out;
-  for (const auto& name : names)
-    if (name.rfind(pre, 0) == 0 && name.size() > pre.size() + suf.size() &&
-        name.compare(name.size() - suf.size(), suf.size(), suf) == 0)
-      out.push_back(name.substr(pre.size(), name.size() - pre.size() - suf.size()));
-  return out;
-}
-
 /// Contact force, area and active nodes per body, step by step. Forces are measured against the
 /// largest contact force of run b (all bodies, all steps), areas against the largest area, as the
 /// reactions: a body that barely touches must not turn round-off into a large relative difference.
 void compare_contact(const fs::path& a, const fs::path& b_dir, const H5File& ha, const H5File& hb,
                      std::size_t n, nlohmann::json& out, ComparisonSeries& cs) {
-  const std::vector<std::string> bodies = contact_bodies(hb.list("/series"));
-  const std::vector<std::string> bodies_a = contact_bodies(ha.list("/series"));
+  const std::vector<std::string> bodies = series_names::contact_bodies(hb.list("/series"));
+  const std::vector<std::string> bodies_a = series_names::contact_bodies(ha.list("/series"));
   if (bodies.empty() && bodies_a.empty()) return;
   auto read = [&](const H5File& h, const fs::path& dir, const std::string& name) {
     const std::string ds = "/series/" + name;

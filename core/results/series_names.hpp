@@ -83,16 +83,28 @@ inline void add_contact(SeriesTable& table, const ContactValues& c) {
   table.add(b + "_max_penetration", "m", c.max_penetration);
 }
 
-/// The conditions whose reactions a list of series names holds (those with a reaction_<c>_x series),
-/// in the order given.
-inline std::vector<std::string> reaction_conditions(const std::vector<std::string>& names) {
-  const std::string pre = "reaction_", suf = "_x";
+/// The <x> of every series named <pre><x><suf> (x not empty: no case can declare an empty name) in
+/// a list of series names, in the order given.
+inline std::vector<std::string> names_between(const std::vector<std::string>& names, const std::string& pre,
+                                              const std::string& suf) {
   std::vector<std::string> out;
   for (const auto& name : names)
     if (name.rfind(pre, 0) == 0 && name.size() > pre.size() + suf.size() &&
         name.compare(name.size() - suf.size(), suf.size(), suf) == 0)
       out.push_back(name.substr(pre.size(), name.size() - pre.size() - suf.size()));
   return out;
+}
+
+/// The conditions whose reactions a list of series names holds (those with a reaction_<c>_x series),
+/// in the order given.
+inline std::vector<std::string> reaction_conditions(const std::vector<std::string>& names) {
+  return names_between(names, "reaction_", "_x");
+}
+
+/// The bodies whose contact outputs a list of series names holds (those with a contact_<body>_force_x
+/// series), in the order given.
+inline std::vector<std::string> contact_bodies(const std::vector<std::string>& names) {
+  return names_between(names, "contact_", "_force_x");
 }
 
 /// Appends the four series of a vector quantity (x, y, z and its norm) to the table.

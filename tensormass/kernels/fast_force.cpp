@@ -126,209 +126,283 @@ std::size_t FastTetForce::storage_bytes() const {
          sizeof(Index) * shared_nodes_.size();
 }
 
-template <int M>
-void FastTetForce::run_part(int part, const double* u, const Args& args, double* f) const {
-  const double lam = args.lam, mu = args.mu;
-  constexpr int T = PronyStep::kMaxTerms;
-  constexpr int L = kLanes;
-  double* sh = shared_.data() + static_cast<std::size_t>(part) * shared_stride_;
-  std::fill(sh, sh + shared_stride_, 0.0);
-  alignas(64) double e[9][L];       // e_j = U_j - U_0: e[3(j-1) + i][l]
-  alignas(64) double fo[12][L];     // f_p: fo[3p + i][l]
-  alignas(64) double sv[6][L];      // S_hist (Voigt) of the trial force
-  alignas(64) double lnj[L];        // neo-Hookean ln J
-  alignas(64) double hh[9][L];      // H, kept for the second stage of the neo-Hookean kernel
-  alignas(64) double hl[6 * T][L];  // fused pk2: the history h_j of the lane's tet (0 beyond the terms)
-  alignas(64) double xl[6][L];      // fused pk2: the committed driver X
-  double al[T] = {}, aa[T] = {}, cc[T] = {};
-  int nj = 0;
-  if constexpr (M == kFusedPk2) {
-    nj = args.step->terms;
-    for (int j = 0; j < T; ++j) {  // unused terms: alpha 0, h unchanged (a = 1, c = 0)
-      al[j] = j < nj ? args.step->alpha[j] : 0.0;
-      aa[j] = j < nj ? args.step->a[j] : 1.0;
-      cc[j] = j < nj ? args.step->c[j] : 0.0;
+namespace {
+
+// The stages of run_part, one concept each; per group of kLanes tets, lane l of every array is one
+// tet. The lane loops are meant to vectorise: keep them free of calls that do not inline.
+constexpr int kL = FastTetForce::kLanes;
+constexpr int kT = FastTetForce::PronyStep::kMaxTerms;
+
+/// The per-group working arrays of the lanes.
+struct GroupScratch {
+  alignas(64) double e[9][kL];        // e_j = U_j - U_0: e[3(j-1) + i][l]
+  alignas(64) double fo[12][kL];      // f_p: fo[3p + i][l]
+  alignas(64) double sv[6][kL];       // S_hist (Voigt) of the trial force
+  alignas(64) double lnj[kL];         // neo-Hookean ln J
+  alignas(64) double hh[9][kL];       // H, kept for the second stage of the neo-Hookean kernel
+  alignas(64) double hl[6 * kT][kL];  // fused pk2: the history h_j of the lane's tet (0 beyond the terms)
+  alignas(64) double xl[6][kL];       // fused pk2: the committed driver X
+};
+
+/// The Prony recursion of one fused pk2 step padded to kT terms: the unused terms have alpha 0 and
+/// leave h unchanged (a = 1, c = 0).
+struct PaddedPronyStep {
+  int terms = 0;
+  double al[kT] = {}, aa[kT] = {}, cc[kT] = {};
+  bool dev = false;  // the driver is S_dev
+};
+
+PaddedPronyStep padded(const FastTetForce::PronyStep& step) {
+  PaddedPronyStep p;
+  p.terms = step.terms;
+  for (int j = 0; j < kT; ++j) {
+    p.al[j] = j < p.terms ? step.alpha[j] : 0.0;
+    p.aa[j] = j < p.terms ? step.a[j] : 1.0;
+    p.cc[j] = j < p.terms ? step.c[j] : 0.0;
+  }
+  p.dev = step.deviatoric;
+  return p;
+}
+
+/// e_j = U_j - U_0 of each lane, gathered from u by the lanes' node indices nd [4][l].
+inline void gather_edges(const double* u, const std::int32_t* nd, GroupScratch& w) {
+  for (int l = 0; l < kL; ++l) {
+    const double* u0 = u + 3 * static_cast<std::ptrdiff_t>(nd[l]);
+    for (int j = 1; j < 4; ++j) {
+      const double* uj = u + 3 * static_cast<std::ptrdiff_t>(nd[j * kL + l]);
+      for (int i = 0; i < 3; ++i) w.e[3 * (j - 1) + i][l] = uj[i] - u0[i];
     }
   }
-  const bool dev = M == kFusedPk2 && args.step->deviatoric;
+}
+
+/// The trial force's S_hist of the lanes' tets tt (0 in padding lanes).
+inline void load_trial_history(const std::int32_t* tt, const double* s_hist, GroupScratch& w) {
+  for (int l = 0; l < kL; ++l)
+    for (int k = 0; k < 6; ++k)
+      w.sv[k][l] = tt[l] < 0 ? 0.0 : s_hist[6 * static_cast<std::ptrdiff_t>(tt[l]) + k];
+}
+
+/// The fused step's committed driver X and history h_j of the lanes' tets (0 in padding lanes and
+/// beyond the terms).
+inline void load_prony_state(const std::int32_t* tt, int nj, const double* driver, const double* hist,
+                             GroupScratch& w) {
+  for (int l = 0; l < kL; ++l) {
+    const std::ptrdiff_t t = tt[l];
+    for (int k = 0; k < 6; ++k) w.xl[k][l] = t < 0 ? 0.0 : driver[6 * t + k];
+    for (int j = 0; j < kT; ++j)
+      for (int k = 0; k < 6; ++k) w.hl[6 * j + k][l] = (t < 0 || j >= nj) ? 0.0 : hist[(t * nj + j) * 6 + k];
+  }
+}
+
+/// The updated driver and history back to the lanes' tets (padding lanes skipped).
+inline void store_prony_state(const std::int32_t* tt, int nj, const GroupScratch& w, double* driver,
+                              double* hist) {
+  for (int l = 0; l < kL; ++l) {
+    const std::ptrdiff_t t = tt[l];
+    if (t < 0) continue;  // padding lane
+    for (int k = 0; k < 6; ++k) driver[6 * t + k] = w.xl[k][l];
+    for (int j = 0; j < nj; ++j)
+      for (int k = 0; k < 6; ++k) hist[(t * nj + j) * 6 + k] = w.hl[6 * j + k][l];
+  }
+}
+
+/// Neo-Hookean stage 1: H and ln J of every lane (log is scalar: kept out of the vectorised loops).
+inline void neo_hookean_stage1(const double* a, GroupScratch& w) {
+  for (int l = 0; l < kL; ++l)
+    for (int i = 0; i < 3; ++i)
+      for (int k = 0; k < 3; ++k)
+        w.hh[3 * i + k][l] = w.e[i][l] * a[k * kL + l] + w.e[3 + i][l] * a[(3 + k) * kL + l] +
+                             w.e[6 + i][l] * a[(6 + k) * kL + l];
+  for (int l = 0; l < kL; ++l) {
+    const double F00 = 1 + w.hh[0][l], F01 = w.hh[1][l], F02 = w.hh[2][l];
+    const double F10 = w.hh[3][l], F11 = 1 + w.hh[4][l], F12 = w.hh[5][l];
+    const double F20 = w.hh[6][l], F21 = w.hh[7][l], F22 = 1 + w.hh[8][l];
+    const double J =
+        F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20) + F02 * (F10 * F21 - F11 * F20);
+    w.lnj[l] = J > 0.0 ? std::log(J) : std::nan("");  // outside the domain: NaN force (as HyperelasticTL)
+  }
+}
+
+/// H = sum_j e_j (x) a_j of lane l (the neo-Hookean kernel reads it from stage 1).
+template <int M>
+inline void displacement_gradient(const GroupScratch& w, const double* a, int l, double (&H)[3][3]) {
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) {
+      if constexpr (M == kNeoHookean)
+        H[i][k] = w.hh[3 * i + k][l];
+      else
+        H[i][k] = w.e[i][l] * a[k * kL + l] + w.e[3 + i][l] * a[(3 + k) * kL + l] +
+                  w.e[6 + i][l] * a[(6 + k) * kL + l];
+    }
+}
+
+/// E = (H + H^T + H^T H) / 2
+inline void green_lagrange(const double (&H)[3][3], double (&E)[3][3]) {
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
+    for (int k = i; k < 3; ++k)
+      E[i][k] = 0.5 * (H[i][k] + H[k][i] + H[0][i] * H[0][k] + H[1][i] * H[1][k] + H[2][i] * H[2][k]);
+  E[1][0] = E[0][1];
+  E[2][0] = E[0][2];
+  E[2][1] = E[1][2];
+}
+
+/// Neo-Hookean: C = I + 2E, S = mu (I - C^-1) + lambda ln J C^-1, C^-1 = adj(C) / det C
+inline void neo_hookean_pk2(const double (&E)[3][3], double lam, double mu, double lnj, double (&S)[3][3]) {
+  double C[3][3];
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) C[i][k] = 2.0 * E[i][k] + (i == k ? 1.0 : 0.0);
+  const double A00 = C[1][1] * C[2][2] - C[1][2] * C[2][1];
+  const double A01 = C[0][2] * C[2][1] - C[0][1] * C[2][2];
+  const double A02 = C[0][1] * C[1][2] - C[0][2] * C[1][1];
+  const double A11 = C[0][0] * C[2][2] - C[0][2] * C[2][0];
+  const double A12 = C[0][2] * C[1][0] - C[0][0] * C[1][2];
+  const double A22 = C[0][0] * C[1][1] - C[0][1] * C[1][0];
+  const double inv = 1.0 / (C[0][0] * A00 + C[1][0] * A01 + C[2][0] * A02);
+  const double ci[6] = {A00 * inv, A11 * inv, A22 * inv, A01 * inv, A02 * inv, A12 * inv};
+  const double b = lam * lnj - mu;
+  S[0][0] = mu + b * ci[0];
+  S[1][1] = mu + b * ci[1];
+  S[2][2] = mu + b * ci[2];
+  S[0][1] = S[1][0] = b * ci[3];
+  S[0][2] = S[2][0] = b * ci[4];
+  S[1][2] = S[2][1] = b * ci[5];
+}
+
+/// St Venant-Kirchhoff: S = lambda tr(E) I + 2 mu E
+inline void stvk_pk2(const double (&E)[3][3], double lam, double mu, double (&S)[3][3]) {
+  const double ltr = lam * (E[0][0] + E[1][1] + E[2][2]);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k) S[i][k] = 2.0 * mu * E[i][k];
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) S[i][i] += ltr;
+}
+
+/// S += v, v symmetric in Voigt order (xx, yy, zz, xy, xz, yz).
+inline void add_voigt(double (&S)[3][3], double v0, double v1, double v2, double v3, double v4, double v5) {
+  S[0][0] += v0;
+  S[1][1] += v1;
+  S[2][2] += v2;
+  S[0][1] += v3;
+  S[1][0] += v3;
+  S[0][2] += v4;
+  S[2][0] += v4;
+  S[1][2] += v5;
+  S[2][1] += v5;
+}
+
+/// The fused Prony step of lane l on S = S_e: driver x = S_e or S_dev = 2 mu (E - tr(E)/3 I)
+/// (Voigt), history h_j <- a_j h_j + c_j (x - X), X <- x, and S += sum_j alpha_j h_j.
+inline void prony_step(const double (&E)[3][3], double mu, const PaddedPronyStep& p, int l, GroupScratch& w,
+                       double (&S)[3][3]) {
+  const bool dev = p.dev;
+  const double trd = (E[0][0] + E[1][1] + E[2][2]) / 3.0;
+  const double x[6] = {dev ? 2.0 * mu * (E[0][0] - trd) : S[0][0],
+                       dev ? 2.0 * mu * (E[1][1] - trd) : S[1][1],
+                       dev ? 2.0 * mu * (E[2][2] - trd) : S[2][2],
+                       S[0][1],
+                       S[0][2],
+                       S[1][2]};
+  double sa[6] = {0, 0, 0, 0, 0, 0};
+#pragma GCC unroll 4
+  for (int j = 0; j < kT; ++j)
+#pragma GCC unroll 6
+    for (int k = 0; k < 6; ++k) {
+      const double h = p.aa[j] * w.hl[6 * j + k][l] + p.cc[j] * (x[k] - w.xl[k][l]);
+      w.hl[6 * j + k][l] = h;
+      sa[k] += p.al[j] * h;
+    }
+#pragma GCC unroll 6
+  for (int k = 0; k < 6; ++k) w.xl[k][l] = x[k];
+  add_voigt(S, sa[0], sa[1], sa[2], sa[3], sa[4], sa[5]);
+}
+
+/// The nodal forces of lane l: V P = V (I + H) S, f_j = V P a_j, f_0 = -(f_1 + f_2 + f_3).
+inline void nodal_forces(double V, const double (&H)[3][3], const double (&S)[3][3], const double* a, int l,
+                         GroupScratch& w) {
+  double P[3][3];
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i)
+#pragma GCC unroll 3
+    for (int k = 0; k < 3; ++k)
+      P[i][k] = V * (S[i][k] + H[i][0] * S[0][k] + H[i][1] * S[1][k] + H[i][2] * S[2][k]);
+#pragma GCC unroll 3
+  for (int i = 0; i < 3; ++i) {
+    double s0 = 0.0;
+#pragma GCC unroll 3
+    for (int j = 1; j < 4; ++j) {
+      const double v = P[i][0] * a[(3 * (j - 1)) * kL + l] + P[i][1] * a[(3 * (j - 1) + 1) * kL + l] +
+                       P[i][2] * a[(3 * (j - 1) + 2) * kL + l];
+      w.fo[3 * j + i][l] = v;
+      s0 += v;
+    }
+    w.fo[i][l] = -s0;
+  }
+}
+
+/// The forces of every lane of a group: H, E, S of the law (plus the trial force's S_hist or the
+/// fused Prony step), the nodal forces.
+template <int M>
+inline void group_forces(const double* a, const double* V, double lam, double mu, const PaddedPronyStep& p,
+                         GroupScratch& w) {
+  for (int l = 0; l < kL; ++l) {
+    double H[3][3];
+    displacement_gradient<M>(w, a, l, H);
+    double E[3][3];
+    green_lagrange(H, E);
+    double S[3][3];
+    if constexpr (M == kNeoHookean) {
+      neo_hookean_pk2(E, lam, mu, w.lnj[l], S);
+    } else {
+      stvk_pk2(E, lam, mu, S);
+      if constexpr (M == kFusedPk2) prony_step(E, mu, p, l, w, S);
+      if constexpr (M == kStVKTrial)
+        add_voigt(S, w.sv[0][l], w.sv[1][l], w.sv[2][l], w.sv[3][l], w.sv[4][l], w.sv[5][l]);
+    }
+    nodal_forces(V[l], H, S, a, l, w);
+  }
+}
+
+/// Adds the lanes' nodal forces into f (dest ds [4][l] >= 0) or the part's shared row sh (< 0).
+inline void scatter(const std::int32_t* ds, const GroupScratch& w, double* f, double* sh) {
+  for (int l = 0; l < kL; ++l)
+    for (int p = 0; p < 4; ++p) {
+      const std::int32_t d = ds[p * kL + l];
+      double* t = d >= 0 ? f + d : sh + (-1 - d);
+      t[0] += w.fo[3 * p][l];
+      t[1] += w.fo[3 * p + 1][l];
+      t[2] += w.fo[3 * p + 2][l];
+    }
+}
+
+}  // namespace
+
+template <int M>
+void FastTetForce::run_part(int part, const double* u, const Args& args, double* f) const {
+  double* sh = shared_.data() + static_cast<std::size_t>(part) * shared_stride_;
+  std::fill(sh, sh + shared_stride_, 0.0);
+  GroupScratch w;
+  PaddedPronyStep prony;
+  if constexpr (M == kFusedPk2) prony = padded(*args.step);
   for (int g = part_begin_[static_cast<std::size_t>(part)];
        g < part_begin_[static_cast<std::size_t>(part) + 1]; ++g) {
     const std::size_t gs = static_cast<std::size_t>(g);
-    const std::int32_t* nd = &node_[gs * 4 * L];
-    const double* a = &grad_[gs * 9 * L];
-    const double* V = &vol_[gs * L];
-    for (int l = 0; l < L; ++l) {
-      const double* u0 = u + 3 * static_cast<std::ptrdiff_t>(nd[l]);
-      for (int j = 1; j < 4; ++j) {
-        const double* uj = u + 3 * static_cast<std::ptrdiff_t>(nd[j * L + l]);
-        for (int i = 0; i < 3; ++i) e[3 * (j - 1) + i][l] = uj[i] - u0[i];
-      }
-    }
-    const std::int32_t* tt = &tet_[gs * L];
-    if constexpr (M == kStVKTrial) {
-      for (int l = 0; l < L; ++l)
-        for (int k = 0; k < 6; ++k)
-          sv[k][l] = tt[l] < 0 ? 0.0 : args.s_hist[6 * static_cast<std::ptrdiff_t>(tt[l]) + k];
-    }
-    if constexpr (M == kFusedPk2) {
-      for (int l = 0; l < L; ++l) {
-        const std::ptrdiff_t t = tt[l];
-        for (int k = 0; k < 6; ++k) xl[k][l] = t < 0 ? 0.0 : args.driver[6 * t + k];
-        for (int j = 0; j < T; ++j)
-          for (int k = 0; k < 6; ++k)
-            hl[6 * j + k][l] = (t < 0 || j >= nj) ? 0.0 : args.hist[(t * nj + j) * 6 + k];
-      }
-    }
-    if constexpr (M == kNeoHookean) {
-      // Stage 1: H and ln J (log is scalar: kept out of the vectorised loops).
-      for (int l = 0; l < L; ++l)
-        for (int i = 0; i < 3; ++i)
-          for (int k = 0; k < 3; ++k)
-            hh[3 * i + k][l] =
-                e[i][l] * a[k * L + l] + e[3 + i][l] * a[(3 + k) * L + l] + e[6 + i][l] * a[(6 + k) * L + l];
-      for (int l = 0; l < L; ++l) {
-        const double F00 = 1 + hh[0][l], F01 = hh[1][l], F02 = hh[2][l];
-        const double F10 = hh[3][l], F11 = 1 + hh[4][l], F12 = hh[5][l];
-        const double F20 = hh[6][l], F21 = hh[7][l], F22 = 1 + hh[8][l];
-        const double J =
-            F00 * (F11 * F22 - F12 * F21) - F01 * (F10 * F22 - F12 * F20) + F02 * (F10 * F21 - F11 * F20);
-        lnj[l] = J > 0.0 ? std::log(J) : std::nan("");  // outside the domain: NaN force (as HyperelasticTL)
-      }
-    }
-    for (int l = 0; l < L; ++l) {
-      double H[3][3];
-#pragma GCC unroll 3
-      for (int i = 0; i < 3; ++i)
-#pragma GCC unroll 3
-        for (int k = 0; k < 3; ++k) {
-          if constexpr (M == kNeoHookean)
-            H[i][k] = hh[3 * i + k][l];
-          else
-            H[i][k] =
-                e[i][l] * a[k * L + l] + e[3 + i][l] * a[(3 + k) * L + l] + e[6 + i][l] * a[(6 + k) * L + l];
-        }
-      // E = (H + H^T + H^T H) / 2
-      double E[3][3];
-#pragma GCC unroll 3
-      for (int i = 0; i < 3; ++i)
-#pragma GCC unroll 3
-        for (int k = i; k < 3; ++k)
-          E[i][k] = 0.5 * (H[i][k] + H[k][i] + H[0][i] * H[0][k] + H[1][i] * H[1][k] + H[2][i] * H[2][k]);
-      E[1][0] = E[0][1];
-      E[2][0] = E[0][2];
-      E[2][1] = E[1][2];
-      double S[3][3];
-      if constexpr (M == kNeoHookean) {
-        // C = I + 2E, S = mu (I - C^-1) + lambda ln J C^-1, C^-1 = adj(C) / det C
-        double C[3][3];
-#pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i)
-#pragma GCC unroll 3
-          for (int k = 0; k < 3; ++k) C[i][k] = 2.0 * E[i][k] + (i == k ? 1.0 : 0.0);
-        const double A00 = C[1][1] * C[2][2] - C[1][2] * C[2][1];
-        const double A01 = C[0][2] * C[2][1] - C[0][1] * C[2][2];
-        const double A02 = C[0][1] * C[1][2] - C[0][2] * C[1][1];
-        const double A11 = C[0][0] * C[2][2] - C[0][2] * C[2][0];
-        const double A12 = C[0][2] * C[1][0] - C[0][0] * C[1][2];
-        const double A22 = C[0][0] * C[1][1] - C[0][1] * C[1][0];
-        const double inv = 1.0 / (C[0][0] * A00 + C[1][0] * A01 + C[2][0] * A02);
-        const double ci[6] = {A00 * inv, A11 * inv, A22 * inv, A01 * inv, A02 * inv, A12 * inv};
-        const double b = lam * lnj[l] - mu;
-        S[0][0] = mu + b * ci[0];
-        S[1][1] = mu + b * ci[1];
-        S[2][2] = mu + b * ci[2];
-        S[0][1] = S[1][0] = b * ci[3];
-        S[0][2] = S[2][0] = b * ci[4];
-        S[1][2] = S[2][1] = b * ci[5];
-      } else {
-        const double ltr = lam * (E[0][0] + E[1][1] + E[2][2]);
-#pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i)
-#pragma GCC unroll 3
-          for (int k = 0; k < 3; ++k) S[i][k] = 2.0 * mu * E[i][k];
-#pragma GCC unroll 3
-        for (int i = 0; i < 3; ++i) S[i][i] += ltr;
-        if constexpr (M == kFusedPk2) {
-          // driver x = S_e or S_dev = 2 mu (E - tr(E)/3 I) (Voigt), history update, S += sum alpha_j h_j
-          const double trd = (E[0][0] + E[1][1] + E[2][2]) / 3.0;
-          const double x[6] = {dev ? 2.0 * mu * (E[0][0] - trd) : S[0][0],
-                               dev ? 2.0 * mu * (E[1][1] - trd) : S[1][1],
-                               dev ? 2.0 * mu * (E[2][2] - trd) : S[2][2],
-                               S[0][1],
-                               S[0][2],
-                               S[1][2]};
-          double sa[6] = {0, 0, 0, 0, 0, 0};
-#pragma GCC unroll 4
-          for (int j = 0; j < T; ++j)
-#pragma GCC unroll 6
-            for (int k = 0; k < 6; ++k) {
-              const double h = aa[j] * hl[6 * j + k][l] + cc[j] * (x[k] - xl[k][l]);
-              hl[6 * j + k][l] = h;
-              sa[k] += al[j] * h;
-            }
-#pragma GCC unroll 6
-          for (int k = 0; k < 6; ++k) xl[k][l] = x[k];
-          S[0][0] += sa[0];
-          S[1][1] += sa[1];
-          S[2][2] += sa[2];
-          S[0][1] += sa[3];
-          S[1][0] += sa[3];
-          S[0][2] += sa[4];
-          S[2][0] += sa[4];
-          S[1][2] += sa[5];
-          S[2][1] += sa[5];
-        }
-        if constexpr (M == kStVKTrial) {
-          S[0][0] += sv[0][l];
-          S[1][1] += sv[1][l];
-          S[2][2] += sv[2][l];
-          S[0][1] += sv[3][l];
-          S[1][0] += sv[3][l];
-          S[0][2] += sv[4][l];
-          S[2][0] += sv[4][l];
-          S[1][2] += sv[5][l];
-          S[2][1] += sv[5][l];
-        }
-      }
-      // V P = V (I + H) S
-      double P[3][3];
-#pragma GCC unroll 3
-      for (int i = 0; i < 3; ++i)
-#pragma GCC unroll 3
-        for (int k = 0; k < 3; ++k)
-          P[i][k] = V[l] * (S[i][k] + H[i][0] * S[0][k] + H[i][1] * S[1][k] + H[i][2] * S[2][k]);
-// f_j = V P a_j, f_0 = -(f_1 + f_2 + f_3)
-#pragma GCC unroll 3
-      for (int i = 0; i < 3; ++i) {
-        double s0 = 0.0;
-#pragma GCC unroll 3
-        for (int j = 1; j < 4; ++j) {
-          const double v = P[i][0] * a[(3 * (j - 1)) * L + l] + P[i][1] * a[(3 * (j - 1) + 1) * L + l] +
-                           P[i][2] * a[(3 * (j - 1) + 2) * L + l];
-          fo[3 * j + i][l] = v;
-          s0 += v;
-        }
-        fo[i][l] = -s0;
-      }
-    }
-    if constexpr (M == kFusedPk2) {
-      for (int l = 0; l < L; ++l) {
-        const std::ptrdiff_t t = tt[l];
-        if (t < 0) continue;  // padding lane
-        for (int k = 0; k < 6; ++k) args.driver[6 * t + k] = xl[k][l];
-        for (int j = 0; j < nj; ++j)
-          for (int k = 0; k < 6; ++k) args.hist[(t * nj + j) * 6 + k] = hl[6 * j + k][l];
-      }
-    }
-    const std::int32_t* ds = &dest_[gs * 4 * L];
-    for (int l = 0; l < L; ++l)
-      for (int p = 0; p < 4; ++p) {
-        const std::int32_t d = ds[p * L + l];
-        double* t = d >= 0 ? f + d : sh + (-1 - d);
-        t[0] += fo[3 * p][l];
-        t[1] += fo[3 * p + 1][l];
-        t[2] += fo[3 * p + 2][l];
-      }
+    const double* a = &grad_[gs * 9 * kL];
+    const std::int32_t* tt = &tet_[gs * kL];
+    gather_edges(u, &node_[gs * 4 * kL], w);
+    if constexpr (M == kStVKTrial) load_trial_history(tt, args.s_hist, w);
+    if constexpr (M == kFusedPk2) load_prony_state(tt, prony.terms, args.driver, args.hist, w);
+    if constexpr (M == kNeoHookean) neo_hookean_stage1(a, w);
+    group_forces<M>(a, &vol_[gs * kL], args.lam, args.mu, prony, w);
+    if constexpr (M == kFusedPk2) store_prony_state(tt, prony.terms, w, args.driver, args.hist);
+    scatter(&dest_[gs * 4 * kL], w, f, sh);
   }
 }
 

@@ -738,6 +738,18 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
 }
 
 /// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
+/// The summary's solver block of an explicit run: the step, the stability estimate, the damping.
+nlohmann::json explicit_summary(const CaseConfig& cfg, const StabilityEstimate& st) {
+  return {{"type", "explicit"},
+          {"scheme", "central_difference"},
+          {"dt", cfg.solver.dt},
+          {"steps", cfg.solver.steps},
+          {"dt_critical_estimate", st.dt_critical},
+          {"dt_guaranteed", st.dt_guaranteed},
+          {"omega_max", st.omega_max},
+          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
+}
+
 nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
                              RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
@@ -761,15 +773,7 @@ nlohmann::json step_explicit(const Problem& p, StepRecorder& rec, Progress& prog
       progress(k, t);
     }
   }
-  const auto& st = integ.stability();
-  return {{"type", "explicit"},
-          {"scheme", "central_difference"},
-          {"dt", dt},
-          {"steps", n_steps},
-          {"dt_critical_estimate", st.dt_critical},
-          {"dt_guaranteed", st.dt_guaranteed},
-          {"omega_max", st.omega_max},
-          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
+  return explicit_summary(cfg, integ.stability());
 }
 
 /// Implicit dynamics (backward Euler or Newmark), steps of solver.dt up to t_end.
@@ -918,16 +922,9 @@ nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progre
       progress(k, t);
     }
   }
-  const auto& st = integ.stability();
-  return {{"type", "explicit"},
-          {"scheme", "central_difference"},
-          {"dt", dt},
-          {"steps", n_steps},
-          {"dt_critical_estimate", st.dt_critical},
-          {"dt_guaranteed", st.dt_guaranteed},
-          {"omega_max", st.omega_max},
-          {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
-          {"contact", ContactLog(cfg).json("kinematic_explicit", 0.0, contact.gap_tol(), contact.state())}};
+  nlohmann::json j = explicit_summary(cfg, integ.stability());
+  j["contact"] = ContactLog(cfg).json("kinematic_explicit", 0.0, contact.gap_tol(), contact.state());
+  return j;
 }
 
 /// Implicit dynamics with contact (ContactImplicitDynamics: the augmented-Lagrangian loop around the

@@ -7,18 +7,10 @@
 #include "core/constitutive/prony.hpp"
 
 #include <cmath>
-#include <sstream>
 
 namespace tmlab::tm {
 
 namespace {
-
-std::string num(double v) {
-  std::ostringstream s;
-  s.precision(17);
-  s << v;
-  return s.str();
-}
 
 /// Checks tau and the weights; `weight_name` is "alpha" or "g" for messages.
 void validate(const std::vector<double>& w, const std::vector<double>& tau, const char* weight_name) {
@@ -29,10 +21,11 @@ void validate(const std::vector<double>& w, const std::vector<double>& tau, cons
   }
   for (std::size_t j = 0; j < w.size(); ++j) {
     const std::string term = "Prony series term " + std::to_string(j) + ": ";
-    if (!std::isfinite(w[j])) throw Error(term + weight_name + " = " + num(w[j]) + " is not finite");
-    if (w[j] < 0.0) throw Error(term + weight_name + " = " + num(w[j]) + " must be >= 0");
-    if (!std::isfinite(tau[j])) throw Error(term + "tau = " + num(tau[j]) + " is not finite");
-    if (tau[j] <= 0.0) throw Error(term + "tau = " + num(tau[j]) + " must be > 0 (seconds)");
+    if (!std::isfinite(w[j]))
+      throw Error(term + weight_name + " = " + significant(w[j], 17) + " is not finite");
+    if (w[j] < 0.0) throw Error(term + weight_name + " = " + significant(w[j], 17) + " must be >= 0");
+    if (!std::isfinite(tau[j])) throw Error(term + "tau = " + significant(tau[j], 17) + " is not finite");
+    if (tau[j] <= 0.0) throw Error(term + "tau = " + significant(tau[j], 17) + " must be > 0 (seconds)");
   }
 }
 
@@ -51,7 +44,7 @@ PronySeries PronySeries::from_instantaneous(const std::vector<double>& g, std::v
   double sum = 0.0;
   for (double v : g) sum += v;
   if (!(sum < 1.0)) {
-    throw Error("Prony series: instantaneous weights sum to " + num(sum) +
+    throw Error("Prony series: instantaneous weights sum to " + significant(sum, 17) +
                 ", must be < 1 (the long-term modulus E_0 (1 - sum g) must stay positive)");
   }
   return from_long_term(long_term_weights(g), std::move(tau));  // alpha_j = g_j / (1 - sum g)
@@ -72,7 +65,8 @@ PronySeries PronySeries::from_json(const nlohmann::json& j, const std::string& w
   for (std::size_t k = 0; k < terms.size(); ++k) {
     ConfigReader t(terms[k], where, r.key_path("terms") + "[" + std::to_string(k) + "]");
     const double wk = t.require<double>("weight");
-    if (!std::isfinite(wk) || wk < 0.0) throw t.error("weight", "must be >= 0 (got " + num(wk) + ")");
+    if (!std::isfinite(wk) || wk < 0.0)
+      throw t.error("weight", "must be >= 0 (got " + significant(wk, 17) + ")");
     w.push_back(wk);
     tau.push_back(t.positive("tau"));
     t.finish();

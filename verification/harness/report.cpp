@@ -8,6 +8,7 @@
 #include "core/base/process.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/io/xml_text.hpp"
+#include "core/results/json_number.hpp"
 
 #include <tmlab/build_info.hpp>
 
@@ -30,8 +31,6 @@ std::string num(double v) { return std::isnan(v) ? "n/a" : significant(v, 3); }
 std::string order_text(double v) { return std::isnan(v) ? "n/a" : fixed_point(v, 2); }
 
 std::string seconds_text(double s) { return fixed_point(s, s < 10 ? 2 : 0) + " s"; }
-
-nlohmann::json finite_or_null(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(); }
 
 /// The first order outcome of a result (nullptr when the case has no convergence check).
 const CheckOutcome* first_order(const CaseResult& r) {

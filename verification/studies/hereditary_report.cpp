@@ -6,6 +6,7 @@
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "core/results/json_number.hpp"
 #include "verification/studies/study_plot.hpp"
 
 #include <algorithm>
@@ -30,9 +31,6 @@ std::string sci(double v, int digits = 2) {
 }
 
 std::string fixed(double v, int digits = 2) { return std::isnan(v) ? "-" : fixed_point(v, digits); }
-
-/// JSON cannot hold inf/NaN: null instead.
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 std::string str(Integ s) { return ViscoelasticOptions::to_string(s); }
 
@@ -183,12 +181,12 @@ double write_sweep(Sink& out, const DriverHistory& x, const SweepResult& r, nloh
   out.h5.set_attribute(g, "fit_max_dt_over_tau", r.fit_max_dt_over_tau);
   out.h5.set_attribute(g, "breakdown_1pct", r.breakdown_1pct);
   out.h5.set_attribute(g, "breakdown_10pct", r.breakdown_10pct);
-  hs["schemes"][r.scheme] = {{"order", num(r.order)},
+  hs["schemes"][r.scheme] = {{"order", finite_or_null(r.order)},
                              {"fit_max_dt_over_tau", r.fit_max_dt_over_tau},
-                             {"breakdown_dt_over_tau_1pct", num(r.breakdown_1pct)},
-                             {"breakdown_dt_over_tau_10pct", num(r.breakdown_10pct)},
-                             {"error_at_dt_over_tau_0.1", num(e01)},
-                             {"error_at_dt_over_tau_1", num(e1)}};
+                             {"breakdown_dt_over_tau_1pct", finite_or_null(r.breakdown_1pct)},
+                             {"breakdown_dt_over_tau_10pct", finite_or_null(r.breakdown_10pct)},
+                             {"error_at_dt_over_tau_0.1", finite_or_null(e01)},
+                             {"error_at_dt_over_tau_1", finite_or_null(e1)}};
   out.md << "| " << x.name() << " | " << r.scheme << " | " << fixed(r.order) << " | "
          << sci(r.fit_max_dt_over_tau, 1) << " | " << sci(e01) << " | " << sci(e1) << " | "
          << sci(r.breakdown_1pct) << " | " << sci(r.breakdown_10pct) << " |\n";
@@ -305,7 +303,7 @@ void write_kink(Sink& out, const StudyOptions& so) {
       out.h5.write(g + "/dt", dt, {dt.size()});
       out.h5.write(g + "/error", e, {e.size()});
       out.h5.set_attribute(g, "order", order);
-      kink[x->name()][str(s)] = {{"order", num(order)}, {"finest_error", runs.back().error}};
+      kink[x->name()][str(s)] = {{"order", finite_or_null(order)}, {"finest_error", runs.back().error}};
       out.md << " | " << fixed(order) << " (finest " << sci(runs.back().error) << ")";
     }
     out.md << " |\n";
@@ -375,8 +373,8 @@ void write_liver_scheme(Sink& out, const std::string& root, const LiverStudy& ls
     lj["runs"].push_back({{"scheme", r.scheme},
                           {"dt", r.dt},
                           {"error", r.error},
-                          {"isolated_error", num(r.isolated_error)},
-                          {"path_deviation", num(r.path_deviation)},
+                          {"isolated_error", finite_or_null(r.isolated_error)},
+                          {"path_deviation", finite_or_null(r.path_deviation)},
                           {"seconds", r.seconds}});
     out.md << "| " << r.scheme << " | " << r.dt << " | " << sci(r.error) << " | " << sci(r.isolated_error)
            << " | " << sci(r.path_deviation) << " | " << fixed(r.seconds, 1) << " |\n";
@@ -386,7 +384,7 @@ void write_liver_scheme(Sink& out, const std::string& root, const LiverStudy& ls
   out.h5.write(root + "/" + str(s) + "/isolated_error", iso, {iso.size()});
   if (dt.size() >= 2)
     lj["order_" + str(s)] =
-        num(std::log(e[e.size() - 2] / e.back()) / std::log(dt[dt.size() - 2] / dt.back()));
+        finite_or_null(std::log(e[e.size() - 2] / e.back()) / std::log(dt[dt.size() - 2] / dt.back()));
 }
 
 /// The liver relaxation in one history form (nodal_force: the seed's; pk2: objective).
@@ -403,8 +401,8 @@ void write_liver(Sink& out, const HereditaryRunOptions& o, const nlohmann::json&
                        {"peak_force_N", ls.peak_force},
                        {"reference_check_midpoint_vs_exact_linear", ls.reference_check},
                        {"richardson_correction", ls.richardson_correction},
-                       {"path_check", num(ls.path_check)},
-                       {"path_quadrature", num(ls.path_quadrature)},
+                       {"path_check", finite_or_null(ls.path_check)},
+                       {"path_quadrature", finite_or_null(ls.path_quadrature)},
                        {"num_tets", ls.num_tets},
                        {"node_tets", ls.node_tets},
                        {"seconds", ls.seconds},

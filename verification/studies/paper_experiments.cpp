@@ -3,19 +3,12 @@
 #include "core/results/series_names.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
-
-#include <cstdio>
 
 namespace tmlab::tm {
 
 namespace {
-
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 /// The parts every run shares: mesh, material with the Prony series and scheme, fixed base.
 nlohmann::json base_case(const nlohmann::json& p, const std::string& scheme, const std::string& id) {
@@ -100,8 +93,8 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     for (const auto& s : schemes)
       for (const char* where_load : {"node", "patch"})
         for (double F : forces) {
-          PaperRun run = paper_run(params, s, s + "_" + where_load + "_" + num(F) + "N",
-                                   s + ", " + where_load + ", " + num(F) + " N");
+          PaperRun run = paper_run(params, s, s + "_" + where_load + "_" + significant(F, 6) + "N",
+                                   s + ", " + where_load + ", " + significant(F, 6) + " N");
           const nlohmann::json sel = std::string(where_load) == "node" ? sphere(node) : sphere(node, radius);
           // The force is switched on within the first step and then held (creep test).
           run.case_doc["loads"] =
@@ -150,7 +143,8 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
     for (const auto& s : schemes)
       for (double P : periods) {
         if (!(P > 0.0)) throw f.error("periods", "must be > 0");
-        PaperRun run = paper_run(params, s, s + "_period" + num(P) + "s", s + ", cycle " + num(P) + " s");
+        PaperRun run = paper_run(params, s, s + "_period" + significant(P, 6) + "s",
+                                 s + ", cycle " + significant(P, 6) + " s");
         run.case_doc["boundary"].push_back(push_condition(
             node, depth, {{"type", "table"}, {"points", {{0.0, 0.0}, {P / 2, 1.0}, {P, 0.0}}}}));
         run.case_doc["solver"] = static_solver(P, steps);

@@ -28,5 +28,18 @@ TEST(SeriesNames, ReactionConditionsAreFoundByTheirXSeries) {
   EXPECT_EQ(series_names::reaction_conditions(names), (std::vector<std::string>{"base", "x", "top"}));
 }
 
+TEST(SeriesNames, ContactBodiesAreFoundByTheirForceXSeries) {
+  const std::vector<std::string> names{"time",
+                                       "contact_platen_force_x",
+                                       "contact_platen_force_y",
+                                       "contact_platen_area",
+                                       "contact__force_x",
+                                       "reaction_base_x",
+                                       "contact_ball_force_x",
+                                       "contact_force_x"};
+  // "contact__force_x" would be a body with an empty name; "contact_force_x" has no body at all.
+  EXPECT_EQ(series_names::contact_bodies(names), (std::vector<std::string>{"platen", "ball"}));
+}
+
 }  // namespace
 }  // namespace tmlab
