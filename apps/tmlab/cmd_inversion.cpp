@@ -39,10 +39,7 @@ int cmd_inversion(const std::vector<std::string>& args, const std::string& comma
                          {"--quick", "--no-plots"});
   if (!p.positional.empty()) throw UsageError("inversion takes no positional arguments");
   tm::InversionStudyOptions o;
-  if (p.has("--quick")) {  // the test's setting: the coarsest mesh, coarse increments
-    o.cells = {4};
-    o.increment = 0.5e-3;
-  }
+  if (p.has("--quick")) o.cells = {4};  // the test's mesh
   if (p.has("--cells")) {
     o.cells.clear();
     for (const std::string& c : split_list(p.get("--cells"))) {

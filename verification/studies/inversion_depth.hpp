@@ -55,10 +55,10 @@ struct InversionStudyOptions {
   double young = 3000.0;                        ///< small-strain modulus of every law, Pa
   double poisson = 0.45;                        ///< small-strain Poisson ratio
   double grading = 2.0;                         ///< p of the graded map (1 = uniform)
-  double max_depth = 0.010;                     ///< m
-  double increment = 0.25e-3;                   ///< depth increment, m
+  double max_depth = 0.008;                     ///< m
+  double increment = 0.5e-3;                    ///< depth increment, m
   std::vector<InversionLaw> laws;               ///< empty: default_inversion_laws(young, poisson)
-  std::vector<int> cells = {6, 9, 12};          ///< cells per axis of the quarter block (>= 2 each)
+  std::vector<int> cells = {4, 6, 9};           ///< cells per axis of the quarter block (>= 2 each)
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
 };
 
