@@ -65,6 +65,11 @@ void print_usage(std::ostream& os) {
         "                            error against CPU time: fixed-step schemes and SUNDIALS;\n"
         "                            results/workprecision/ (workprecision.h5, .md, PNG per problem)\n"
         "                            --resume: continue an interrupted study (finished runs reused)\n"
+        "  inversion [--laws L1,L2] [--cells N1,N2] [--max-depth M] [--increment M] [--grading P]\n"
+        "            [--quick] [--results DIR] [--no-plots]\n"
+        "                            the depth at which each law first inverts a tet (or loses\n"
+        "                            equilibrium) under a sphere R 5 mm in a thick block, per mesh;\n"
+        "                            results/inversion/ (inversion.json, .md, PNG; docs/contact.md)\n"
         "  realtime CASE [--record] [--duration S] [--coupling extrapolation|local_model]\n"
         "           [--results DIR] [--no-frames]\n"
         "                            the haptic (1 kHz) / control / visual (40 Hz) threads on the liver\n"
@@ -151,6 +156,7 @@ int main(int argc, char** argv) {
     if (cmd == "version") return tmlab::cli::cmd_version();
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
+    if (cmd == "inversion") return tmlab::cli::cmd_inversion(args, command_line);
     if (cmd == "bench") return tmlab::cli::cmd_bench(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);

@@ -1,0 +1,110 @@
+// tmlab inversion: the depth at which each law first inverts a tet (or loses equilibrium) under the
+// paper's sphere indentation, on several meshes (verification/studies/inversion_depth.hpp;
+// docs/contact.md, "Inversion depth of each law"). Writes <results>/inversion/: inversion.json,
+// inversion.md, inversion_depth.png, manifest.json and summary.json last (RunOutput protocol).
+#include "cli_args.hpp"
+#include "commands.hpp"
+
+#include "core/base/error.hpp"
+#include "core/results/run_output.hpp"
+#include "tensormass/materials/law_factory.hpp"
+#include "verification/studies/inversion_depth.hpp"
+#include "verification/studies/study_plot.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+namespace tmlab::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<std::string> split_list(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string w; std::getline(in, w, ',');)
+    if (!w.empty()) out.push_back(w);
+  return out;
+}
+
+}  // namespace
+
+int cmd_inversion(const std::vector<std::string>& args, const std::string& command_line) {
+  const Parsed p = parse(args, {"--laws", "--cells", "--max-depth", "--increment", "--grading", "--results"},
+                         {"--quick", "--no-plots"});
+  if (!p.positional.empty()) throw UsageError("inversion takes no positional arguments");
+  tm::InversionStudyOptions o;
+  if (p.has("--quick")) o.cells = {4};  // the test's mesh
+  if (p.has("--cells")) {
+    o.cells.clear();
+    for (const std::string& c : split_list(p.get("--cells"))) {
+      const double n = parse_double("--cells", c);
+      if (!(n >= 2) || n != std::floor(n) || n > 64) throw UsageError("--cells needs integers in [2, 64]");
+      o.cells.push_back(static_cast<int>(n));
+    }
+    if (o.cells.empty()) throw UsageError("--cells needs a comma-separated list of integers");
+  }
+  if (p.has("--max-depth")) o.max_depth = parse_double("--max-depth", p.get("--max-depth"));
+  if (p.has("--increment")) o.increment = parse_double("--increment", p.get("--increment"));
+  if (p.has("--grading")) o.grading = parse_double("--grading", p.get("--grading"));
+  const std::vector<tm::InversionLaw> all = tm::default_inversion_laws(o.young, o.poisson);
+  if (p.has("--laws")) {
+    for (const std::string& name : split_list(p.get("--laws"))) {
+      const auto it =
+          std::find_if(all.begin(), all.end(), [&](const tm::InversionLaw& l) { return l.name == name; });
+      if (it == all.end()) {
+        std::string names;
+        for (const tm::InversionLaw& l : all) names += (names.empty() ? "" : ", ") + l.name;
+        throw UsageError("--laws: unknown law '" + name + "' (known: " + names + ")");
+      }
+      o.laws.push_back(*it);
+    }
+    if (o.laws.empty()) throw UsageError("--laws needs a comma-separated list of laws");
+  }
+  o.log = [](const std::string& m) { std::cerr << "tmlab inversion: " << m << "\n"; };
+  const fs::path dir =
+      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "inversion";
+
+  RunOutput out(dir, nullptr);
+  try {
+    const std::vector<tm::InversionRun> runs = tm::run_inversion_study(o);  // validates the options
+    nlohmann::json doc = tm::inversion_json(o, runs);
+    out.write_json("manifest.json", make_manifest({split_words(command_line), doc, {}}));
+    out.write_json("inversion.json", doc);
+    {
+      std::ofstream md(out.file("inversion.md"));
+      md << tm::inversion_markdown(o, runs, command_line);
+      if (!md) throw Error(out.file("inversion.md").string() + ": cannot write");
+    }
+    std::string plots = "skipped (--no-plots)";
+    if (!p.has("--no-plots")) {
+      const ProcessStatus ps =
+          tm::draw_study_plot(tmlab_root(), "tmlab_inversion_plot.py", out.staging_dir());
+      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+      if (!ps.ok()) std::cerr << "tmlab inversion: plot " << plots << "\n";
+    }
+    nlohmann::json summary = {{"plots", plots}, {"runs", nlohmann::json::array()}};
+    for (const nlohmann::json& r : doc["runs"])
+      summary["runs"].push_back({{"law", r["law"]},
+                                 {"cells", r["cells"]},
+                                 {"outcome", r["outcome"]},
+                                 {"inversion_depth_m", r["inversion_depth_m"]},
+                                 {"deepest_converged_m", r["deepest_converged_m"]},
+                                 {"deepest_min_J", r["deepest_min_J"]}});
+    out.finalize(summary);
+    std::cout << tm::inversion_markdown(o, runs, command_line);
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  std::cout << "results " << dir.string()
+            << "/ (inversion.json, inversion.md, summary.json, inversion_depth.png)\n";
+  return 0;
+}
+
+}  // namespace tmlab::cli
