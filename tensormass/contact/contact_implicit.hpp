@@ -30,6 +30,15 @@ class ContactImplicitDynamics {
   double time() const { return t_; }
   const VecX& displacement() const { return u_; }
   const VecX& velocity() const { return v_; }
+  const VecX& acceleration() const { return a_; }
+  /// Checkpoints (issue 12): after initialize(), continues from a saved step boundary (the contact
+  /// state is restored through contact()).
+  void restore(double t, const VecX& u, const VecX& v, const VecX& a) {
+    t_ = t;
+    u_ = u;
+    v_ = v;
+    a_ = a;
+  }
   const ContactStaticSolver& contact() const { return *contact_; }
   ContactStaticSolver& contact() { return *contact_; }
 

@@ -408,4 +408,58 @@ std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, cons
   return out;
 }
 
+// Layout per body (nb surface nodes): lambda [nb], lambda_b [3 nb], bonded [nb], anchor [3 nb],
+// the number of candidates and the candidates (surface-local indices; exact as doubles below 2^53).
+std::vector<double> ContactStaticSolver::committed_state() const {
+  std::vector<double> out;
+  for (const BodyData& d : committed_) {
+    out.insert(out.end(), d.lambda.begin(), d.lambda.end());
+    for (const Vec3& l : d.lambda_b) out.insert(out.end(), {l.x(), l.y(), l.z()});
+    for (const char b : d.bonded) out.push_back(b ? 1.0 : 0.0);
+    for (const Vec3& a : d.anchor) out.insert(out.end(), {a.x(), a.y(), a.z()});
+    out.push_back(static_cast<double>(d.candidates.size()));
+    for (const Index k : d.candidates) out.push_back(static_cast<double>(k));
+  }
+  return out;
+}
+
+void ContactStaticSolver::restore_committed_state(const std::vector<double>& data,
+                                                  std::vector<ContactBodyState> outputs) {
+  const std::size_t nb = static_cast<std::size_t>(surface_.size());
+  const auto bad = [] {
+    return Error("contact checkpoint does not fit this contact surface and these bodies");
+  };
+  if (outputs.size() != bodies_.size()) throw bad();
+  std::size_t at = 0;
+  const auto take = [&]() {
+    if (at >= data.size()) throw bad();
+    return data[at++];
+  };
+  std::vector<BodyData> restored(bodies_.size());
+  for (BodyData& d : restored) {
+    d.lambda.resize(nb);
+    d.lambda_b.resize(nb);
+    d.bonded.resize(nb);
+    d.anchor.resize(nb);
+    for (double& l : d.lambda) l = take();
+    for (Vec3& l : d.lambda_b)
+      for (int c = 0; c < 3; ++c) l[c] = take();
+    for (char& b : d.bonded) b = take() != 0.0 ? 1 : 0;
+    for (Vec3& a : d.anchor)
+      for (int c = 0; c < 3; ++c) a[c] = take();
+    const double n = take();
+    if (!(n >= 0.0 && n <= static_cast<double>(nb))) throw bad();
+    d.candidates.resize(static_cast<std::size_t>(n));
+    for (Index& k : d.candidates) {
+      const double v = take();
+      if (!(v >= 0.0 && v < static_cast<double>(nb))) throw bad();
+      k = static_cast<Index>(v);
+    }
+  }
+  if (at != data.size()) throw bad();
+  committed_ = std::move(restored);
+  trial_ = committed_;
+  state_ = std::move(outputs);
+}
+
 }  // namespace tmlab::tm

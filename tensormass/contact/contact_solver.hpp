@@ -143,6 +143,13 @@ class ContactStaticSolver {
   /// energy += Phi (each skipped when null). Used by the Newton residual; public for the tests.
   void add_contact_terms(const VecX& u, double t, VecX* r, SpMat* J, double* energy) const;
 
+  /// Checkpoints (issue 12): the committed contact state (per body: multipliers, glued nodes,
+  /// anchors and the candidate set, which the next increment's search keeps) as one array, exact.
+  std::vector<double> committed_state() const;
+  /// Restores what committed_state() returned, and the outputs at that time (state()); tmlab::Error
+  /// when the array does not fit this surface and these bodies.
+  void restore_committed_state(const std::vector<double>& data, std::vector<ContactBodyState> outputs);
+
  private:
   struct BodyData {
     std::vector<double> lambda;     ///< normal multiplier per surface node (>= 0)

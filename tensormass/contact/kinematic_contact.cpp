@@ -138,4 +138,28 @@ VecX KinematicContact::correct(double t, double dt, const VecX& u) {
   return du;
 }
 
+// Layout per body (nb surface nodes): bonded [nb], anchor [3 nb].
+std::vector<double> KinematicContact::committed_state() const {
+  std::vector<double> out;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    for (const char g : bonded_[b]) out.push_back(g ? 1.0 : 0.0);
+    for (const Vec3& a : anchor_[b]) out.insert(out.end(), {a.x(), a.y(), a.z()});
+  }
+  return out;
+}
+
+void KinematicContact::restore_committed_state(const std::vector<double>& data,
+                                               std::vector<ContactBodyState> outputs) {
+  const std::size_t nb = surface_.nodes.size();
+  if (data.size() != bodies_.size() * 4 * nb || outputs.size() != bodies_.size())
+    throw Error("contact checkpoint does not fit this contact surface and these bodies");
+  std::size_t at = 0;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    for (char& g : bonded_[b]) g = data[at++] != 0.0 ? 1 : 0;
+    for (Vec3& a : anchor_[b])
+      for (int c = 0; c < 3; ++c) a[c] = data[at++];
+  }
+  state_ = std::move(outputs);
+}
+
 }  // namespace tmlab::tm

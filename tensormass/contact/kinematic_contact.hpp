@@ -46,6 +46,11 @@ class KinematicContact {
   const ContactSurface& surface() const { return surface_; }
   double gap_tol() const { return gap_tol_; }
 
+  /// Checkpoints (issue 12): the glued nodes and their anchors per body as one array, exact; the
+  /// restore also sets the outputs of the step it was taken after (state()).
+  std::vector<double> committed_state() const;
+  void restore_committed_state(const std::vector<double>& data, std::vector<ContactBodyState> outputs);
+
  private:
   Vec3 position(const VecX& u, Index k) const;
 

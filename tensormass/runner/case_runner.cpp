@@ -435,7 +435,12 @@ class StepRecorder {
   }
 
   /// Fields: displacement, velocity; per tet volume ratio, Green strain, Cauchy stress, von Mises.
-  void fields(double t, const VecX& u, const VecX& v) {
+  /// `pressure`: the contact pressure of a frame replayed from a checkpoint (null: the current one).
+  void fields(double t, const VecX& u, const VecX& v, const std::vector<double>* pressure = nullptr) {
+    const std::vector<double> pc = !contact_  ? std::vector<double>{}
+                                   : pressure ? *pressure
+                                              : contact_pressure();
+    frames_p_.insert(frames_p_.end(), pc.begin(), pc.end());
     frames_t_.push_back(t);
     frames_u_.insert(frames_u_.end(), u.data(), u.data() + u.size());
     frames_v_.insert(frames_v_.end(), v.data(), v.data() + v.size());
@@ -453,7 +458,7 @@ class StepRecorder {
       xdmf_->add_cell_scalar("von_mises", c.von_mises);
       xdmf_->add_cell_tensor("green_strain", c.strain);
       xdmf_->add_cell_tensor("cauchy_stress", c.cauchy);
-      if (contact_) xdmf_->add_point_scalar("contact_pressure", contact_pressure());
+      if (contact_) xdmf_->add_point_scalar("contact_pressure", pc);
       xdmf_->flush();
     }
     if (pvd_) {
@@ -466,7 +471,7 @@ class StepRecorder {
       w.add_cell_scalar("von_mises", c.von_mises);
       w.add_cell_tensor("green_strain", c.strain);
       w.add_cell_tensor("cauchy_stress", c.cauchy);
-      if (contact_) w.add_point_scalar("contact_pressure", contact_pressure());
+      if (contact_) w.add_point_scalar("contact_pressure", pc);
       char name[64];
       std::snprintf(name, sizeof name, "vtu/step_%05d.vtu", frame);
       w.write(out_.file(name));
@@ -484,6 +489,7 @@ class StepRecorder {
   VecX f_applied_prev_, u_prev_;
   const std::vector<ContactBodyState>* contact_ = nullptr;
   std::vector<double> frames_t_, frames_u_, frames_v_;  ///< every field frame so far (checkpoints)
+  std::vector<double> frames_p_;                        ///< and its contact pressure (contact runs)
 };
 
 /// After every recorded step: progress, and a safe point at which SIGINT/SIGTERM stop the run.
@@ -527,6 +533,20 @@ struct LoopState {
   ImplicitDynamics* implicit;
 };
 
+class ContactLog;
+
+/// The contact objects of a contact run's loop (null: not in this loop), checkpointed besides the
+/// LoopState: the committed contact state (multipliers, active candidates, glued nodes and anchors;
+/// the bodies' positions follow from t), the outputs of the last step, and the summary's log.
+struct ContactLoop {
+  ContactStaticSolver* augmented = nullptr;  ///< static, and implicit dynamics' contact()
+  KinematicContact* kinematic = nullptr;     ///< explicit
+  ContactImplicitDynamics* implicit = nullptr;
+  ContactLog* log = nullptr;
+};
+void save_contact(CheckpointData& d, const ContactLoop& c);
+void restore_contact(const CheckpointData& d, const LoopState& loop, const ContactLoop& c);
+
 /// The run's checkpoint, <result dir>/.incomplete/checkpoint.h5: written at step boundaries when
 /// the schedule says so and when a stop was requested; read back by --resume, which restores the
 /// state so that the finished result is identical bit for bit to an uninterrupted run.
@@ -544,7 +564,7 @@ class RunCheckpoint {
 
   /// After the loop's integrator is initialised: restores the saved state (model, integrator,
   /// loop, recorder and field files) and returns the last completed step (0 when not resuming).
-  int restore(StepRecorder& rec, const LoopState& loop) {
+  int restore(StepRecorder& rec, const LoopState& loop, const ContactLoop* contact = nullptr) {
     if (!resume_) return 0;
     const CheckpointData& d = *resume_;
     const int step = static_cast<int>(d.integer("step"));
@@ -559,8 +579,7 @@ class RunCheckpoint {
     if (loop.newton) loop.newton->restore(d);
     if (loop.total_newton) *loop.total_newton = d.integer("total_newton");
     if (loop.total_cutbacks) *loop.total_cutbacks = d.integer("total_cutbacks");
-    // Extension point: contact state (active set, multipliers, rigid body positions) is restored
-    // here from "contact.*" entries, saved in after_step().
+    if (contact) restore_contact(d, loop, *contact);
     rec.restore(d);
     last_step_ = step;
     if (log_)
@@ -572,7 +591,8 @@ class RunCheckpoint {
 
   /// At a step boundary, after the step is recorded: writes the checkpoint when it is due or a
   /// stop was requested (SIGINT/SIGTERM; the loop's safe point throws right after).
-  void after_step(int step, const StepRecorder& rec, const LoopState& loop) {
+  void after_step(int step, const StepRecorder& rec, const LoopState& loop,
+                  const ContactLoop* contact = nullptr) {
     if (!(pending_interrupt() != 0 || clock_.due(step))) return;
     CheckpointData d;
     d.put_int("step", step);
@@ -588,7 +608,7 @@ class RunCheckpoint {
     if (loop.newton) loop.newton->save(d);
     if (loop.total_newton) d.put_int("total_newton", *loop.total_newton);
     if (loop.total_cutbacks) d.put_int("total_cutbacks", *loop.total_cutbacks);
-    // Extension point: contact state ("contact.*" entries; see restore()).
+    if (contact) save_contact(d, *contact);
     rec.save(d);
     write_checkpoint(path_, "run", fingerprint_, d);
     clock_.mark();
@@ -678,6 +698,7 @@ void StepRecorder::save(CheckpointData& d) const {
   d.put("frames.t", frames_t_);
   d.put("frames.u", frames_u_);
   d.put("frames.v", frames_v_);
+  if (contact_) d.put("frames.contact_pressure", frames_p_);
 }
 
 void StepRecorder::restore(const CheckpointData& d) {
@@ -697,13 +718,22 @@ void StepRecorder::restore(const CheckpointData& d) {
   const auto& fu = d.doubles("frames.u");
   const auto& fv = d.doubles("frames.v");
   const std::size_t n = static_cast<std::size_t>(p_.system.num_dofs());
-  if (fu.size() != ft.size() * n || fv.size() != ft.size() * n)
+  const std::size_t np = static_cast<std::size_t>(p_.mesh.num_points());
+  const std::vector<double> none;
+  const auto& fpc = contact_ ? d.doubles("frames.contact_pressure") : none;
+  if (fu.size() != ft.size() * n || fv.size() != ft.size() * n || (contact_ && fpc.size() != ft.size() * np))
     throw Error(d.source() + ": field frames of the wrong size (another mesh?); run without --resume");
   for (std::size_t f = 0; f < ft.size(); ++f) {
     const auto off = static_cast<std::ptrdiff_t>(f * n);
     const VecX u = Eigen::Map<const VecX>(fu.data() + off, static_cast<Eigen::Index>(n));
     const VecX v = Eigen::Map<const VecX>(fv.data() + off, static_cast<Eigen::Index>(n));
-    fields(ft[f], u, v);
+    if (!contact_) {
+      fields(ft[f], u, v);
+      continue;
+    }
+    const std::vector<double> pc(fpc.begin() + static_cast<std::ptrdiff_t>(f * np),
+                                 fpc.begin() + static_cast<std::ptrdiff_t>((f + 1) * np));
+    fields(ft[f], u, v, &pc);
   }
 }
 
@@ -851,6 +881,15 @@ class ContactLog {
     }
     return j;
   }
+  void save(CheckpointData& d) const {
+    d.put("contact.log.outer", std::vector<std::int64_t>(outer_.begin(), outer_.end()));
+    d.put("contact.log.natural", natural_);
+  }
+  void restore(const CheckpointData& d) {
+    const auto& outer = d.ints("contact.log.outer");
+    outer_.assign(outer.begin(), outer.end());
+    natural_ = d.doubles("contact.log.natural");
+  }
 
  private:
   const CaseConfig& cfg_;
@@ -858,9 +897,96 @@ class ContactLog {
   std::vector<double> natural_;
 };
 
+/// The contact outputs of every body ("contact.out.<b>.*"), exactly.
+void save_contact_outputs(CheckpointData& d, const std::vector<ContactBodyState>& states) {
+  for (std::size_t b = 0; b < states.size(); ++b) {
+    const ContactBodyState& st = states[b];
+    const std::string at = "contact.out." + std::to_string(b) + ".";
+    d.put_text(at + "name", st.name);
+    std::vector<double> x;
+    for (const Vec3* v : {&st.position, &st.force, &st.moment}) x.insert(x.end(), {v->x(), v->y(), v->z()});
+    x.insert(x.end(), {st.area, st.radius_equivalent, st.radius_max, st.max_penetration, st.complementarity,
+                       st.min_multiplier});
+    d.put(at + "scalars", x);
+    std::vector<std::int64_t> nodes{st.active_nodes};
+    nodes.insert(nodes.end(), st.nodes.begin(), st.nodes.end());
+    d.put(at + "nodes", nodes);
+    std::vector<double> f;
+    for (const Vec3& v : st.nodal_force) f.insert(f.end(), {v.x(), v.y(), v.z()});
+    d.put(at + "nodal_force", f);
+    d.put(at + "gap", st.gap);
+    d.put(at + "pressure", st.pressure);
+  }
+}
+
+std::vector<ContactBodyState> restore_contact_outputs(const CheckpointData& d, std::size_t n_bodies) {
+  std::vector<ContactBodyState> states(n_bodies);
+  for (std::size_t b = 0; b < n_bodies; ++b) {
+    ContactBodyState& st = states[b];
+    const std::string at = "contact.out." + std::to_string(b) + ".";
+    st.name = d.text(at + "name");
+    const auto& x = d.doubles(at + "scalars");
+    const auto& nodes = d.ints(at + "nodes");
+    const auto& f = d.doubles(at + "nodal_force");
+    if (x.size() != 15 || nodes.empty() || f.size() != 3 * (nodes.size() - 1))
+      throw Error(d.source() + ": inconsistent contact outputs; run without --resume");
+    st.position = Vec3(x[0], x[1], x[2]);
+    st.force = Vec3(x[3], x[4], x[5]);
+    st.moment = Vec3(x[6], x[7], x[8]);
+    st.area = x[9];
+    st.radius_equivalent = x[10];
+    st.radius_max = x[11];
+    st.max_penetration = x[12];
+    st.complementarity = x[13];
+    st.min_multiplier = x[14];
+    st.active_nodes = static_cast<int>(nodes[0]);
+    st.nodes.assign(nodes.begin() + 1, nodes.end());
+    for (std::size_t i = 0; i + 2 < f.size(); i += 3) st.nodal_force.emplace_back(f[i], f[i + 1], f[i + 2]);
+    st.gap = d.doubles(at + "gap");
+    st.pressure = d.doubles(at + "pressure");
+  }
+  return states;
+}
+
+void save_contact(CheckpointData& d, const ContactLoop& c) {
+  if (c.augmented) {
+    d.put("contact.committed", c.augmented->committed_state());
+    save_contact_outputs(d, c.augmented->state());
+  }
+  if (c.kinematic) {
+    d.put("contact.committed", c.kinematic->committed_state());
+    save_contact_outputs(d, c.kinematic->state());
+  }
+  if (c.implicit)
+    d.put("implicit.a",
+          std::vector<double>(c.implicit->acceleration().data(),
+                              c.implicit->acceleration().data() + c.implicit->acceleration().size()));
+  if (c.log) c.log->save(d);
+}
+
+void restore_contact(const CheckpointData& d, const LoopState& loop, const ContactLoop& c) {
+  try {
+    if (c.augmented)
+      c.augmented->restore_committed_state(d.doubles("contact.committed"),
+                                           restore_contact_outputs(d, c.augmented->bodies().size()));
+    if (c.kinematic)
+      c.kinematic->restore_committed_state(d.doubles("contact.committed"),
+                                           restore_contact_outputs(d, c.kinematic->bodies().size()));
+  } catch (const Error& e) {
+    throw Error(d.source() + ": " + e.what() + "; run without --resume");
+  }
+  if (c.implicit) {
+    const auto& a = d.doubles("implicit.a");
+    c.implicit->restore(loop.t, loop.s.u, loop.s.v,
+                        Eigen::Map<const VecX>(a.data(), static_cast<Eigen::Index>(a.size())));
+  }
+  if (c.log) c.log->restore(d);
+}
+
 /// Static load stepping with contact (ContactStaticSolver: augmented Lagrangian or penalty around
 /// the static Newton; a viscoelastic model's history advances once per accepted increment).
-nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                                   RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
   ContactStaticSolver solver(p.system, p.mesh, cs.bodies, cs.options, newton_options(cfg.solver), 0.0, s.u,
@@ -868,12 +994,15 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
   check_contact_rig(p.mesh, solver.surface(), solver.bodies(), cs.options.max_initial_gap, 0.0,
                     cfg.solver.t_end, s.u);
   rec.set_contact(&solver.state());
-  rec.record(0, 0.0, s.u, s.v, 0, true);
+  if (!ck.resuming()) rec.record(0, 0.0, s.u, s.v, 0, true);  // resumed: the checkpoint holds it
   const int n_steps = cfg.solver.steps;
   NewtonLog newton_log;
   ContactLog contact_log(cfg);
   long total_newton = 0, total_cutbacks = 0;
-  for (int k = 1; k <= n_steps; ++k) {
+  double t = 0.0;
+  const LoopState loop{s, t, &newton_log, &total_newton, &total_cutbacks, nullptr, nullptr};
+  const ContactLoop contact{&solver, nullptr, nullptr, &contact_log};
+  for (int k = ck.restore(rec, loop, &contact) + 1; k <= n_steps; ++k) {
     const double t0 = cfg.solver.t_end * (k - 1) / n_steps, t1 = cfg.solver.t_end * k / n_steps;
     const ContactStepReport rep = solver.advance(t0, t1, s.u);
     total_newton += rep.solver.newton_iterations;
@@ -882,6 +1011,8 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
                    rep.solver.sub_increments, rep.solver.at_roundoff);
     contact_log.add(rep);
     rec.record(k, t1, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
+    t = t1;
+    ck.after_step(k, rec, loop, &contact);
     progress(k, t1);
   }
   return {{"type", "static"},
@@ -895,7 +1026,8 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
 
 /// Explicit central differences with kinematic contact (KinematicContact: penetrating nodes are
 /// put back on the body after each predictor; no stiffness, so the stable step is the sample's).
-nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                                     RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const int n_steps = cfg.solver.steps;
   const double dt = cfg.solver.dt;
@@ -906,11 +1038,13 @@ nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progre
   check_contact_rig(p.mesh, contact.surface(), contact.bodies(), cs.options.max_initial_gap, 0.0,
                     cfg.solver.t_end, s.u);
   rec.set_contact(&contact.state());
-  rec.record(0, 0.0, s.u, s.v, 0, true);
+  if (!ck.resuming()) rec.record(0, 0.0, s.u, s.v, 0, true);  // resumed: the checkpoint holds it
   integ.initialize(0.0, s.u, s.v);
   const int series_every = std::max(1, n_steps / 4000);
   double t = 0.0;
-  for (int k = 1; k <= n_steps; ++k) {
+  const LoopState loop{s, t, nullptr, nullptr, nullptr, &integ, nullptr};
+  const ContactLoop ckc{nullptr, &contact, nullptr, nullptr};
+  for (int k = ck.restore(rec, loop, &ckc) + 1; k <= n_steps; ++k) {
     integ.step(t, dt);
     t = integ.time();
     integ.correct(contact.correct(t, dt, integ.displacement()));
@@ -919,6 +1053,7 @@ nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progre
       s.u = integ.displacement();
       s.v = integ.velocity();
       rec.record(k, t, s.u, s.v, 0, fields);
+      ck.after_step(k, rec, loop, &ckc);
       progress(k, t);
     }
   }
@@ -929,7 +1064,8 @@ nlohmann::json step_explicit_contact(const Problem& p, StepRecorder& rec, Progre
 
 /// Implicit dynamics with contact (ContactImplicitDynamics: the augmented-Lagrangian loop around the
 /// implicit step's Newton solve).
-nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
+nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                                     RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const int n_steps = cfg.solver.steps;
   const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
@@ -939,12 +1075,14 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
   check_contact_rig(p.mesh, integ.contact().surface(), integ.contact().bodies(), cs.options.max_initial_gap,
                     0.0, cfg.solver.t_end, s.u);
   rec.set_contact(&integ.contact().state());
-  rec.record(0, 0.0, s.u, s.v, 0, true);
+  if (!ck.resuming()) rec.record(0, 0.0, s.u, s.v, 0, true);  // resumed: the checkpoint holds it
   NewtonLog newton_log;
   ContactLog contact_log(cfg);
   long total_newton = 0;
   double t = 0.0;
-  for (int k = 1; k <= n_steps; ++k) {
+  const LoopState loop{s, t, &newton_log, &total_newton, nullptr, nullptr, nullptr};
+  const ContactLoop contact{&integ.contact(), nullptr, &integ, &contact_log};
+  for (int k = ck.restore(rec, loop, &contact) + 1; k <= n_steps; ++k) {
     const double dt = std::min(cfg.solver.dt, cfg.solver.t_end - t);
     const ContactStepReport rep = integ.step(t, dt);
     t = integ.time();
@@ -954,6 +1092,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
     s.u = integ.displacement();
     s.v = integ.velocity();
     rec.record(k, t, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
+    ck.after_step(k, rec, loop, &contact);
     progress(k, t);
   }
   return {{"type", "implicit"},
@@ -969,10 +1108,11 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
 
 /// Steps a case with a `contact` section (t = 0 recorded by the stepping function, once the
 /// contact outputs exist).
-nlohmann::json step_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s) {
-  if (p.cfg.solver.type == SolverSpec::Type::Static) return step_static_contact(p, rec, progress, s);
-  if (p.cfg.solver.type == SolverSpec::Type::Explicit) return step_explicit_contact(p, rec, progress, s);
-  return step_implicit_contact(p, rec, progress, s);
+nlohmann::json step_contact(const Problem& p, StepRecorder& rec, Progress& progress, State& s,
+                            RunCheckpoint& ck) {
+  if (p.cfg.solver.type == SolverSpec::Type::Static) return step_static_contact(p, rec, progress, s, ck);
+  if (p.cfg.solver.type == SolverSpec::Type::Explicit) return step_explicit_contact(p, rec, progress, s, ck);
+  return step_implicit_contact(p, rec, progress, s, ck);
 }
 
 /// Steps the case's solver from rest, recording t = 0 first; returns the summary's solver block.
@@ -980,12 +1120,7 @@ nlohmann::json step(const Problem& p, StepRecorder& rec, std::ostream* log, RunC
   Progress progress(p.cfg, log);
   State s{VecX::Zero(p.system.num_dofs()), VecX::Zero(p.system.num_dofs())};
   if (p.cfg.contact.enabled) {
-    // Contact runs write no checkpoint yet (the active set, multipliers and body positions are not
-    // saved): refuse --resume rather than restart silently.
-    if (ck.resuming())
-      throw Error(p.cfg.file +
-                  ": --resume is not supported for cases with a 'contact' section yet; run again without it");
-    nlohmann::json info = step_contact(p, rec, progress, s);
+    nlohmann::json info = step_contact(p, rec, progress, s, ck);
     progress.finish();
     return info;
   }

@@ -344,6 +344,50 @@ TEST_F(CliRunResume, InterruptedRunsResumeBitIdentical) {
   check(ex, "resume-explicit", 2, rng, "50");
 }
 
+TEST_F(CliRunResume, InterruptedContactRunsResumeBitIdentical) {
+  // A rigid sphere pressed into the top of a viscoelastic unit cube (125 nodes): the contact state a
+  // resumed run needs (augmented-Lagrangian multipliers, the candidate set the next increment's
+  // search keeps, the kinematic contact's glued nodes, the outputs and the per-step contact log)
+  // changes at every step, so a checkpoint that missed any of it would not resume bit for bit.
+  auto write = [&](const std::string& name, const nlohmann::json& solver) {
+    const nlohmann::json c = {
+        {"name", name},
+        {"mesh", {{"file", (fs::path(TMLAB_SOURCE_DIR) / "meshes" / "cube_n4.msh").string()}}},
+        {"material",
+         {{"E", 3000},
+          {"nu", 0.4},
+          {"density", 1000},
+          {"viscoelastic",
+           {{"scheme", "objective"},
+            {"prony",
+             {{"convention", "instantaneous"},
+              {"terms", {{{"weight", 0.3}, {"tau", 0.05}}, {{"weight", 0.2}, {"tau", 0.5}}}}}}}}}},
+        {"boundary", {{{"name", "bottom"}, {"nodes", {{"group", "zmin"}}}}}},
+        {"contact",
+         {{"bodies",
+           {{{"name", "indenter"},
+             {"type", "sphere"},
+             {"center", {0.5, 0.5, 1.5}},
+             {"radius", 0.5},
+             {"displacement", {0, 0, -0.12}},
+             {"function", {{"type", "ramp"}, {"t0", 0}, {"t1", 0.2}}}}}}}},
+        {"solver", solver},
+        {"output", {{"every", 3}, {"probes", {{{"name", "top"}, {"point", {0.5, 0.5, 1.0}}}}}}}};
+    const fs::path f = dir_ / (name + ".json");
+    std::ofstream(f) << c.dump(2);
+    return f;
+  };
+  std::mt19937 rng(20261126);
+  check(write("contact-static", {{"type", "static"}, {"steps", 12}, {"t_end", 0.3}}), "contact-static", 2,
+        rng, "1");
+  check(
+      write("contact-implicit", {{"type", "implicit"}, {"scheme", "newmark"}, {"dt", 0.01}, {"t_end", 0.3}}),
+      "contact-implicit", 1, rng, "1");
+  check(write("contact-explicit",
+              {{"type", "explicit"}, {"dt", 1e-3}, {"t_end", 0.3}, {"damping", {{"alpha", 50}}}}),
+        "contact-explicit", 1, rng, "40");
+}
+
 TEST_F(CliRunResume, ResumeOfAnotherCaseOrWithoutCheckpointIsRefused) {
   const fs::path st = write_case("resume-refuse", {{"type", "static"}, {"steps", 200}, {"t_end", 0.6}}, 50);
   const fs::path res = dir_ / "res";
@@ -367,6 +411,7 @@ TEST_F(CliRunResume, ResumeOfAnotherCaseOrWithoutCheckpointIsRefused) {
   EXPECT_TRUE(fs::exists(res / "resume-refuse" / "INTERRUPTED"));
   r = run_argv({"run", "cube-uniaxial", "--model", "reference", "--resume"}, dir_ / "3.log");
   EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("the deal.II reference has no checkpoints"), std::string::npos) << r.output;
 }
 
 // ---- tmlab hereditary / workprecision --resume -------------------------------------------------
