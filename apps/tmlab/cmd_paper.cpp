@@ -67,6 +67,9 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
   if (p.positional.size() != 1)
     throw UsageError("paper needs one target: fig2, fig3, table1, table2, fig5, fig6 or fig7");
   if (tm::is_paper_fit_target(p.positional[0])) return paper_fit(p, p.positional[0], command_line);
+  if (p.positional[0] != "fig5" && p.positional[0] != "fig6" && p.positional[0] != "fig7")
+    throw UsageError("unknown paper target '" + p.positional[0] +
+                     "' (expected fig2, fig3, table1, table2, fig5, fig6 or fig7)");
   if (p.has("--quick")) throw UsageError("--quick applies to fig2, fig3, table1 and table2 only");
   tm::PaperRunOptions o;
   o.params_file =

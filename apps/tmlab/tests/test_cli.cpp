@@ -39,6 +39,10 @@ TEST_F(Cli, HelpAndUsageErrors) {
   EXPECT_NE(bad.output.find("unknown command 'frobnicate'"), std::string::npos) << bad.output;
   EXPECT_EQ(run("run").status, 2);
   EXPECT_EQ(run("run liver-probe --bogus").status, 2);
+  const auto fig9 = run("paper fig9");
+  EXPECT_EQ(fig9.status, 2) << fig9.output;
+  EXPECT_NE(fig9.output.find("expected fig2, fig3, table1, table2, fig5, fig6 or fig7"), std::string::npos)
+      << fig9.output;
 }
 
 TEST_F(Cli, CasesListsTheShippedCases) {
