@@ -2,6 +2,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -116,6 +117,8 @@ double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
     std::vector<double> x = f.x;
     try {
       x = values_of(fit::fit(pr, fit_options(o, 1)));
+    } catch (const Interrupted&) {
+      throw;  // a stop request is not a failed fold
     } catch (const Error&) {
       // The fold cannot be fitted from here: predict with the full-data optimum (conservative).
     }
@@ -224,6 +227,8 @@ Report run(const measured::DataSet& data, const Options& o) {
                    " N, dBIC " + significant(st.delta_bic, 4));
         cand.push_back(std::move(f));
         step_of.push_back(r.steps.size());
+      } catch (const Interrupted&) {
+        throw;  // a stop request is not a failed candidate
       } catch (const std::exception& ex) {
         st.reason = std::string("fit failed: ") + ex.what();
         say(o, "  round " + std::to_string(round) + " " + e.name + ": " + st.reason);

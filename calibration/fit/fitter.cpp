@@ -4,6 +4,7 @@
 #include "calibration/fit/parallel.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 
 #include <gsl/gsl_cdf.h>
 #include <gsl/gsl_errno.h>
@@ -120,6 +121,9 @@ struct GslData {
 };
 
 int gsl_f(const gsl_vector* x, void* params, gsl_vector* f) {
+  // A stop request (SIGINT/SIGTERM) ends the GSL driver through its error path: no exception may
+  // cross GSL's C frames. local_fit turns it into tmlab::Interrupted once the driver has returned.
+  if (pending_interrupt() != 0) return GSL_EBADFUNC;
   auto* g = static_cast<GslData*>(params);
   const Evaluator& ev = *g->ev;
   std::vector<double> t(x->data, x->data + ev.p()), e;
@@ -136,6 +140,7 @@ int gsl_f(const gsl_vector* x, void* params, gsl_vector* f) {
 /// Forward-difference Jacobian in the internal coordinates, one column per forward solve, the
 /// columns in parallel.
 int gsl_df(const gsl_vector* x, void* params, gsl_matrix* J) {
+  if (pending_interrupt() != 0) return GSL_EBADFUNC;  // as gsl_f
   auto* g = static_cast<GslData*>(params);
   const Evaluator& ev = *g->ev;
   std::vector<double> t(ev.p());
@@ -232,6 +237,12 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
   int info = 0;
   const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), 1e-9, 1e-9, 1e-12,
                                                  gsl_callback, &g, &info, w);
+  if (pending_interrupt() != 0) {
+    const std::string at = std::to_string(gsl_multifit_nlinear_niter(w));
+    gsl_vector_free(x);
+    gsl_multifit_nlinear_free(w);
+    check_interrupt("during a local fit (after " + at + " iterations)");
+  }
   Local out;
   const gsl_vector* xf = gsl_multifit_nlinear_position(w);
   for (std::size_t j = 0; j < ev.p(); ++j) out.t.push_back(gsl_vector_get(xf, j));
@@ -268,6 +279,9 @@ struct SimanState {
 
 double siman_energy(void* xp) {
   const auto* s = static_cast<const SimanState*>(xp);
+  // A stop request: no forward solve; gsl_siman runs out its remaining (now cheap) steps and
+  // global_stage raises tmlab::Interrupted after it.
+  if (pending_interrupt() != 0) return s->ctx->failure_energy;
   std::vector<double> e;
   if (!s->ctx->ev->errors(s->t, e)) return s->ctx->failure_energy;
   return std::log(std::max(s->ctx->ev->cost_of(e), 1e-300));
@@ -348,6 +362,7 @@ std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOption
     cand.resize(2);
     cand[1] = cand[0];
     cand[0] = anneal(pr, opt, ev, cand[1]);
+    check_interrupt("during simulated annealing");
     starts = cand.size();
   }
   res.start_costs.assign(starts, kInf);
@@ -355,6 +370,7 @@ std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOption
     std::vector<double> e;
     if (ev.errors(cand[c].data(), e)) res.start_costs[c] = ev.cost_of(e);
   });
+  check_interrupt("during the global stage of the fit");
   order.assign(starts, 0);
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
@@ -381,6 +397,7 @@ Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
   const std::size_t runs = std::min<std::size_t>(starts, std::size_t(std::max(1, opt.local_runs)));
   for (std::size_t r = 0; r < runs; ++r) {
     if (!std::isfinite(res.start_costs[order[r]])) break;
+    check_interrupt("before local fit " + std::to_string(r + 1) + " of " + std::to_string(runs));
     if (opt.progress) opt.progress("local stage from start " + std::to_string(order[r]) + ":");
     Local l = local_fit(ev, cand[order[r]], opt, true);
     res.iterations += l.iterations;
@@ -745,6 +762,7 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
 
   std::vector<std::size_t> order;
   std::vector<std::vector<double>> cand = global_stage(pr, opt, gev, res, order);
+  note_progress_point();  // the test stop point (core/base/interrupt.hpp): after the global stage
   if (pr.global_model) {
     // The surrogate's costs rank the candidates; the local stage's starts are re-costed with the
     // final model (a candidate it cannot evaluate is skipped).
@@ -773,7 +791,9 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   const Covariance c = covariance(opt, ev, t, e0, res);
   parameter_results(pr, ev, t, c, res);
   confounding_report(pr, c.identifiable, res);
+  check_interrupt("after the local stage of the fit");
   if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res);
+  check_interrupt("during the profile likelihood");
   res.forward_solves = solves.load();
   res.global_solves = pr.global_model ? global_solves.load() : 0;
   if (!pr.priors.empty()) prior_notes(pr, ev, c, res);

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -92,6 +93,24 @@ TEST_F(CliFit, AFitThatCannotRunLeavesFailed) {
   EXPECT_TRUE(fs::exists(out / "FAILED")) << r.output;
   EXPECT_FALSE(fs::exists(out / "summary.json"));
   EXPECT_FALSE(fs::exists(out / "fit.json"));
+}
+
+TEST_F(CliFit, AnInterruptedFitLeavesInterruptedAndNoResult) {
+  const fs::path csv = convert();
+  const fs::path out = dir_ / "stopped";
+  // SIGTERM raised by the driver itself right after the global stage (the deterministic stop point of
+  // core/base/interrupt.hpp): the fit stops before its local stage.
+  ::setenv("TMLAB_TEST_STOP_AFTER_PROGRESS", "1:SIGTERM", 1);
+  const Result r =
+      tmlab({"fit", csv.string(), "--model", "mooney_rivlin,poisson=0.49", "--out", out.string()});
+  ::unsetenv("TMLAB_TEST_STOP_AFTER_PROGRESS");
+  EXPECT_EQ(r.status, 128 + 15) << r.output;
+  EXPECT_NE(r.output.find("SIGTERM received before local fit 1"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(out / "INTERRUPTED")) << r.output;
+  EXPECT_NE(read_file(out / "INTERRUPTED").find("SIGTERM"), std::string::npos);
+  EXPECT_FALSE(fs::exists(out / "summary.json"));
+  EXPECT_FALSE(fs::exists(out / "fit.json"));
+  EXPECT_FALSE(fs::exists(out / "RUNNING"));
 }
 
 TEST_F(CliFit, BadSpecsAndDataAreRefused) {

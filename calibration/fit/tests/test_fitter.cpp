@@ -10,10 +10,13 @@
 #include "calibration/fit/surrogates.hpp"
 #include "calibration/fit/tests/synthetic_data.hpp"
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
+#include <csignal>
 #include <iostream>
 #include <random>
 
@@ -236,6 +239,54 @@ TEST(Fitter, AGaussianPriorRegularisesTheConfoundedPoissonRatio) {
   FitOptions l1;
   l1.cost = Cost::L1;
   EXPECT_THROW(fit(p, l1), Error);
+}
+
+/// A forward model that records a stop request (as the SIGINT handler would) at its n-th evaluation.
+class StopAtEvaluation : public ForwardModel {
+ public:
+  StopAtEvaluation(std::unique_ptr<ForwardModel> m, long n, std::atomic<long>& calls)
+      : m_(std::move(m)), n_(n), calls_(calls) {}
+  std::string name() const override { return m_->name(); }
+  std::string description() const override { return m_->description(); }
+  std::vector<double> predict(const std::vector<double>& x) const override {
+    if (++calls_ == n_) set_pending_interrupt(SIGINT);
+    return m_->predict(x);
+  }
+
+ private:
+  std::unique_ptr<ForwardModel> m_;
+  long n_;
+  std::atomic<long>& calls_;
+};
+
+TEST(Fitter, AStopRequestEndsTheFitAtItsNextSafePoint) {
+  measured::DataSet d = testing::compression_data(0.5, 101);
+  testing::set_forces(d, truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
+  FitOptions o;
+  o.starts = 1;
+  o.local_runs = 1;
+  o.threads = 1;
+  // Evaluation 1 is the global stage's only start; from 2 on Levenberg-Marquardt runs inside GSL,
+  // whose callbacks must not throw: the driver is ended through its error path and the fit throws
+  // tmlab::Interrupted once GSL has returned.
+  for (const long n : {1L, 2L, 6L}) {
+    SCOPED_TRACE("stop request at evaluation " + std::to_string(n));
+    Problem pr = make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49"));
+    std::atomic<long> calls{0};
+    pr.model = std::make_unique<StopAtEvaluation>(std::move(pr.model), n, calls);
+    try {
+      (void)fit(pr, o);
+      ADD_FAILURE() << "the fit ran to its end";
+    } catch (const Interrupted& e) {
+      EXPECT_EQ(e.signal(), SIGINT);
+      EXPECT_NE(std::string(e.what()).find(n == 1 ? "global stage" : "during a local fit"), std::string::npos)
+          << e.what();
+    }
+    // Stopped at once: at most the rest of the Jacobian being formed (2 free parameters), not the
+    // rest of the Levenberg-Marquardt run.
+    EXPECT_LE(calls.load(), n + 2);
+    set_pending_interrupt(0);
+  }
 }
 
 }  // namespace
