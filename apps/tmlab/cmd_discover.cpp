@@ -252,6 +252,51 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
 
 }  // namespace
 
+namespace {
+
+/// discover.h5: per test the data, the baseline's and the final model's forces (and the FE refits').
+void write_discover_h5(const fs::path& path, const discover::Report& r,
+                       const std::vector<discover::FeRefit>& fe_refits) {
+  H5File h5 = H5File::create(path.string());
+  for (std::size_t k = 0; k < r.data.series.size(); ++k) {
+    const discover::Series& s = r.data.series[k];
+    char g[32];
+    std::snprintf(g, sizeof g, "/tests/%03zu", k);
+    const std::string gs(g);
+    h5.write(gs + "/time_s", s.t, {s.t.size()});
+    h5.write(gs + "/displacement_m", s.d, {s.t.size()});
+    h5.write(gs + "/force_N", s.f, {s.t.size()});
+    h5.write(gs + "/baseline_N", r.baseline.prediction[k], {s.t.size()});
+    h5.write(gs + "/final_N", r.final.prediction[k], {s.t.size()});
+    for (const auto& fr : fe_refits)
+      if (fr.done) h5.write(gs + "/fe_rig_" + fr.which + "_N", fr.prediction[k], {s.t.size()});
+    h5.set_attribute(g, "id", s.id);
+  }
+  h5.close();
+}
+
+/// The error before and after, each accepted effect and the FE refits, on stdout.
+void print_discover_report(const discover::Report& r, const std::vector<discover::FeRefit>& fe_refits) {
+  std::cout << "baseline " << r.baseline.structure.label() << ": RMS " << significant(r.baseline.fit.rms, 4)
+            << " N (" << significant(r.baseline.fit.rms_percent_peak, 3) << " % of peak), max "
+            << significant(r.baseline.max_abs, 4) << " N\n";
+  for (const auto& s : r.steps)
+    if (s.accepted) std::cout << "round " << s.round << ": added " << s.effect << " (" << s.reason << ")\n";
+  std::cout << "final " << r.final.structure.label() << ": RMS " << significant(r.final.fit.rms, 4) << " N ("
+            << significant(r.final.fit.rms_percent_peak, 3) << " % of peak), max "
+            << significant(r.final.max_abs, 4) << " N\n"
+            << "unexplained structure: " << (r.unexplained ? "yes: " + r.signature : std::string("no"))
+            << "\n";
+  for (const auto& fr : fe_refits)
+    std::cout << "FE rig " << fr.which << " " << fr.model << ": "
+              << (fr.done ? "RMS " + significant(fr.fit.rms, 4) + " N refitted (" +
+                                significant(fr.fe_rms_at_closed_form, 4) + " N at the closed-form optimum)"
+                          : "not refitted: " + fr.why_not)
+              << "\n";
+}
+
+}  // namespace
+
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p =
       parse(args,
@@ -355,24 +400,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
       j["fe_rig"] = discover::to_json(fe_refits, r.data.peak_force, fe);
     }
     out.write_json("report.json", j);
-    {
-      H5File h5 = H5File::create(out.file("discover.h5").string());
-      for (std::size_t k = 0; k < r.data.series.size(); ++k) {
-        const discover::Series& s = r.data.series[k];
-        char g[32];
-        std::snprintf(g, sizeof g, "/tests/%03zu", k);
-        const std::string gs(g);
-        h5.write(gs + "/time_s", s.t, {s.t.size()});
-        h5.write(gs + "/displacement_m", s.d, {s.t.size()});
-        h5.write(gs + "/force_N", s.f, {s.t.size()});
-        h5.write(gs + "/baseline_N", r.baseline.prediction[k], {s.t.size()});
-        h5.write(gs + "/final_N", r.final.prediction[k], {s.t.size()});
-        for (const auto& fr : fe_refits)
-          if (fr.done) h5.write(gs + "/fe_rig_" + fr.which + "_N", fr.prediction[k], {s.t.size()});
-        h5.set_attribute(g, "id", s.id);
-      }
-      h5.close();
-    }
+    write_discover_h5(out.file("discover.h5"), r, fe_refits);
     bool plots_ok = false;
     std::string plots = "skipped (--no-plots)";
     if (!p.has("--no-plots")) {
@@ -388,22 +416,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
       f << report_html(j, plots_ok);
       if (!f) throw Error("discover: cannot write " + out.file("index.html").string());
     }
-    std::cout << "baseline " << r.baseline.structure.label() << ": RMS " << significant(r.baseline.fit.rms, 4)
-              << " N (" << significant(r.baseline.fit.rms_percent_peak, 3) << " % of peak), max "
-              << significant(r.baseline.max_abs, 4) << " N\n";
-    for (const auto& s : r.steps)
-      if (s.accepted) std::cout << "round " << s.round << ": added " << s.effect << " (" << s.reason << ")\n";
-    std::cout << "final " << r.final.structure.label() << ": RMS " << significant(r.final.fit.rms, 4)
-              << " N (" << significant(r.final.fit.rms_percent_peak, 3) << " % of peak), max "
-              << significant(r.final.max_abs, 4) << " N\n"
-              << "unexplained structure: " << (r.unexplained ? "yes: " + r.signature : std::string("no"))
-              << "\n";
-    for (const auto& fr : fe_refits)
-      std::cout << "FE rig " << fr.which << " " << fr.model << ": "
-                << (fr.done ? "RMS " + significant(fr.fit.rms, 4) + " N refitted (" +
-                                  significant(fr.fe_rms_at_closed_form, 4) + " N at the closed-form optimum)"
-                            : "not refitted: " + fr.why_not)
-                << "\n";
+    print_discover_report(r, fe_refits);
     out.finalize({{"selected_effects", r.selected},
                   {"unexplained_structure", r.unexplained},
                   {"baseline_rms_N", r.baseline.fit.rms},

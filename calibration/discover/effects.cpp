@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <optional>
@@ -480,6 +481,30 @@ std::string exactness(const Prepared& p) {
   return "";
 }
 
+namespace {
+
+/// The root of g(xs) = xs + c F(xs) - d1 (strictly increasing) by secant iterations from `start`:
+/// the sample displacement under instrument compliance c. `scale` sets the tolerance.
+double compliance_root(const std::function<double(double)>& g, double start, double scale, double t) {
+  double a = start, ga = g(a);
+  double b = a - ga, gb = g(b);
+  int it = 0;
+  while (std::abs(gb) > 1e-12 * scale && it < 60) {
+    const double den = gb - ga;
+    const double nb = den != 0.0 ? b - gb * (b - a) / den : b - gb;
+    a = b;
+    ga = gb;
+    b = nb;
+    gb = g(b);
+    ++it;
+  }
+  if (!(std::abs(gb) <= 1e-9 * scale))
+    throw Error("discover: instrument compliance: no sample displacement found at t = " + significant(t, 6));
+  return b;
+}
+
+}  // namespace
+
 std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector<double>& x) const {
   const Prepared& p = *p_;
   const fit::ModelSpec spec = spec_of(s_);
@@ -597,25 +622,9 @@ std::vector<std::vector<double>> DiscoverModel::predict_series(const std::vector
       double xe = 0.0, hpn = 0.0, fs = 0.0, xs = d1;
       std::vector<double> hn(m);
       if (c > 0.0) {
-        // d1 = xs + c F(xs): secant iterations on g(xs) = xs + c F(xs) - d1, strictly increasing.
+        // d1 = xs + c F(xs): the sample's share of the measured displacement.
         const auto g = [&](double v) { return v + c * force(v, xe, hn, hpn) - d1; };
-        const double scale = std::max(p.max_depth, 1e-12);
-        double a = i > 0 ? xs_prev + (d1 - d1_prev) : d1, ga = g(a);
-        double b = a - ga, gb = g(b);
-        int it = 0;
-        while (std::abs(gb) > 1e-12 * scale && it < 60) {
-          const double den = gb - ga;
-          const double nb = den != 0.0 ? b - gb * (b - a) / den : b - gb;
-          a = b;
-          ga = gb;
-          b = nb;
-          gb = g(b);
-          ++it;
-        }
-        if (!(std::abs(gb) <= 1e-9 * scale))
-          throw Error("discover: instrument compliance: no sample displacement found at t = " +
-                      significant(t, 6));
-        xs = b;
+        xs = compliance_root(g, i > 0 ? xs_prev + (d1 - d1_prev) : d1, std::max(p.max_depth, 1e-12), t);
       }
       fs = force(xs, xe, hn, hpn);
       if (bs) bs->commit();
