@@ -4,6 +4,7 @@
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/xml_text.hpp"  // format_double: the shortest text that reads back to the same double
 
 #include <algorithm>
 #include <charconv>
@@ -88,13 +89,6 @@ std::string read_text(const fs::path& p) {
   ss << in.rdbuf();
   if (in.bad()) throw Error(p.string() + ": read error");
   return ss.str();
-}
-
-/// The shortest text that reads back to the same double.
-std::string format_double(double v) {
-  char buf[64];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
 }
 
 /// Columns count characters, not bytes: UTF-8 continuation bytes do not start one.
