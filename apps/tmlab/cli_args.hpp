@@ -24,6 +24,9 @@ Parsed parse(const std::vector<std::string>& args, const std::vector<std::string
 /// A number for option `key`; UsageError naming the key otherwise.
 double parse_double(const std::string& key, const std::string& s);
 
+/// The non-empty items of a comma-separated option value ("a,b,,c" -> a, b, c).
+std::vector<std::string> split_list(const std::string& s);
+
 /// Whitespace-separated words (the command line as a list, for manifests).
 std::vector<std::string> split_words(const std::string& s);
 

@@ -24,14 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::vector<std::string> split_list(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream in(s);
-  for (std::string w; std::getline(in, w, ',');)
-    if (!w.empty()) out.push_back(w);
-  return out;
-}
-
 }  // namespace
 
 int cmd_inversion(const std::vector<std::string>& args, const std::string& command_line) {

@@ -1,6 +1,7 @@
 // Prony-series viscoelastic St VK tensor-mass model; equations in viscoelastic_model.hpp and
 // docs/theory/viscoelasticity.md (seed eqs. 9-21 as corrected in docs/theory/seed-errata.md).
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
+#include "tensormass/viscoelastic/committed_state.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -522,29 +523,19 @@ double ViscoelasticStVK::committed_elastic_energy() const {
 }
 
 std::vector<double> ViscoelasticStVK::committed_state() const {
-  std::vector<double> s(hist_);
-  s.insert(s.end(), driver_.begin(), driver_.end());
-  s.insert(s.end(), {committed_elastic_energy(), committed_branch_, committed_rate_, step_dissipation_,
-                     total_dissipation_});
-  return s;
+  return pack_committed_state(hist_, driver_,
+                              {committed_elastic_energy(), committed_branch_, committed_rate_,
+                               step_dissipation_, total_dissipation_});
 }
 
 void ViscoelasticStVK::restore_committed_state(const std::vector<double>& s) {
-  const std::size_t nh = hist_.size(), nd = driver_.size();
-  if (s.size() != nh + nd + 5)
-    throw Error("checkpoint: a viscoelastic committed state of " + std::to_string(s.size()) +
-                " values, this model has " + std::to_string(nh + nd + 5) +
-                " (another mesh or Prony series?)");
-  std::copy(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(nh), hist_.begin());
-  std::copy(s.begin() + static_cast<std::ptrdiff_t>(nh), s.begin() + static_cast<std::ptrdiff_t>(nh + nd),
-            driver_.begin());
-  const double* e = s.data() + nh + nd;
-  committed_elastic_ = e[0];
+  const CommittedEnergies e = unpack_committed_state(s, hist_, driver_);
+  committed_elastic_ = e.elastic;
   spring_stale_ = false;
-  committed_branch_ = e[1];
-  committed_rate_ = e[2];
-  step_dissipation_ = e[3];
-  total_dissipation_ = e[4];
+  committed_branch_ = e.branch;
+  committed_rate_ = e.rate;
+  step_dissipation_ = e.step_dissipation;
+  total_dissipation_ = e.total_dissipation;
   begin_step(0.0);  // the trial state commit_step leaves behind
 }
 
