@@ -5,6 +5,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "fit_checkpoint.hpp"
 
 #include "calibration/data/measured_data.hpp"
 #include "calibration/discover/benchmark.hpp"
@@ -12,6 +13,7 @@
 #include "calibration/discover/fe_refit.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/run_output.hpp"
@@ -179,12 +181,64 @@ std::string benchmark_text(const discover::BenchmarkResult& b) {
   return s.str();
 }
 
+/// Every option of the loop that changes its result: part of what --resume must match.
+nlohmann::json options_fingerprint(const discover::Options& o) {
+  return {{"poisson", o.poisson},
+          {"fix_poisson", o.fix_poisson},
+          {"max_samples", o.max_samples},
+          {"baseline", o.baseline_law + "+prony:" + std::to_string(o.baseline_prony)},
+          {"rounds", o.max_rounds},
+          {"bic_threshold", o.bic_threshold},
+          {"held_out_ratio", o.held_out_ratio},
+          {"starts", o.starts},
+          {"threads", o.threads},
+          {"seed", o.seed},
+          {"alpha", o.thresholds.alpha},
+          {"effects", o.effects}};
+}
+
+/// --checkpoint-every (default: every 60 s of wall time, and always at a stop request).
+CheckpointSchedule checkpoint_schedule(const Parsed& p) {
+  try {
+    return p.has("--checkpoint-every") ? CheckpointSchedule::parse(p.get("--checkpoint-every"))
+                                       : CheckpointSchedule{};
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 int run_benchmark_command(const Parsed& p, const discover::Options& o, const std::string& command_line) {
   const bool quick = p.has("--quick");
   const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
                                       : fs::path(tmlab_root()) / "results" / "discover" /
                                             (quick ? "benchmark-quick" : "benchmark");
-  RunOutput out(dir, &std::cerr);
+  // A checkpoint after every finished set (docs/robustness.md); --resume reads it before the result
+  // directory is touched.
+  nlohmann::json fingerprint = options_fingerprint(o);
+  fingerprint["benchmark"] = {{"quick", quick},
+                              {"rig", p.has("--rig") ? p.get("--rig") : "all"},
+                              {"only", p.has("--only") ? p.get("--only") : "all"}};
+  discover::BenchmarkLog log;
+  std::vector<discover::BenchmarkEntry> done;
+  UnitCheckpoint ck(dir / RunOutput::kStaging / "checkpoint.h5", "discover-benchmark", fingerprint,
+                    checkpoint_schedule(p), [&done] {
+                      CheckpointData d;
+                      put_benchmark_entries(d, done);
+                      return d;
+                    });
+  if (p.has("--resume")) {
+    log.restored = get_benchmark_entries(ck.read());
+    done = log.restored;
+    ck.resumed_from(std::to_string(done.size()) + " benchmark set(s)");
+    std::cerr << "tmlab discover: resuming from " << ck.path().string() << ": " << done.size()
+              << " finished benchmark set(s) taken from it, the rest runs\n";
+  }
+  log.finished = [&](const discover::BenchmarkEntry& e) {
+    done.push_back(e);
+    ck.unit_finished(std::to_string(done.size()) + " benchmark set(s)");
+  };
+  RunOutput out(dir, &std::cerr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
@@ -220,7 +274,7 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
     if (p.has("--write-sets"))
       // Each set in the interchange format, so that `tmlab discover sets/NAME.csv` reruns one alone.
       for (const auto& s : sets) measured::write_data_set(s.data, out.staging_dir() / "sets");
-    const discover::BenchmarkResult b = discover::run_benchmark(sets, o);
+    const discover::BenchmarkResult b = discover::run_benchmark(sets, o, &log);
     const nlohmann::json j = discover::to_json(b);
     out.write_json("benchmark.json", j);
     const std::string text = benchmark_text(b);
@@ -238,11 +292,16 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
               << " flagged as unexplained structure, " << b.outside_forced << " with an effect added\n"
               << "median error reduction (library sets): " << significant(100.0 * b.median_error_reduction, 3)
               << " %\n";
+    ck.remove();  // a complete result holds no checkpoint
     out.finalize({{"diagonal_fraction", b.diagonal_fraction},
                   {"noise_only_false_positives", b.noise_false_positives},
                   {"outside_library_flagged", b.outside_flagged},
                   {"median_error_reduction", b.median_error_reduction}});
     std::cout << "written: " << out.dir().string() << "/ (benchmark.json, confusion_matrix.csv)\n";
+  } catch (const Interrupted& e) {
+    const Interrupted stopped = ck.stopped(e);
+    out.abandon(stopped);
+    throw stopped;
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;
@@ -295,15 +354,121 @@ void print_discover_report(const discover::Report& r, const std::vector<discover
               << "\n";
 }
 
+/// tmlab discover DATA.csv: the loop, its FE refits (--forward fe_rig), report.json, discover.h5,
+/// the plots and index.html.
+int run_discover_command(const Parsed& p, discover::Options o, const std::string& forward,
+                         const discover::FeRefitOptions& fe, const std::string& command_line) {
+  const fs::path csv = p.positional[0];
+  const measured::DataSet data = measured::read_data_set(csv);
+  const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
+                                      : fs::path(tmlab_root()) / "results" / "discover" / data.meta.name;
+  if (!p.has("--out")) {
+    const std::string why = result_name_problem(data.meta.name);
+    if (!why.empty()) throw Error("discover: result name: " + why);
+  }
+  // A checkpoint after every fit of the loop (and of the FE refits) (docs/robustness.md); --resume
+  // reads it before the result directory is touched.
+  nlohmann::json fingerprint = options_fingerprint(o);
+  fingerprint["forward"] = forward;
+  if (forward == "fe_rig")
+    fingerprint["fe_rig"] = {{"mesh", {fe.mesh.cells, fe.mesh.layers}},
+                             {"substeps", fe.substeps},
+                             {"iterations", fe.max_iterations},
+                             {"max_samples", fe.max_samples}};
+  fingerprint["data"] = {{"csv", file_hash(csv)}, {"metadata", file_hash(measured::metadata_path(csv))}};
+  discover::FitLog log;
+  std::vector<discover::FitOutcome> done;
+  UnitCheckpoint ck(dir / RunOutput::kStaging / "checkpoint.h5", "discover", fingerprint,
+                    checkpoint_schedule(p), [&done] {
+                      CheckpointData d;
+                      put_fit_outcomes(d, done);
+                      return d;
+                    });
+  if (p.has("--resume")) {
+    log.restored = get_fit_outcomes(ck.read());
+    done = log.restored;
+    ck.resumed_from(std::to_string(done.size()) + " fit(s)");
+    std::cerr << "tmlab discover: resuming from " << ck.path().string() << ": " << done.size()
+              << " finished fit(s) taken from it, the rest runs\n";
+  }
+  log.finished = [&](const discover::FitOutcome& f) {
+    done.push_back(f);
+    ck.unit_finished(std::to_string(done.size()) + " fit(s)");
+  };
+  o.fit_log = &log;
+  RunOutput out(dir, &std::cerr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+  try {
+    ManifestInput mi;
+    mi.command_line = split_words(command_line);
+    mi.config = {{"poisson", o.poisson},
+                 {"fix_poisson", o.fix_poisson},
+                 {"max_samples", o.max_samples},
+                 {"rounds", o.max_rounds},
+                 {"starts", o.starts},
+                 {"threads", o.threads},
+                 {"seed", o.seed},
+                 {"effects", o.effects},
+                 {"bic_threshold", o.bic_threshold},
+                 {"held_out_ratio", o.held_out_ratio},
+                 {"alpha", o.thresholds.alpha},
+                 {"forward", forward}};
+    mi.input_files = {csv, measured::metadata_path(csv)};
+    out.write_json("manifest.json", make_manifest(mi));
+    const discover::Report r = discover::run(data, o);
+    nlohmann::json j = discover::to_json(r);
+    std::vector<discover::FeRefit> fe_refits;
+    if (forward == "fe_rig") {
+      fe_refits = discover::fe_rig_refit(data, r, o, fe);
+      j["fe_rig"] = discover::to_json(fe_refits, r.data.peak_force, fe);
+    }
+    out.write_json("report.json", j);
+    write_discover_h5(out.file("discover.h5"), r, fe_refits);
+    bool plots_ok = false;
+    std::string plots = "skipped (--no-plots)";
+    if (!p.has("--no-plots")) {
+      const ProcessStatus ps = run_python(
+          fs::path(tmlab_root()) / "calibration" / "discover" / "python" / "tmlab_discover_plot.py",
+          {out.staging_dir().string()}, ProcessOutput::discard());
+      plots_ok = ps.ok();
+      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
+      if (!ps.ok()) std::cerr << "tmlab discover: plots " << plots << "\n";
+    }
+    {
+      std::ofstream f(out.file("index.html"));
+      f << report_html(j, plots_ok);
+      if (!f) throw Error("discover: cannot write " + out.file("index.html").string());
+    }
+    print_discover_report(r, fe_refits);
+    ck.remove();  // a complete result holds no checkpoint
+    out.finalize({{"selected_effects", r.selected},
+                  {"unexplained_structure", r.unexplained},
+                  {"baseline_rms_N", r.baseline.fit.rms},
+                  {"final_rms_N", r.final.fit.rms},
+                  {"plots", plots}});
+    std::cout << "written: " << out.dir().string()
+              << "/ (index.html, report.json, discover.h5, manifest.json, summary.json"
+              << (plots_ok ? ", discover_*.png" : "") << ")\n";
+  } catch (const Interrupted& e) {
+    const Interrupted stopped = ck.stopped(e);
+    out.abandon(stopped);
+    throw stopped;
+  } catch (const std::exception& e) {
+    out.abandon(e);
+    throw;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p =
-      parse(args,
-            {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads", "--seed",
-             "--effects", "--baseline-prony", "--rig", "--only", "--forward", "--mesh", "--substeps",
-             "--fe-iterations", "--fe-max-samples"},
-            {"--benchmark", "--quick", "--write-sets", "--free-poisson", "--no-plots", "--quiet"});
+  const Parsed p = parse(
+      args,
+      {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads", "--seed", "--effects",
+       "--baseline-prony", "--rig", "--only", "--forward", "--mesh", "--substeps", "--fe-iterations",
+       "--fe-max-samples", "--checkpoint-every"},
+      {"--benchmark", "--quick", "--write-sets", "--free-poisson", "--no-plots", "--quiet", "--resume"});
   discover::Options o;
   auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
     if (!p.has(key)) return fallback;
@@ -366,70 +531,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
   if (p.has("--quick") || p.has("--rig") || p.has("--only") || p.has("--write-sets"))
     throw UsageError("--quick, --rig, --only and --write-sets are for --benchmark");
   if (p.positional.size() != 1) throw UsageError("discover needs exactly one DATA.csv (or --benchmark)");
-  const fs::path csv = p.positional[0];
-  const measured::DataSet data = measured::read_data_set(csv);
-  const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
-                                      : fs::path(tmlab_root()) / "results" / "discover" / data.meta.name;
-  if (!p.has("--out")) {
-    const std::string why = result_name_problem(data.meta.name);
-    if (!why.empty()) throw Error("discover: result name: " + why);
-  }
-  RunOutput out(dir, &std::cerr);
-  try {
-    ManifestInput mi;
-    mi.command_line = split_words(command_line);
-    mi.config = {{"poisson", o.poisson},
-                 {"fix_poisson", o.fix_poisson},
-                 {"max_samples", o.max_samples},
-                 {"rounds", o.max_rounds},
-                 {"starts", o.starts},
-                 {"threads", o.threads},
-                 {"seed", o.seed},
-                 {"effects", o.effects},
-                 {"bic_threshold", o.bic_threshold},
-                 {"held_out_ratio", o.held_out_ratio},
-                 {"alpha", o.thresholds.alpha},
-                 {"forward", forward}};
-    mi.input_files = {csv, measured::metadata_path(csv)};
-    out.write_json("manifest.json", make_manifest(mi));
-    const discover::Report r = discover::run(data, o);
-    nlohmann::json j = discover::to_json(r);
-    std::vector<discover::FeRefit> fe_refits;
-    if (forward == "fe_rig") {
-      fe_refits = discover::fe_rig_refit(data, r, o, fe);
-      j["fe_rig"] = discover::to_json(fe_refits, r.data.peak_force, fe);
-    }
-    out.write_json("report.json", j);
-    write_discover_h5(out.file("discover.h5"), r, fe_refits);
-    bool plots_ok = false;
-    std::string plots = "skipped (--no-plots)";
-    if (!p.has("--no-plots")) {
-      const ProcessStatus ps = run_python(
-          fs::path(tmlab_root()) / "calibration" / "discover" / "python" / "tmlab_discover_plot.py",
-          {out.staging_dir().string()}, ProcessOutput::discard());
-      plots_ok = ps.ok();
-      plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
-      if (!ps.ok()) std::cerr << "tmlab discover: plots " << plots << "\n";
-    }
-    {
-      std::ofstream f(out.file("index.html"));
-      f << report_html(j, plots_ok);
-      if (!f) throw Error("discover: cannot write " + out.file("index.html").string());
-    }
-    print_discover_report(r, fe_refits);
-    out.finalize({{"selected_effects", r.selected},
-                  {"unexplained_structure", r.unexplained},
-                  {"baseline_rms_N", r.baseline.fit.rms},
-                  {"final_rms_N", r.final.fit.rms},
-                  {"plots", plots}});
-    std::cout << "written: " << out.dir().string()
-              << "/ (index.html, report.json, discover.h5, manifest.json, summary.json"
-              << (plots_ok ? ", discover_*.png" : "") << ")\n";
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
-  return 0;
+  return run_discover_command(p, o, forward, fe, command_line);
 }
 
 }  // namespace tmlab::cli

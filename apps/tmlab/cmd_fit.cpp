@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "fit_checkpoint.hpp"
 
 #include "calibration/data/measured_data.hpp"
 #include "calibration/fit/fe_rig.hpp"
@@ -11,6 +12,7 @@
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/json_number.hpp"
@@ -276,6 +278,29 @@ nlohmann::json manifest_config(const Parsed& p, const FitRequest& q) {
           {"substeps", q.fe.substeps}};
 }
 
+/// What --resume must match: everything that changes the result (the data files' contents, the
+/// request, every option of the engine), not what only changes where or how it is shown.
+nlohmann::json fit_fingerprint(const Parsed& p, const FitRequest& q, const fs::path& csv) {
+  nlohmann::json j = manifest_config(p, q);
+  const fit::FitOptions& o = q.options;
+  j["local_runs"] = o.local_runs;
+  j["siman_evaluations"] = o.siman_evaluations;
+  j["max_iterations"] = o.max_iterations;
+  j["noise"] = p.get("--noise", "");
+  j["data"] = {{"csv", file_hash(csv)}, {"metadata", file_hash(measured::metadata_path(csv))}};
+  return j;
+}
+
+/// --checkpoint-every (default: every 60 s of wall time, and always at a stop request).
+CheckpointSchedule checkpoint_schedule(const Parsed& p) {
+  try {
+    return p.has("--checkpoint-every") ? CheckpointSchedule::parse(p.get("--checkpoint-every"))
+                                       : CheckpointSchedule{};
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+}
+
 /// fit.h5: per test the data, the model's force and the residual; the profile; the correlation.
 void write_fit_h5(const fs::path& path, const measured::DataSet& data, const fit::FitResult& r) {
   H5File h5 = H5File::create(path.string());
@@ -365,11 +390,11 @@ void print_fit_report(const fit::FitResult& r, const fit::Problem& problem) {
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(
-      args,
-      {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads", "--seed", "--forward",
-       "--global", "--prior", "--noise", "--mesh", "--substeps", "--local-runs", "--siman-evaluations"},
-      {"--geodesic", "--no-plots", "--no-profile", "--quiet"});
+  const Parsed p = parse(args,
+                         {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads",
+                          "--seed", "--forward", "--global", "--prior", "--noise", "--mesh", "--substeps",
+                          "--local-runs", "--siman-evaluations", "--checkpoint-every"},
+                         {"--geodesic", "--no-plots", "--no-profile", "--quiet", "--resume"});
   if (p.positional.size() != 1) throw UsageError("fit needs exactly one DATA.csv");
   if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
   const fs::path csv = p.positional[0];
@@ -378,15 +403,38 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   std::string why_closed_form;
   const fit::Problem problem = build_problem(p, data, q, why_closed_form);
   const fs::path dir = result_dir(p, data, q.spec);
+  // Checkpoints after the global stage, each local run and each profile point (docs/robustness.md);
+  // --resume reads the checkpoint before the result directory is touched, so a refused resume
+  // leaves the interrupted fit as it was.
+  fit::FitUnits restored, latest;
+  UnitCheckpoint ck(dir / RunOutput::kStaging / "checkpoint.h5", "fit", fit_fingerprint(p, q, csv),
+                    checkpoint_schedule(p), [&latest] {
+                      CheckpointData d;
+                      put_fit_units(d, latest);
+                      return d;
+                    });
+  fit::FitOptions options = q.options;
+  if (p.has("--resume")) {
+    restored = get_fit_units(ck.read());
+    ck.resumed_from(describe(restored));
+    options.resume.restored = &restored;
+    std::cout << "tmlab fit: resuming from " << ck.path().string() << ": " << describe(restored)
+              << " taken from it, the rest runs\n";
+  }
+  options.resume.unit_finished = [&](const fit::FitUnits& u) {
+    latest = u;
+    ck.unit_finished(describe(u));
+  };
   print_fit_plan(data, q, problem, why_closed_form);
-  RunOutput out(dir, &std::cerr);
+  RunOutput out(dir, &std::cerr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
     mi.config = manifest_config(p, q);
     mi.input_files = {csv, measured::metadata_path(csv)};
     out.write_json("manifest.json", make_manifest(mi));
-    const fit::FitResult r = fit::fit(problem, q.options);
+    const fit::FitResult r = fit::fit(problem, options);
     out.write_json("fit.json", to_json(r, problem, q.options, q.spec));
     write_fit_h5(out.file("fit.h5"), data, r);
     const std::string plots = make_fit_plots(p, out, data, q.spec, r);
@@ -401,9 +449,14 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
                               {"surrogate_solves", r.global_solves},
                               {"wall_seconds", r.wall_seconds},
                               {"plots", plots}};
+    ck.remove();  // a complete result holds no checkpoint
     out.finalize(summary);
     std::cout << "written: " << out.dir().string() << "/ (fit.json, fit.h5, manifest.json, summary.json"
               << (plots == "ok" ? ", fit_*.png" : "") << ")\n";
+  } catch (const Interrupted& e) {
+    const Interrupted stopped = ck.stopped(e);
+    out.abandon(stopped);
+    throw stopped;
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

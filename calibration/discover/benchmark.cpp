@@ -3,6 +3,7 @@
 #include "calibration/fit/parameter.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -245,30 +246,55 @@ bool library_match(const std::string& truth, const std::vector<std::string>& fou
   return !effect_law(truth).empty() && !effect_law(found[0]).empty();
 }
 
-BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Options& o) {
+namespace {
+
+/// The loop on one set, as the benchmark records it (before scoring).
+BenchmarkEntry run_set(const SyntheticSet& s, const Options& o) {
+  Options oi = o;
+  oi.progress = {};
+  oi.fit_log = nullptr;  // the benchmark checkpoints whole sets
+  const Report r = run(s.data, oi);
+  BenchmarkEntry e;
+  e.name = s.name;
+  e.truth = s.truth;
+  e.kind = s.kind;
+  e.rig = to_string(s.rig);
+  e.found = r.final_effects;
+  e.unexplained = r.unexplained;
+  e.signature = r.signature;
+  e.rms_before = r.baseline.fit.rms;
+  e.rms_after = r.final.fit.rms;
+  e.peak = r.data.peak_force;
+  e.seconds = r.seconds;
+  return e;
+}
+
+}  // namespace
+
+BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Options& o, BenchmarkLog* log) {
   BenchmarkResult b;
   for (const auto& e : effect_library()) b.columns.push_back(e.name);
   b.columns.push_back("nothing");
   std::vector<double> reductions;
+  if (log && log->restored.size() > sets.size())
+    throw Error("discover --benchmark: the checkpoint holds more sets than this benchmark has");
   for (std::size_t i = 0; i < sets.size(); ++i) {
     const SyntheticSet& s = sets[i];
+    const bool restored = log && i < log->restored.size();
     if (o.progress)
-      o.progress("benchmark " + std::to_string(i + 1) + "/" + std::to_string(sets.size()) + ": " + s.name);
-    Options oi = o;
-    oi.progress = {};
-    const Report r = run(s.data, oi);
+      o.progress("benchmark " + std::to_string(i + 1) + "/" + std::to_string(sets.size()) + ": " + s.name +
+                 (restored ? " (from the checkpoint of the interrupted benchmark)" : ""));
     BenchmarkEntry e;
-    e.name = s.name;
-    e.truth = s.truth;
-    e.kind = s.kind;
-    e.rig = to_string(s.rig);
-    e.found = r.final_effects;
-    e.unexplained = r.unexplained;
-    e.signature = r.signature;
-    e.rms_before = r.baseline.fit.rms;
-    e.rms_after = r.final.fit.rms;
-    e.peak = r.data.peak_force;
-    e.seconds = r.seconds;
+    if (restored) {
+      e = log->restored[i];
+      if (e.name != s.name || e.truth != s.truth)
+        throw Error("discover --benchmark: the checkpoint's set " + std::to_string(i + 1) + " is '" + e.name +
+                    "', this benchmark's '" + s.name + "'; run without --resume");
+    } else {
+      check_interrupt("before benchmark set " + std::to_string(i + 1) + " of " + std::to_string(sets.size()));
+      e = run_set(s, o);
+      if (log && log->finished) log->finished(e);
+    }
     if (s.kind == Truth::library) {
       e.correct = library_match(s.truth, e.found);
       ++b.library_sets;

@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -73,8 +74,18 @@ struct BenchmarkResult {
   double diagonal_fraction = 0.0;       ///< library_correct / library_sets
 };
 
+/// The resume hook of run_benchmark (tmlab discover --benchmark --resume; the CLI owns the
+/// checkpoint): the entries of the sets an interrupted benchmark finished are taken from `restored`
+/// (in set order; an entry of another set is a tmlab::Error), and each set that runs is handed to
+/// `finished`. A set interrupted half-way runs again from its start.
+struct BenchmarkLog {
+  std::vector<BenchmarkEntry> restored;
+  std::function<void(const BenchmarkEntry&)> finished;
+};
+
 /// Runs the loop on every set (progress through o.progress).
-BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Options& o);
+BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Options& o,
+                              BenchmarkLog* log = nullptr);
 
 nlohmann::json to_json(const BenchmarkResult& b);
 

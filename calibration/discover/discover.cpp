@@ -62,6 +62,31 @@ std::vector<double> values_of(const fit::FitResult& r) {
 
 }  // namespace
 
+fit::FitResult fit_logged(const fit::Problem& pr, const fit::FitOptions& fo, const Options& o) {
+  FitLog* log = o.fit_log;
+  if (!log) return fit::fit(pr, fo);
+  if (log->next < log->restored.size()) {
+    const FitOutcome& r = log->restored[log->next++];
+    if (r.failed) throw Error(r.error);
+    return r.result;
+  }
+  FitOutcome out;
+  try {
+    out.result = fit::fit(pr, fo);
+  } catch (const Interrupted&) {
+    throw;
+  } catch (const std::exception& e) {
+    out.failed = true;
+    out.error = e.what();
+    ++log->next;
+    if (log->finished) log->finished(out);
+    throw;
+  }
+  ++log->next;
+  if (log->finished) log->finished(out);
+  return out.result;
+}
+
 std::vector<std::vector<char>> held_out_folds(const Prepared& p, std::string* scheme) {
   const std::size_t n = p.size();
   std::vector<std::vector<char>> folds;
@@ -95,7 +120,7 @@ Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Par
   f.structure = s;
   f.parameters = params;
   const fit::Problem pr = problem(p, s, params, {});
-  f.fit = fit::fit(pr, fit_options(o, starts));
+  f.fit = fit_logged(pr, fit_options(o, starts), o);
   f.x = values_of(f.fit);
   f.prediction = DiscoverModel(p, s).predict_series(f.x);
   f.study = study_residual(views(p, f.prediction), p.sign, p.strain_scale, o.thresholds);
@@ -116,7 +141,7 @@ double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
     const fit::Problem pr = problem(p, f.structure, params, mask);
     std::vector<double> x = f.x;
     try {
-      x = values_of(fit::fit(pr, fit_options(o, 1)));
+      x = values_of(fit_logged(pr, fit_options(o, 1), o));
     } catch (const Interrupted&) {
       throw;  // a stop request is not a failed fold
     } catch (const Error&) {

@@ -25,6 +25,24 @@
 
 namespace tmlab::discover {
 
+/// One fit of the loop as `tmlab discover --resume` replays it: its result, or the error it ended
+/// with (a candidate that cannot be fitted, a held-out fold fitted from the full-data optimum).
+struct FitOutcome {
+  fit::FitResult result;
+  bool failed = false;
+  std::string error;  ///< the message, when failed
+};
+
+/// The resume hook of the loop (the engine does no file I/O; the CLI owns the checkpoint). The loop
+/// is deterministic, so its fits come in the same order on every run: the first restored.size()
+/// are taken from here instead of being fitted (a fit interrupted half-way is not here and runs
+/// again from its start), and each fit that runs is handed to `finished`.
+struct FitLog {
+  std::vector<FitOutcome> restored;
+  std::size_t next = 0;  ///< the index of the next fit of the loop
+  std::function<void(const FitOutcome&)> finished;
+};
+
 struct Options {
   std::size_t max_samples = 1500;  ///< the data are decimated to about this many samples
   double poisson = 0.49;
@@ -40,6 +58,7 @@ struct Options {
   Thresholds thresholds;
   std::vector<std::string> effects;  ///< restrict the library to these (empty: all)
   std::function<void(const std::string&)> progress;
+  FitLog* fit_log = nullptr;  ///< checkpoints (tmlab discover --resume); null: none
 };
 
 struct Fitted {
@@ -83,6 +102,11 @@ struct Report {
 /// Training masks of the held-out folds: up to 3 folds of whole tests when there are 2 or more
 /// tests, else the even and the odd of 8 time blocks of the one test.
 std::vector<std::vector<char>> held_out_folds(const Prepared& p, std::string* scheme = nullptr);
+
+/// fit::fit through o.fit_log (FitLog): the next restored outcome when there is one (its error
+/// thrown again as tmlab::Error), else the fit, whose outcome (result or error) is handed to the
+/// log. A stop request (tmlab::Interrupted) passes through unrecorded: that fit runs again.
+fit::FitResult fit_logged(const fit::Problem& pr, const fit::FitOptions& fo, const Options& o);
 
 /// Fits `s` with `params` to `p` (under `mask`, empty: all) and studies the residual.
 Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Parameter> params,

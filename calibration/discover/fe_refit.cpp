@@ -117,7 +117,7 @@ FeRefit refit_one(const measured::DataSet& dec, const std::vector<std::vector<st
   opt.max_iterations = fo.max_iterations;
   opt.profile = false;
   opt.progress = o.progress;
-  r.fit = fit::fit(pr, opt);
+  r.fit = fit_logged(pr, opt, o);  // a unit of the checkpoint (tmlab discover --resume)
   std::vector<double> xf;
   for (const auto& q : r.fit.parameters) xf.push_back(q.value);
   const std::vector<double> pred = pr.model->predict(xf);

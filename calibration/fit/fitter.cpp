@@ -336,6 +336,20 @@ std::vector<double> anneal(const Problem& pr, const FitOptions& opt, const Evalu
   return std::vector<double>(st.t, st.t + p);
 }
 
+// The units of this fit (FitUnits): those restored from an interrupted fit and those finished since,
+// with the solve counters they move; finished() hands every unit so far to the caller's hook.
+struct UnitLog {
+  const FitResume* hook = nullptr;
+  FitUnits done;
+  std::atomic<long>* solves = nullptr;
+  std::atomic<long>* global_solves = nullptr;
+
+  const FitUnits* restored() const { return hook ? hook->restored : nullptr; }
+  void finished() const {
+    if (hook && hook->unit_finished) hook->unit_finished(done);
+  }
+};
+
 // Global stage: `starts` candidates in the internal coordinates (the given values first, then
 // uniform in each parameter's start range), their costs evaluated in parallel. Returns the
 // candidates; res.start_costs gets their costs and `order` the candidates sorted by cost.
@@ -388,18 +402,38 @@ std::vector<std::vector<double>> global_stage(const Problem& pr, const FitOption
 }
 
 // Local stage: Levenberg-Marquardt from the best candidates; the best run, its terms put in the
-// problem's canonical order.
+// problem's canonical order. A run restored from the checkpoint of an interrupted fit is taken as
+// it ended, with the solve counter as it was after it; every other run is reported to the hook.
 Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
                   const std::vector<std::vector<double>>& cand, const std::vector<std::size_t>& order,
-                  FitResult& res) {
+                  FitResult& res, UnitLog& log) {
   const std::size_t starts = cand.size(), p = ev.p();
+  const FitUnits* restored = log.restored();
   Local best;
   const std::size_t runs = std::min<std::size_t>(starts, std::size_t(std::max(1, opt.local_runs)));
   for (std::size_t r = 0; r < runs; ++r) {
     if (!std::isfinite(res.start_costs[order[r]])) break;
-    check_interrupt("before local fit " + std::to_string(r + 1) + " of " + std::to_string(runs));
-    if (opt.progress) opt.progress("local stage from start " + std::to_string(order[r]) + ":");
-    Local l = local_fit(ev, cand[order[r]], opt, true);
+    Local l;
+    if (restored && r < restored->local_runs.size()) {
+      const FitUnits::LocalRun& u = restored->local_runs[r];
+      if (u.t.size() != p) throw Error("fit: a restored local run has the wrong number of parameters");
+      l.t = u.t;
+      l.cost = u.cost;
+      l.iterations = u.iterations;
+      l.reason = u.reason;
+      *log.solves = u.solves;
+      log.done.local_runs.push_back(u);
+      if (opt.progress)
+        opt.progress("local stage from start " + std::to_string(order[r]) +
+                     ": from the checkpoint of the interrupted fit (cost " + significant(l.cost, 5) + ", " +
+                     std::to_string(l.iterations) + " iterations)");
+    } else {
+      check_interrupt("before local fit " + std::to_string(r + 1) + " of " + std::to_string(runs));
+      if (opt.progress) opt.progress("local stage from start " + std::to_string(order[r]) + ":");
+      l = local_fit(ev, cand[order[r]], opt, true);
+      log.done.local_runs.push_back({l.t, l.cost, l.iterations, l.reason, log.solves->load()});
+      log.finished();
+    }
     res.iterations += l.iterations;
     if (l.cost < best.cost) best = std::move(l);
   }
@@ -607,7 +641,7 @@ void confounding_report(const Problem& pr, const std::vector<bool>& identifiable
 // The profile likelihood of the worst-determined parameter: the least-squares cost re-minimised over
 // the others on a grid of +-3 standard errors, and where it crosses the chi^2(1) 95 % threshold.
 void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
-                        const std::vector<double>& t, const Covariance& c, FitResult& res) {
+                        const std::vector<double>& t, const Covariance& c, FitResult& res, UnitLog& log) {
   const std::size_t p = ev.p(), n = ev.n_data();
   const Eigen::MatrixXd& Ct = c.Ct;
   const std::vector<double> x = ev.physical(t.data());
@@ -642,6 +676,8 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
       tsub.push_back(t[j]);
     }
   std::vector<ProfilePoint> pts(cs.size());
+  const FitUnits* restored = log.restored();
+  std::size_t unit = 0;  // the grid points besides the optimum, each a unit of the checkpoint
   for (std::size_t k = 0; k < cs.size(); ++k) {
     const double tk = t[worst] + cs[k] * se_t;
     Evaluator sk = sub;
@@ -653,6 +689,14 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
       pts[k].sse = smin;
       continue;
     }
+    if (restored && unit < restored->profile.size()) {
+      pts[k].sse = restored->profile[unit].sse;
+      *log.solves = restored->profile[unit].solves;
+      log.done.profile.push_back(restored->profile[unit++]);
+      continue;
+    }
+    check_interrupt("before profile-likelihood point " + std::to_string(unit + 1) + " of " +
+                    std::to_string(cs.size() - 1));
     std::vector<double> e;
     if (sk.p() == 0) {
       pts[k].sse = sk.errors(nullptr, e) ? sk.cost_of(e) : kInf;
@@ -662,6 +706,9 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
       const Local l = local_fit(sk, tsub, po, false);
       pts[k].sse = std::max(l.cost, smin);  // the optimum is the minimum (round-off)
     }
+    log.done.profile.push_back({pts[k].sse, log.solves->load()});
+    ++unit;
+    log.finished();
   }
   res.profile.points = pts;
   const double thr = chi2_95();
@@ -712,6 +759,76 @@ void prior_notes(const Problem& pr, const Evaluator& ev, const Covariance& c, Fi
   }
 }
 
+// With a surrogate: its costs rank the candidates; the local stage's starts are re-costed with the
+// final model (a candidate it cannot evaluate is skipped).
+void recost_with_final_model(const FitOptions& opt, const Evaluator& ev,
+                             std::vector<std::vector<double>>& cand, std::vector<std::size_t>& order,
+                             FitResult& res) {
+  const std::size_t runs = std::min<std::size_t>(cand.size(), std::size_t(std::max(1, opt.local_runs)));
+  std::vector<std::vector<double>> best;
+  std::vector<double> costs;
+  for (std::size_t r = 0; r < runs; ++r) best.push_back(cand[order[r]]);
+  costs.assign(best.size(), kInf);
+  parallel_for(best.size(), opt.threads, [&](std::size_t c) {
+    std::vector<double> e;
+    if (ev.errors(best[c].data(), e)) costs[c] = ev.cost_of(e);
+  });
+  res.global_costs = res.start_costs;
+  res.start_costs = costs;
+  cand = best;
+  order.assign(cand.size(), 0);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
+  if (!std::isfinite(costs[order[0]]))
+    throw Error("fit: the forward model '" + res.model_name +
+                "' cannot be evaluated at the global stage's best candidates");
+}
+
+// The global stage as a unit: taken from the checkpoint of an interrupted fit when it holds it,
+// else run (global_stage, and the re-costing with a surrogate) and reported to the hook.
+std::vector<std::vector<double>> global_units(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
+                                              const Evaluator& gev, FitResult& res,
+                                              std::vector<std::size_t>& order, UnitLog& log) {
+  FitUnits& d = log.done;
+  const FitUnits* restored = log.restored();
+  if (restored && restored->global_done) {
+    d.global_done = true;
+    d.candidates = restored->candidates;
+    d.order = restored->order;
+    d.start_costs = restored->start_costs;
+    d.global_costs = restored->global_costs;
+    d.solves = restored->solves;
+    d.global_solves = restored->global_solves;
+    bool ok = !d.candidates.empty() && d.order.size() == d.candidates.size() &&
+              d.start_costs.size() == d.candidates.size();
+    for (const auto& c : d.candidates) ok = ok && c.size() == ev.p();
+    for (const std::size_t o : d.order) ok = ok && o < d.candidates.size();
+    if (!ok) throw Error("fit: the restored global stage does not fit this problem");
+    order = d.order;
+    res.start_costs = d.start_costs;
+    res.global_costs = d.global_costs;
+    *log.solves = d.solves;
+    *log.global_solves = d.global_solves;
+    if (opt.progress)
+      opt.progress("global stage (" + to_string(opt.global) + ", " + gev.model->name() +
+                   "): from the checkpoint of the interrupted fit (" + std::to_string(d.candidates.size()) +
+                   " starts, best cost " + significant(res.start_costs[order[0]], 5) + ")");
+    return d.candidates;
+  }
+  std::vector<std::vector<double>> cand = global_stage(pr, opt, gev, res, order);
+  if (pr.global_model) recost_with_final_model(opt, ev, cand, order, res);
+  d.global_done = true;
+  d.candidates = cand;
+  d.order = order;
+  d.start_costs = res.start_costs;
+  d.global_costs = res.global_costs;
+  d.solves = log.solves->load();
+  d.global_solves = log.global_solves->load();
+  log.finished();
+  return cand;
+}
+
 }  // namespace
 
 FitResult fit(const Problem& pr, const FitOptions& opt) {
@@ -760,39 +877,19 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   }
   res.global_model_name = gev.model->name();
 
+  UnitLog log;
+  log.hook = &opt.resume;
+  log.solves = &solves;
+  log.global_solves = &global_solves;
   std::vector<std::size_t> order;
-  std::vector<std::vector<double>> cand = global_stage(pr, opt, gev, res, order);
-  note_progress_point();  // the test stop point (core/base/interrupt.hpp): after the global stage
-  if (pr.global_model) {
-    // The surrogate's costs rank the candidates; the local stage's starts are re-costed with the
-    // final model (a candidate it cannot evaluate is skipped).
-    const std::size_t runs = std::min<std::size_t>(cand.size(), std::size_t(std::max(1, opt.local_runs)));
-    std::vector<std::vector<double>> best;
-    std::vector<double> costs;
-    for (std::size_t r = 0; r < runs; ++r) best.push_back(cand[order[r]]);
-    costs.assign(best.size(), kInf);
-    parallel_for(best.size(), opt.threads, [&](std::size_t c) {
-      std::vector<double> e;
-      if (ev.errors(best[c].data(), e)) costs[c] = ev.cost_of(e);
-    });
-    res.global_costs = res.start_costs;
-    res.start_costs = costs;
-    cand = best;
-    order.assign(cand.size(), 0);
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return costs[a] < costs[b]; });
-    if (!std::isfinite(costs[order[0]]))
-      throw Error("fit: the forward model '" + res.model_name +
-                  "' cannot be evaluated at the global stage's best candidates");
-  }
-  const std::vector<double> t = local_stage(pr, opt, ev, cand, order, res).t;
+  const std::vector<std::vector<double>> cand = global_units(pr, opt, ev, gev, res, order, log);
+  const std::vector<double> t = local_stage(pr, opt, ev, cand, order, res, log).t;
   const std::vector<double> e0 = optimum_stats(pr, ev, t, res);
   const Covariance c = covariance(opt, ev, t, e0, res);
   parameter_results(pr, ev, t, c, res);
   confounding_report(pr, c.identifiable, res);
   check_interrupt("after the local stage of the fit");
-  if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res);
+  if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res, log);
   check_interrupt("during the profile likelihood");
   res.forward_solves = solves.load();
   res.global_solves = pr.global_model ? global_solves.load() : 0;

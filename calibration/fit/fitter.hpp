@@ -30,6 +30,41 @@ std::string to_string(Cost c);
 enum class GlobalStage { MultiStart, Siman };
 std::string to_string(GlobalStage g);
 
+/// The finished units of one fit, what `tmlab fit --resume` takes from a checkpoint instead of
+/// computing them again: the global stage (with a surrogate, including the final model's costs of
+/// its best candidates), each finished Levenberg-Marquardt run, each finished profile-likelihood
+/// point. A unit interrupted half-way is not here: it runs again from its start, which is what
+/// keeps a resumed fit identical bit for bit to an uninterrupted one. The solve counters are kept
+/// as they were after each unit, so forward_solves agrees too.
+struct FitUnits {
+  struct LocalRun {
+    std::vector<double> t;  ///< the optimum, internal (transformed) coordinates
+    double cost = 0.0;
+    int iterations = 0;
+    std::string reason;
+    long solves = 0;  ///< the fit's forward-solve counter after this run
+  };
+  struct ProfileUnit {
+    double sse = 0.0;  ///< the point's re-fitted SSE (as FitResult::profile reports it)
+    long solves = 0;
+  };
+  bool global_done = false;
+  std::vector<std::vector<double>> candidates;  ///< the local stage's starts, internal coordinates
+  std::vector<std::size_t> order;               ///< the candidates by cost
+  std::vector<double> start_costs, global_costs;
+  long solves = 0, global_solves = 0;  ///< the counters after the global stage
+  std::vector<LocalRun> local_runs;    ///< in the order they ran
+  std::vector<ProfileUnit> profile;    ///< the grid points computed so far, in grid order (the
+                                       ///< optimum itself is not a unit)
+};
+
+/// The resume hook of fit(): the engine does no file I/O; the caller (the CLI) owns the checkpoint.
+struct FitResume {
+  const FitUnits* restored = nullptr;  ///< units of an interrupted fit, taken instead of computed
+  /// Called after each unit finishes (restored ones excepted) with every unit so far.
+  std::function<void(const FitUnits&)> unit_finished;
+};
+
 struct FitOptions {
   Cost cost = Cost::LeastSquares;
   int starts = 12;        ///< candidate starts of the global stage (the first is the parameters' values)
@@ -48,6 +83,7 @@ struct FitOptions {
   bool profile = true;  ///< profile likelihood of the worst-determined parameter
   /// Called with one line of progress (iteration, cost, current standard errors); may be empty.
   std::function<void(const std::string&)> progress;
+  FitResume resume;  ///< checkpoints (tmlab fit --resume); empty: none
 };
 
 struct ParameterResult {

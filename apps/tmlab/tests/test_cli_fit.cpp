@@ -98,16 +98,19 @@ TEST_F(CliFit, AFitThatCannotRunLeavesFailed) {
 TEST_F(CliFit, AnInterruptedFitLeavesInterruptedAndNoResult) {
   const fs::path csv = convert();
   const fs::path out = dir_ / "stopped";
-  // SIGTERM raised by the driver itself right after the global stage (the deterministic stop point of
-  // core/base/interrupt.hpp): the fit stops before its local stage.
+  // SIGTERM raised by the driver itself right after its first checkpoint, the one after the global
+  // stage (the deterministic stop point of core/base/interrupt.hpp): the fit stops before its local
+  // stage.
   ::setenv("TMLAB_TEST_STOP_AFTER_PROGRESS", "1:SIGTERM", 1);
-  const Result r =
-      tmlab({"fit", csv.string(), "--model", "mooney_rivlin,poisson=0.49", "--out", out.string()});
+  const Result r = tmlab({"fit", csv.string(), "--model", "mooney_rivlin,poisson=0.49", "--out", out.string(),
+                          "--checkpoint-every", "1"});
   ::unsetenv("TMLAB_TEST_STOP_AFTER_PROGRESS");
   EXPECT_EQ(r.status, 128 + 15) << r.output;
   EXPECT_NE(r.output.find("SIGTERM received before local fit 1"), std::string::npos) << r.output;
   ASSERT_TRUE(fs::exists(out / "INTERRUPTED")) << r.output;
   EXPECT_NE(read_file(out / "INTERRUPTED").find("SIGTERM"), std::string::npos);
+  EXPECT_NE(read_file(out / "INTERRUPTED").find("checkpoint after the global stage"), std::string::npos)
+      << read_file(out / "INTERRUPTED");
   EXPECT_FALSE(fs::exists(out / "summary.json"));
   EXPECT_FALSE(fs::exists(out / "fit.json"));
   EXPECT_FALSE(fs::exists(out / "RUNNING"));

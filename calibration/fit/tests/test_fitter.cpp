@@ -17,6 +17,7 @@
 #include <atomic>
 #include <cmath>
 #include <csignal>
+#include <cstring>
 #include <iostream>
 #include <random>
 
@@ -287,6 +288,167 @@ TEST(Fitter, AStopRequestEndsTheFitAtItsNextSafePoint) {
     EXPECT_LE(calls.load(), n + 2);
     set_pending_interrupt(0);
   }
+}
+
+/// Bit-for-bit equality of two doubles (NaN equals NaN of the same bits).
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i)
+    if (!same_bits(a[i], b[i])) return false;
+  return true;
+}
+
+/// Every field of two fit results equal bit for bit, except the wall-clock time.
+void expect_same_fit(const FitResult& a, const FitResult& b) {
+  ASSERT_EQ(a.parameters.size(), b.parameters.size());
+  for (std::size_t i = 0; i < a.parameters.size(); ++i) {
+    const ParameterResult &p = a.parameters[i], &q = b.parameters[i];
+    EXPECT_EQ(p.name, q.name);
+    EXPECT_TRUE(same_bits(p.value, q.value)) << p.name << " " << p.value << " vs " << q.value;
+    EXPECT_TRUE(same_bits(p.standard_error, q.standard_error)) << p.name;
+    EXPECT_TRUE(same_bits(p.lower95, q.lower95) && same_bits(p.upper95, q.upper95)) << p.name;
+    EXPECT_EQ(p.identifiable, q.identifiable);
+  }
+  EXPECT_EQ(a.correlation.size(), b.correlation.size());
+  for (std::size_t i = 0; i < std::min(a.correlation.size(), b.correlation.size()); ++i)
+    EXPECT_TRUE(same_bits(a.correlation[i], b.correlation[i]));
+  for (const auto& [x, y] : std::vector<std::pair<double, double>>{{a.cost, b.cost},
+                                                                   {a.sse, b.sse},
+                                                                   {a.rms, b.rms},
+                                                                   {a.aic, b.aic},
+                                                                   {a.bic, b.bic},
+                                                                   {a.prior_cost, b.prior_cost},
+                                                                   {a.profile.lower95, b.profile.lower95},
+                                                                   {a.profile.upper95, b.profile.upper95}})
+    EXPECT_TRUE(same_bits(x, y)) << x << " vs " << y;
+  EXPECT_EQ(a.forward_solves, b.forward_solves);
+  EXPECT_EQ(a.global_solves, b.global_solves);
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(a.stop_reason, b.stop_reason);
+  EXPECT_TRUE(same_bits(a.start_costs, b.start_costs));
+  EXPECT_TRUE(same_bits(a.global_costs, b.global_costs));
+  EXPECT_TRUE(same_bits(a.prediction, b.prediction));
+  EXPECT_EQ(a.profile.parameter, b.profile.parameter);
+  ASSERT_EQ(a.profile.points.size(), b.profile.points.size());
+  for (std::size_t k = 0; k < a.profile.points.size(); ++k)
+    EXPECT_TRUE(same_bits(a.profile.points[k].value, b.profile.points[k].value) &&
+                same_bits(a.profile.points[k].sse, b.profile.points[k].sse))
+        << "profile point " << k;
+  EXPECT_EQ(a.profile.lower_found, b.profile.lower_found);
+  EXPECT_EQ(a.notes, b.notes);
+  EXPECT_EQ(a.confounded.size(), b.confounded.size());
+}
+
+/// Counts the forward model's evaluations.
+class Counting : public ForwardModel {
+ public:
+  Counting(std::unique_ptr<ForwardModel> m, std::atomic<long>& calls) : m_(std::move(m)), calls_(calls) {}
+  std::string name() const override { return m_->name(); }
+  std::string description() const override { return m_->description(); }
+  std::vector<double> predict(const std::vector<double>& x) const override {
+    ++calls_;
+    return m_->predict(x);
+  }
+
+ private:
+  std::unique_ptr<ForwardModel> m_;
+  std::atomic<long>& calls_;
+};
+
+TEST(Fitter, RestoredUnitsGiveTheIdenticalResult) {
+  // The units an uninterrupted fit reports (global stage, each local run, each profile point), each
+  // handed back as the checkpoint of a fit interrupted right after it: the resumed fit must skip
+  // what was restored (fewer forward solves) and end with the identical result.
+  measured::DataSet d = testing::compression_data(0.5, 101);
+  std::vector<double> f = truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}});
+  std::mt19937_64 rng(11);
+  add_noise(f, 0.01, rng);
+  testing::set_forces(d, f);
+  for (const GlobalStage global : {GlobalStage::MultiStart, GlobalStage::Siman}) {
+    SCOPED_TRACE(to_string(global));
+    FitOptions o;
+    o.starts = 6;
+    o.local_runs = 3;
+    o.global = global;
+    o.siman_evaluations = 200;
+    std::vector<FitUnits> snapshots;
+    o.resume.unit_finished = [&](const FitUnits& u) { snapshots.push_back(u); };
+    const Problem pr = make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49"));
+    const FitResult full = fit(pr, o);
+    // global stage + local runs + 10 profile points
+    ASSERT_EQ(snapshots.size(), 1 + snapshots.back().local_runs.size() + 10);
+    ASSERT_GE(snapshots.back().local_runs.size(), 2u);
+    long previous_calls = 1L << 40;
+    for (std::size_t u = 0; u < snapshots.size(); ++u) {
+      SCOPED_TRACE("resumed after unit " + std::to_string(u + 1) + " of " + std::to_string(snapshots.size()));
+      Problem pc = make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49"));
+      std::atomic<long> calls{0};
+      pc.model = std::make_unique<Counting>(std::move(pc.model), calls);
+      FitOptions r = o;
+      std::size_t reported = 0;
+      r.resume.restored = &snapshots[u];
+      r.resume.unit_finished = [&](const FitUnits&) { ++reported; };
+      expect_same_fit(fit(pc, r), full);
+      EXPECT_EQ(reported, snapshots.size() - u - 1) << "only the units not restored run";
+      EXPECT_LT(calls.load(), previous_calls) << "the restored units were computed again";
+      previous_calls = calls.load();
+    }
+  }
+}
+
+/// Records a stop request at the evaluation `stop_at` holds (0: never).
+class StopArmed : public ForwardModel {
+ public:
+  StopArmed(std::unique_ptr<ForwardModel> m, std::atomic<long>& calls, std::atomic<long>& stop_at)
+      : m_(std::move(m)), calls_(calls), stop_at_(stop_at) {}
+  std::string name() const override { return m_->name(); }
+  std::string description() const override { return m_->description(); }
+  std::vector<double> predict(const std::vector<double>& x) const override {
+    if (++calls_ == stop_at_) set_pending_interrupt(SIGTERM);
+    return m_->predict(x);
+  }
+
+ private:
+  std::unique_ptr<ForwardModel> m_;
+  std::atomic<long>& calls_;
+  std::atomic<long>& stop_at_;
+};
+
+TEST(Fitter, AFitStoppedInsideAUnitResumesFromItsLastFinishedUnit) {
+  // A stop request inside the second local run (a few evaluations into it): the fit ends with
+  // Interrupted, the run half done is lost; resumed from the units it reported, the second run is
+  // done again from its start and the fit ends with the uninterrupted result.
+  measured::DataSet d = testing::compression_data(0.5, 101);
+  testing::set_forces(d, truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
+  FitOptions o;
+  o.starts = 4;
+  o.local_runs = 2;
+  o.threads = 1;
+  const FitResult full = fit(make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49")), o);
+  Problem pc = make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49"));
+  std::atomic<long> calls{0}, stop_at{0};
+  pc.model = std::make_unique<StopArmed>(std::move(pc.model), calls, stop_at);
+  FitUnits last;
+  FitOptions cut = o;
+  cut.resume.unit_finished = [&](const FitUnits& u) {
+    last = u;
+    if (u.local_runs.size() == 1) stop_at = calls + 5;  // inside the next local run
+  };
+  try {
+    (void)fit(pc, cut);
+    ADD_FAILURE() << "the fit ran to its end";
+  } catch (const Interrupted& e) {
+    EXPECT_NE(std::string(e.what()).find("during a local fit"), std::string::npos) << e.what();
+  }
+  set_pending_interrupt(0);
+  ASSERT_TRUE(last.global_done);
+  ASSERT_EQ(last.local_runs.size(), 1u);
+  FitOptions resumed = o;
+  resumed.resume.restored = &last;
+  expect_same_fit(fit(make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49")), resumed),
+                  full);
 }
 
 }  // namespace
