@@ -58,6 +58,9 @@ class ProbeTrajectory {
   /// "poke", "ellipse" or the CSV's path.
   std::string describe() const;
   const Vec3& start() const { return start_; }
+  /// The samples of a Kind::Samples trajectory (empty for the scripted kinds).
+  const std::vector<double>& sample_times() const { return t_; }
+  const std::vector<Vec3>& sample_points() const { return x_; }
 
  private:
   Kind kind_ = Kind::Poke;

@@ -30,14 +30,6 @@ double rate(ConfigReader& r, const std::string& key, double fallback) {
 
 }  // namespace
 
-std::unique_ptr<ControlModel> RealtimeCase::make_control(double dt_override) const {
-  ControlOptions o = control;
-  if (dt_override > 0.0) o.dt = dt_override;
-  auto m = std::make_unique<ControlModel>(mesh, material, prony, viscoelastic, density, fixed_nodes, o);
-  m->reset(probe_start);
-  return m;
-}
-
 RealtimeCase load_realtime_case(const std::string& path, const std::string& tmlab_root) {
   RealtimeCase c;
   c.file = path;
