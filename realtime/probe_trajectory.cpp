@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iomanip>
@@ -33,6 +34,13 @@ Vec3 unit(const Vec3& v, const std::string& what) {
 void require_positive(double v, const std::string& what, bool allow_zero = false) {
   if (!std::isfinite(v) || v < 0.0 || (!allow_zero && v == 0.0))
     throw Error("probe trajectory: " + what + (allow_zero ? " must be >= 0" : " must be > 0"));
+}
+
+/// Shortest "%.6g" form of v, for messages.
+std::string number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6g", v);
+  return b;
 }
 
 std::string trim(const std::string& s) {
@@ -98,7 +106,7 @@ ProbeTrajectory ProbeTrajectory::samples(std::vector<double> t, std::vector<Vec3
   return p;
 }
 
-ProbeTrajectory ProbeTrajectory::read_csv(const std::string& path) {
+ProbeTrajectory ProbeTrajectory::read_csv(const std::string& path, const ProbeBounds* bounds) {
   std::ifstream in(path);
   if (!in) throw Error(path + ": cannot open the trajectory file");
   std::vector<double> t;
@@ -137,9 +145,17 @@ ProbeTrajectory ProbeTrajectory::read_csv(const std::string& path) {
     }
     if (t.empty() && v[0] != 0.0) throw Error(at + "the first sample must be at t = 0 (got " + trim(s) + ")");
     if (!t.empty() && !(v[0] > t.back()))
-      throw Error(at + "time " + std::to_string(v[0]) + " is not after the previous sample's");
+      throw Error(at + "time " + number(v[0]) + " is not after the previous sample's (" + number(t.back()) +
+                  ")");
+    const Vec3 xi(v[1], v[2], v[3]);
+    if (bounds && ((xi - bounds->min).minCoeff() < 0.0 || (bounds->max - xi).minCoeff() < 0.0))
+      throw Error(at + "the probe centre (" + number(xi.x()) + ", " + number(xi.y()) + ", " + number(xi.z()) +
+                  ") m lies outside " + bounds->what + ", (" + number(bounds->min.x()) + ", " +
+                  number(bounds->min.y()) + ", " + number(bounds->min.z()) + ") to (" +
+                  number(bounds->max.x()) + ", " + number(bounds->max.y()) + ", " + number(bounds->max.z()) +
+                  ") m: positions are in metres, in the mesh frame");
     t.push_back(v[0]);
-    x.emplace_back(v[1], v[2], v[3]);
+    x.push_back(xi);
   }
   if (!header) throw Error(path + ": empty trajectory file (expected the header 't,x,y,z')");
   if (t.empty()) throw Error(path + ": the trajectory has a header but no sample");

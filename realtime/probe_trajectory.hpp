@@ -12,7 +12,9 @@
 // A trajectory file (docs/realtime.md) is a CSV with the header `t,x,y,z` (seconds, metres, the
 // probe centre in the mesh frame), then one sample per line with strictly increasing t, first t = 0;
 // blank lines and lines starting with '#' are skipped. Between samples the position is linear in t;
-// before the first / after the last sample it is held. Errors name the file and line.
+// before the first / after the last sample it is held. Errors name the file and line. Given the
+// box the probe may move in, a sample outside it is an error too: a file in millimetres or in
+// another frame would otherwise run without ever touching the tissue.
 #pragma once
 
 #include "core/mesh/mesh.hpp"
@@ -23,6 +25,12 @@
 namespace tmlab::rt {
 
 using tmlab::Vec3;
+
+/// Where a probe centre may be (m), and what that box is (for the error message).
+struct ProbeBounds {
+  Vec3 min = Vec3::Zero(), max = Vec3::Zero();
+  std::string what;
+};
 
 class ProbeTrajectory {
  public:
@@ -36,8 +44,9 @@ class ProbeTrajectory {
                                  double amplitude, double period, int cycles, double ramp);
   /// Piecewise-linear samples (t strictly increasing, t[0] = 0).
   static ProbeTrajectory samples(std::vector<double> t, std::vector<Vec3> x, std::string origin = "samples");
-  /// Reads a trajectory CSV (strict: errors name the file and line).
-  static ProbeTrajectory read_csv(const std::string& path);
+  /// Reads a trajectory CSV (strict: errors name the file and line); with `bounds`, every sample
+  /// must lie in them.
+  static ProbeTrajectory read_csv(const std::string& path, const ProbeBounds* bounds = nullptr);
   /// Writes the CSV form of `samples` (t, x) (for recorded runs and tests).
   static void write_csv(const std::string& path, const std::vector<double>& t, const std::vector<Vec3>& x);
 
@@ -49,6 +58,9 @@ class ProbeTrajectory {
   /// "poke", "ellipse" or the CSV's path.
   std::string describe() const;
   const Vec3& start() const { return start_; }
+  /// The samples of a Kind::Samples trajectory (empty for the scripted kinds).
+  const std::vector<double>& sample_times() const { return t_; }
+  const std::vector<Vec3>& sample_points() const { return x_; }
 
  private:
   Kind kind_ = Kind::Poke;

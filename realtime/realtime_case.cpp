@@ -4,6 +4,7 @@
 #include "core/config/case_config.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "realtime/live_protocol.hpp"
 
 #include <cmath>
 #include <filesystem>
@@ -28,14 +29,6 @@ double rate(ConfigReader& r, const std::string& key, double fallback) {
 }
 
 }  // namespace
-
-std::unique_ptr<ControlModel> RealtimeCase::make_control(double dt_override) const {
-  ControlOptions o = control;
-  if (dt_override > 0.0) o.dt = dt_override;
-  auto m = std::make_unique<ControlModel>(mesh, material, prony, viscoelastic, density, fixed_nodes, o);
-  m->reset(probe_start);
-  return m;
-}
 
 RealtimeCase load_realtime_case(const std::string& path, const std::string& tmlab_root) {
   RealtimeCase c;
@@ -92,6 +85,11 @@ RealtimeCase load_realtime_case(const std::string& path, const std::string& tmla
     if (!(c.direction.norm() > 0.0)) throw probe.error("direction", "must be a non-zero vector");
     c.direction.normalize();
     c.clearance = probe.positive("clearance", 0.0, true);
+    const Box reach = probe_box(c.mesh, 2.0 * c.control.probe_radius);
+    if ((c.surface_point - reach.min).minCoeff() < 0.0 || (reach.max - c.surface_point).minCoeff() < 0.0)
+      throw probe.error("surface_point",
+                        "lies outside the mesh's bounding box grown by two probe radii: it is "
+                        "in metres, in the mesh frame");
     probe.finish();
     c.probe_start = c.surface_point - (c.control.probe_radius + c.clearance) * c.direction;
   }
@@ -110,7 +108,9 @@ RealtimeCase load_realtime_case(const std::string& path, const std::string& tmla
     } else if (type == "csv") {
       const fs::path f(tr.require<std::string>("file"));
       const fs::path resolved = f.is_absolute() ? f : (fs::path(path).parent_path() / f).lexically_normal();
-      c.trajectory = std::make_shared<ProbeTrajectory>(ProbeTrajectory::read_csv(resolved.string()));
+      const Box reach = probe_box(c.mesh, 2.0 * c.control.probe_radius);
+      const ProbeBounds bounds{reach.min, reach.max, "the mesh's bounding box grown by two probe radii"};
+      c.trajectory = std::make_shared<ProbeTrajectory>(ProbeTrajectory::read_csv(resolved.string(), &bounds));
       c.probe_start = c.trajectory->start();
     } else {
       throw tr.error("type", "must be \"poke\", \"ellipse\" or \"csv\" (got \"" + type + "\")");

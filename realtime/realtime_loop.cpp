@@ -20,24 +20,9 @@ Clock::duration seconds(double s) {
 }
 Vec3 to_vec(const ProbeSample& p) { return {p.x[0], p.x[1], p.x[2]}; }
 
-}  // namespace
-
-LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
-  if (!opt.trajectory && !opt.interactive) throw Error("realtime loop: no probe input");
-  if (!(opt.duration > 0.0) || !(opt.haptic_hz > 0.0) || !(opt.visual_hz > 0.0))
-    throw Error("realtime loop: duration and rates must be > 0");
-  const double th = 1.0 / opt.haptic_hz, tv = 1.0 / opt.visual_hz, dt = control.dt();
-  const auto probe_at = [&](double t) {
-    return opt.interactive ? to_vec(opt.interactive->load()) : opt.trajectory->position(t);
-  };
-  const Vec3 x0 = probe_at(0.0);
-  control.reset(x0);
-
-  // Everything the loops touch, sized before they start.
-  const std::size_t n_haptic = static_cast<std::size_t>(std::ceil(opt.duration * opt.haptic_hz)) + 16;
-  const std::size_t n_control = static_cast<std::size_t>(std::ceil(opt.duration / dt)) + 16;
-  const std::size_t n_visual = static_cast<std::size_t>(std::ceil(opt.duration * opt.visual_hz)) + 16;
-  const std::size_t n_dofs = 3 * static_cast<std::size_t>(control.mesh().num_points());
+/// The result with its logs and frames reserved for the whole run (the loops never allocate).
+LoopResult reserved_result(const LoopOptions& opt, std::size_t n_haptic, std::size_t n_control,
+                           std::size_t n_visual, std::size_t n_dofs) {
   LoopResult r;
   if (opt.keep_log) {
     for (auto* v : {&r.x, &r.extrapolation, &r.local_model}) v->reserve(n_haptic);
@@ -51,6 +36,29 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
   r.frame_t.reserve(n_frames);
   r.frame_force.reserve(n_frames);
   r.frame_probe.reserve(n_frames);
+  return r;
+}
+
+}  // namespace
+
+LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
+  if (!opt.device && !opt.trajectory && !opt.interactive) throw Error("realtime loop: no probe input");
+  if (!(opt.duration > 0.0) || !(opt.haptic_hz > 0.0) || !(opt.visual_hz > 0.0))
+    throw Error("realtime loop: duration and rates must be > 0");
+  const double th = 1.0 / opt.haptic_hz, tv = 1.0 / opt.visual_hz, dt = control.dt();
+  const auto probe_at = [&](double t) {
+    if (opt.device) return opt.device->position(t);
+    return opt.interactive ? to_vec(opt.interactive->load()) : opt.trajectory->position(t);
+  };
+  const Vec3 x0 = probe_at(0.0);
+  control.reset(x0);
+
+  // Everything the loops touch, sized before they start.
+  const std::size_t n_haptic = static_cast<std::size_t>(std::ceil(opt.duration * opt.haptic_hz)) + 16;
+  const std::size_t n_control = static_cast<std::size_t>(std::ceil(opt.duration / dt)) + 16;
+  const std::size_t n_visual = static_cast<std::size_t>(std::ceil(opt.duration * opt.visual_hz)) + 16;
+  const std::size_t n_dofs = 3 * static_cast<std::size_t>(control.mesh().num_points());
+  LoopResult r = reserved_result(opt, n_haptic, n_control, n_visual, n_dofs);
   const double window = opt.timing_window > 0.0 ? std::min(opt.timing_window, opt.duration) : opt.duration;
   const auto timing_samples = [&](std::size_t n, double hz) {
     return std::min(n, static_cast<std::size_t>(std::ceil(window * hz)) + 16);
@@ -91,6 +99,7 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
       }
       const Vec3 fe = extrapolation.force(t, x), fl = local.force(t, x);
       const Vec3 f = opt.rendered == CouplingScheme::Extrapolation ? fe : fl;
+      if (opt.device) opt.device->render(t, f);
       rendered_force.store(ProbeSample{t, {f.x(), f.y(), f.z()}});
       if (r.t.size() < r.t.capacity()) {
         r.t.push_back(t);

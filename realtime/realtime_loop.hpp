@@ -1,9 +1,10 @@
 // The three asynchronous threads of the paper's Section IV-C on the control model:
 //
-//   haptic  (haptic_hz, periodic): reads the probe position (the scripted trajectory at its tick
-//           time, or the latest position an interactive source stored), publishes it through a
-//           sequence lock, takes the newest control snapshot from a triple buffer if there is one,
-//           and computes BOTH couplings (extrapolation and local model), rendering the chosen one.
+//   haptic  (haptic_hz, periodic): reads the probe position (a device's position(t), the scripted
+//           trajectory at its tick time, or the latest position an interactive source stored),
+//           publishes it through a sequence lock, takes the newest control snapshot from a triple
+//           buffer if there is one, and computes BOTH couplings (extrapolation and local model),
+//           rendering the chosen one (to the device's render(t, F) when there is a device).
 //           It never waits for the control thread.
 //   control (1/dt model steps per second, paced so that model time never runs ahead of wall
 //           time): reads the probe, takes one explicit step, publishes a ContactSnapshot (triple
@@ -21,6 +22,7 @@
 #include "realtime/control_model.hpp"
 #include "realtime/haptic_coupling.hpp"
 #include "realtime/loop_timing.hpp"
+#include "realtime/probe_device.hpp"
 #include "realtime/probe_trajectory.hpp"
 #include "realtime/seqlock.hpp"
 
@@ -41,9 +43,13 @@ struct LoopOptions {
   double haptic_hz = 1000.0;
   double visual_hz = 40.0;
   CouplingScheme rendered = CouplingScheme::LocalModel;
-  const ProbeTrajectory* trajectory = nullptr;  ///< scripted probe (used when `interactive` is null)
-  /// Interactive probe: the haptic thread reads its latest value instead of the trajectory.
+  /// Probe input, the first one set of: a device (probe_device.hpp: the haptic thread reads its
+  /// position and hands it the rendered force every tick), an interactive source (the haptic thread
+  /// reads the latest value stored in the sequence lock, e.g. by the --serve page), a scripted
+  /// trajectory (its position at the tick time).
+  ProbeDevice* device = nullptr;
   const SeqLock<ProbeSample>* interactive = nullptr;
+  const ProbeTrajectory* trajectory = nullptr;
   bool keep_frames = false;  ///< keep visual frames (node positions) for offline rendering
   int frame_every = 1;       ///< keep every k-th visual frame
   /// Called by the visual thread with each new frame (positions, rendered force, probe); must not

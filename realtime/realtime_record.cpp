@@ -22,6 +22,16 @@ nlohmann::json to_json(const ThreadTiming& t) {
           {"unrecorded", t.unrecorded}};
 }
 
+namespace {
+
+std::string short_number(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+}  // namespace
+
 nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, const fs::path& dir) {
   const auto log = [&](const std::string& m) {
     if (opt.log) opt.log(m);
@@ -29,6 +39,8 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   const double duration = opt.duration > 0.0 ? opt.duration : c.duration;
 
   // 1. The live run.
+  log("preparing the control model (" + std::to_string(c.mesh.num_points()) +
+      " nodes; the surface compliance of the local-model coupling)");
   auto control = c.make_control();
   LoopOptions lo;
   lo.duration = duration;
@@ -38,12 +50,19 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   lo.trajectory = c.trajectory.get();
   lo.keep_frames = opt.frames;
   lo.frame_every = c.png_every;
-  log("running the three threads for " + std::to_string(duration) + " s");
+  log("running the three threads for " + short_number(duration) + " s");
   const LoopResult r = run_realtime_loop(*control, lo);
+  const double pace = r.model_time / duration;
+  log("model time reached " + short_number(r.model_time) + " s in " + short_number(duration) +
+      " s of wall time (" + short_number(std::round(100.0 * pace)) + " % of real time)" +
+      (pace < 0.95 ? ": the control thread fell behind, and the live figures include that lag" : ""));
 
-  // 2. Live coupling measures against the ground truth replayed on the probe path the haptic thread read.
-  auto truth_model = c.make_control();
-  const std::vector<Vec3> truth = ground_truth(*truth_model, r.x, c.substeps);
+  // 2. Live coupling measures against the ground truth replayed on the probe path the haptic thread read
+  // (the live run's model, reset).
+  log("replaying the ground truth on the live run's probe path (" + std::to_string(r.t.size()) +
+      " haptic ticks)");
+  ControlModel& truth_model = *control;
+  const std::vector<Vec3> truth = ground_truth(truth_model, r.x, c.substeps);
   const SchemeMetrics live_e = coupling_metrics(r.x, r.extrapolation, truth);
   const SchemeMetrics live_l = coupling_metrics(r.x, r.local_model, truth);
 
@@ -51,8 +70,20 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   const int every = static_cast<int>(std::lround(c.haptic_hz / c.study_control_hz));
   const double study_duration = std::min(duration, std::max(c.trajectory->duration(), 1.0 / c.haptic_hz));
   log("coupling study: control every " + std::to_string(every) + " haptic ticks over " +
-      std::to_string(study_duration) + " s");
-  const CouplingStudy s = run_coupling_study(*truth_model, *c.trajectory, c.substeps, every, study_duration);
+      short_number(study_duration) + " s");
+  const CouplingStudy s = run_coupling_study(truth_model, *c.trajectory, c.substeps, every, study_duration);
+  // Passivity is judged over a closed path: say so when this run's duration cuts the path open.
+  const bool closed = !s.x.empty() && (s.x.back() - s.x.front()).norm() <= 1e-9 * c.control.probe_radius;
+  const ProbeTrajectory& path = *c.trajectory;
+  if (!closed && (path.position(path.duration()) - path.start()).norm() > 1e-9 * c.control.probe_radius)
+    log("warning: the trajectory does not end where it starts, so coupling_energy_J is the work over an open "
+        "path, not a passivity measure");
+  else if (!closed)
+    log("warning: the study covers " + short_number(study_duration) + " s of the " +
+        short_number(path.duration()) +
+        " s trajectory, an open path, so coupling_energy_J is not a passivity measure; record with "
+        "--duration " +
+        short_number(path.duration()) + " or more for the whole (closed) path");
 
   // 4. forces.csv and the frames.
   {
@@ -71,6 +102,7 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   }
   int written = 0;
   if (opt.frames && !r.frames.empty()) {
+    log("writing " + std::to_string(r.frames.size()) + " PNG frames");
     fs::create_directories(dir / "frames");
     FrameRenderer renderer(c.mesh, c.image_width, c.image_height);
     const std::vector<Vec3>& rendered =
@@ -112,11 +144,9 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   doc["couplings"] = {{"extrapolation", scheme(s.extrapolation_metrics, live_e)},
                       {"local_model", scheme(s.local_model_metrics, live_l)}};
   doc["rendered_coupling"] = to_string(c.rendered);
-  doc["study"] = {{"haptic_hz", c.haptic_hz},
-                  {"control_hz", c.study_control_hz},
-                  {"duration_s", study_duration},
-                  {"truth_energy_J", s.truth_energy_J},
-                  {"live_truth_energy_J", path_work(r.x, truth)}};
+  doc["study"] = {{"haptic_hz", c.haptic_hz},           {"control_hz", c.study_control_hz},
+                  {"duration_s", study_duration},       {"path_closed", closed},
+                  {"truth_energy_J", s.truth_energy_J}, {"live_truth_energy_J", path_work(r.x, truth)}};
   doc["control"] = {{"dt_s", control->dt()},
                     {"steps_per_haptic_tick", c.substeps},
                     {"penalty_stiffness_N_per_m", control->penalty_stiffness()},

@@ -103,7 +103,7 @@ int serve(const rt::RealtimeCase& c, int port, double duration) {
   std::cout << "stopped (" << (sig ? signal_name(sig) : std::string("--duration reached")) << ")\n"
             << "timing (wall clock, this machine's load included):\n";
   for (const rt::ThreadTiming* t : {&r.haptic, &r.control, &r.visual}) print_timing(*t);
-  std::printf("  model time reached %.3f s\n", r.model_time);
+  std::printf("  model time reached %.3f s in %.3f s of wall time\n", r.model_time, r.haptic.elapsed_s);
   std::printf(
       "  page: %ld frames published, %ld sent, %ld skipped (busy page), %ld probe moves, %ld refused, %ld "
       "pages\n",
@@ -153,6 +153,8 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
             << duration << " s\n";
 
   if (!p.has("--record")) {
+    std::cerr << "tmlab realtime: preparing the control model (the surface compliance of the local-model "
+                 "coupling), then the run\n";
     auto control = c.make_control();
     rt::LoopOptions lo;
     lo.duration = duration;
@@ -163,7 +165,7 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
     const rt::LoopResult r = rt::run_realtime_loop(*control, lo);
     std::cout << "timing (wall clock, this machine's load included):\n";
     for (const rt::ThreadTiming* t : {&r.haptic, &r.control, &r.visual}) print_timing(*t);
-    std::printf("  model time reached %.3f s of %.3f s\n", r.model_time, duration);
+    std::printf("  model time reached %.3f s in %.3f s of wall time\n", r.model_time, duration);
     return 0;
   }
 
@@ -197,6 +199,8 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
         name, t["target_hz"].get<double>(), t["rate_hz"].get<double>(), t["p50_us"].get<double>(),
         t["p99_us"].get<double>(), t["p999_us"].get<double>(), t["missed"].get<long>());
   }
+  std::printf("  model time reached %.3f s in %.3f s of wall time\n",
+              doc["control"]["model_time_reached_s"].get<double>(), duration);
   std::cout << "couplings (deterministic study, control " << c.study_control_hz << " Hz, haptic "
             << c.haptic_hz << " Hz):\n";
   for (const char* name : {"extrapolation", "local_model"}) {
@@ -205,7 +209,10 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
                 s["haptic_force_error_rel"].get<double>(), s["coupling_energy_J"].get<double>(),
                 s["live_haptic_force_error_rel"].get<double>(), s["live_coupling_energy_J"].get<double>());
   }
-  std::cout << "results " << dir.string() << "/ (timing.json, forces.csv, frames/*.png, summary.json)\n";
+  std::cout << "results " << dir.string() << "/ (timing.json, forces.csv, "
+            << (doc["frames"].get<int>() > 0 ? std::to_string(doc["frames"].get<int>()) + " frames/*.png, "
+                                             : "")
+            << "summary.json)\n";
   return 0;
 }
 

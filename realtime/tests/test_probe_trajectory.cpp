@@ -74,7 +74,7 @@ TEST_F(TrajectoryCsv, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1,5\n"),
             p + ":3: expected 4 comma-separated columns t,x,y,z (got '0.1,0,0,1,5')");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1\n0.1,0,0,1\n"),
-            p + ":4: time 0.100000 is not after the previous sample's");
+            p + ":4: time 0.1 is not after the previous sample's (0.1)");
   EXPECT_EQ(error_of("t,x,y,z\n0.5,0,0,1\n"), p + ":2: the first sample must be at t = 0 (got 0.5,0,0,1)");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,nan,1\n"), p + ":2: column 3 (y) is not a finite number: 'nan'");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,1e999,1\n"), p + ":2: column 3 (y) is not a finite number: '1e999'");
@@ -82,6 +82,24 @@ TEST_F(TrajectoryCsv, ErrorsNameFileAndLine) {
   EXPECT_EQ(error_of("t,x,y,z\n"), p + ": the trajectory has a header but no sample");
   EXPECT_NE(error_of("t,x,y,z\n0,,0,1\n").find(":2: column 2 (x)"), std::string::npos);
   EXPECT_THROW(ProbeTrajectory::read_csv((dir_ / "missing.csv").string()), Error);
+}
+
+TEST_F(TrajectoryCsv, SamplesOutsideTheBoundsNameFileAndLine) {
+  // A path written in millimetres against a mesh in metres: refused at its first sample outside.
+  const ProbeBounds b{Vec3(-0.1, -0.1, 1.4), Vec3(0.1, 0.1, 1.7), "the reach"};
+  const std::string path = write("t,x,y,z\n0,0,0,1.65\n# now in mm\n0.5,-40,-57,1636\n");
+  try {
+    ProbeTrajectory::read_csv(path, &b);
+    FAIL() << "a sample outside the bounds was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), path +
+                                         ":4: the probe centre (-40, -57, 1636) m lies outside the reach, "
+                                         "(-0.1, -0.1, 1.4) to (0.1, 0.1, 1.7) m: positions are in metres, "
+                                         "in the mesh frame");
+  }
+  // On the box itself is inside; without bounds nothing is checked.
+  EXPECT_NO_THROW(ProbeTrajectory::read_csv(write("t,x,y,z\n0,-0.1,0.1,1.7\n"), &b));
+  EXPECT_NO_THROW(ProbeTrajectory::read_csv(write("t,x,y,z\n0,0,0,1.65\n0.5,-40,-57,1636\n")));
 }
 
 TEST(ProbeTrajectory, BadScriptsAreRefused) {

@@ -4,8 +4,10 @@
 //                  values are refused, SIGINT stops the run cleanly (exit 0, the timing printed).
 //   ServeBrowser.* (ctest label `browser`): Debian's Chromium, driven by playwright-core
 //                  (realtime/web/tests/browser_test.mjs): the page loads, frames arrive, a mouse drag
-//                  of the probe changes the reported force; the screenshot is kept in
-//                  <build>/test-artifacts/realtime_serve.png. Skipped, with the reason, when
+//                  of the probe changes the reported force, the wheel during a drag presses the
+//                  probe in along the view direction (the force grows) and Shift+wheel pulls it out;
+//                  the screenshots are kept in <build>/test-artifacts/realtime_serve.png and
+//                  realtime_serve_depth.png. Skipped, with the reason, when
 //                  Chromium, node or playwright-core (./tmlab set-up) is absent.
 // No timing assertion: the waits only bound how long a broken server can hang the test.
 #include "cli_test_support.hpp"
@@ -165,8 +167,9 @@ TEST_F(ServeBrowser, PageShowsFramesAndADragChangesTheForce) {
   }
   const fs::path artifacts = fs::path(TMLAB_ARTIFACT_DIR);
   fs::create_directories(artifacts);
-  const fs::path shot = artifacts / "realtime_serve.png";
+  const fs::path shot = artifacts / "realtime_serve.png", depth_shot = artifacts / "realtime_serve_depth.png";
   fs::remove(shot);
+  fs::remove(depth_shot);
   const fs::path node_log = dir_ / "browser.txt";
   const tmlab::ProcessStatus st = tmlab::run_process(
       {node, (fs::path(TMLAB_SOURCE_DIR) / "realtime" / "web" / "tests" / "browser_test.mjs").string(),
@@ -179,6 +182,8 @@ TEST_F(ServeBrowser, PageShowsFramesAndADragChangesTheForce) {
   ASSERT_TRUE(st.ok()) << st.describe() << "\n" << browser << "\nserver:\n" << read_file(log);
   EXPECT_NE(browser.find("\"ok\":true"), std::string::npos) << browser;
   EXPECT_TRUE(fs::exists(shot) && fs::file_size(shot) > 1000) << shot;
+  EXPECT_TRUE(fs::exists(depth_shot) && fs::file_size(depth_shot) > 1000) << depth_shot;
+  EXPECT_NE(browser.find("\"along_view_m\""), std::string::npos) << browser;
   EXPECT_EQ(exit_code, 0) << read_file(log);
   const std::string out = read_file(log);
   std::cout << "server: " << out;  // its timing and page statistics

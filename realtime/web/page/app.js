@@ -5,8 +5,8 @@
 
 const state = (window.tmlab = {
   connected: false, hello: null, frames: 0, fps: 0, force: [0, 0, 0], probe: [0, 0, 0], t: 0,
-  rendered: 0, error: null, moves: 0,
-  probeScreen: null, worldToScreen: null,
+  rendered: 0, error: null, moves: 0, target: null,
+  probeScreen: null, worldToScreen: null, viewDirection: null,
 });
 const panel = document.getElementById('panel');
 
@@ -54,7 +54,7 @@ const controls = new OrbitControls(camera, renderer.domElement);
 controls.enableDamping = false;
 
 let geometry = null, positions = null, probeMesh = null, ghost = null, arrow = null, center = null, extent = 1;
-let probeStart = null;
+let probeStart = null, target = null;  // the probe's start and the target last asked for (mesh frame)
 
 function resize() {
   const w = view.clientWidth, h = view.clientHeight;
@@ -94,6 +94,8 @@ function onHello(h) {
   arrow.traverse((o) => { if (o.material) { o.material.depthTest = false; o.renderOrder = 10; } });  // seen through the probe
   scene.add(arrow);
   probeStart = new THREE.Vector3(...h.probe);
+  target = probeStart.clone();
+  state.target = target.toArray();
   // The view of the PNG frames (frame_renderer.hpp): looking along (0.35, 1, -0.6).
   const look = new THREE.Vector3(0.35, 1.0, -0.6).normalize();
   camera.position.copy(center).addScaledVector(look, -1.6 * extent);
@@ -159,6 +161,8 @@ function onFrame(buf) {
   geometry.computeVertexNormals();
   geometry.computeBoundingSphere();
   probeMesh.position.set(...p);
+  if (!dragging && ghost.visible && probeMesh.position.distanceTo(target) < 0.02 * state.hello.probe_radius)
+    ghost.visible = false;
   const fv = new THREE.Vector3(...f), fn = fv.length();
   arrow.position.copy(probeMesh.position);
   if (fn > 1e-6) {
@@ -199,6 +203,12 @@ function ndc(ev) {
   raycaster.setFromCamera(pointer, camera);
 }
 function sendProbe(x) {
+  // The server clamps targets into the probe box; so does the page, so that a target pushed past
+  // it comes back with the first notch or drag the other way.
+  const box = state.hello.probe_box;
+  x.clamp(new THREE.Vector3(...box.min), new THREE.Vector3(...box.max));
+  target = x.clone();
+  state.target = target.toArray();
   pendingTarget = x;
   const now = performance.now();
   if (now - lastSent < 8 || !ws || ws.readyState !== 1) return;  // at most ~120 messages/s
@@ -231,8 +241,8 @@ renderer.domElement.addEventListener('pointermove', (ev) => {
   const hit = new THREE.Vector3();
   if (!raycaster.ray.intersectPlane(dragPlane, hit)) return;
   hit.add(dragOffset);
-  ghost.position.copy(hit);
   sendProbe(hit);
+  ghost.position.copy(target);
   needsDraw = true;
 });
 function endDrag(ev) {
@@ -246,8 +256,42 @@ function endDrag(ev) {
 renderer.domElement.addEventListener('pointerup', endDrag);
 renderer.domElement.addEventListener('pointercancel', endDrag);
 window.addEventListener('keydown', (ev) => {
-  if ((ev.key === 'r' || ev.key === 'R') && probeStart) { lastSent = 0; sendProbe(probeStart.clone()); }
+  if ((ev.key === 'r' || ev.key === 'R') && probeStart) {
+    lastSent = 0;
+    sendProbe(probeStart.clone());
+    if (!dragging) ghost.visible = false;
+  }
 });
+
+// Depth: the wheel while dragging the probe, or Shift+wheel at any time, moves the probe target
+// along the view direction, a tenth of the probe radius per wheel notch: forward (away from you)
+// presses it into what the camera looks at, backward pulls it out. The drag plane follows.
+function wheelNotches(ev) {
+  // Chromium turns Shift+wheel into a horizontal scroll on some systems: take whichever axis moved.
+  const d = Math.abs(ev.deltaY) >= Math.abs(ev.deltaX) ? ev.deltaY : ev.deltaX;
+  if (ev.deltaMode === 1) return d / 3;   // lines
+  if (ev.deltaMode === 2) return d * 10;  // pages
+  return d / 100;                         // pixels: 100 per notch
+}
+function pushProbe(notches) {
+  const dir = new THREE.Vector3();
+  camera.getWorldDirection(dir);
+  const from = dragging ? ghost.position.clone() : target.clone();  // the ghost is the target in a drag
+  const x = from.addScaledVector(dir, notches * 0.1 * state.hello.probe_radius);
+  lastSent = 0;
+  sendProbe(x);
+  if (dragging) dragPlane.setFromNormalAndCoplanarPoint(dir, target);
+  ghost.position.copy(target);
+  ghost.visible = true;
+  needsDraw = true;
+}
+renderer.domElement.addEventListener('wheel', (ev) => {
+  if (!probeMesh || !target || !(dragging || ev.shiftKey)) return;  // otherwise: zoom (OrbitControls)
+  ev.preventDefault();
+  ev.stopImmediatePropagation();
+  const n = wheelNotches(ev);
+  if (n !== 0) pushProbe(-n);  // wheel forward (deltaY < 0): away from the camera
+}, { capture: true, passive: false });
 controls.addEventListener('change', () => (needsDraw = true));
 
 // For the browser test: where a point of the mesh frame is on the page (CSS pixels).
@@ -257,6 +301,7 @@ state.worldToScreen = (x, y, z) => {
   return { x: r.left + ((v.x + 1) / 2) * r.width, y: r.top + ((1 - v.y) / 2) * r.height };
 };
 state.probeScreen = () => (probeMesh ? state.worldToScreen(...probeMesh.position.toArray()) : null);
+state.viewDirection = () => camera.getWorldDirection(new THREE.Vector3()).toArray();
 
 // ---------------------------------------------------------------- connection and drawing
 let needsDraw = true;
