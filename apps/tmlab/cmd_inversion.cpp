@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 
 int cmd_inversion(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p = parse(args, {"--laws", "--cells", "--max-depth", "--increment", "--grading", "--results"},
-                         {"--quick", "--no-plots"});
+                         {"--quick", "--no-plots", "--resume"});
   if (!p.positional.empty()) throw UsageError("inversion takes no positional arguments");
   tm::InversionStudyOptions o;
   if (p.has("--quick")) o.cells = {4};  // the test's mesh
@@ -62,12 +62,20 @@ int cmd_inversion(const std::vector<std::string>& args, const std::string& comma
   const fs::path dir =
       fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "inversion";
 
-  RunOutput out(dir, nullptr);
+  // Checkpoint after every finished (law, mesh) run (docs/robustness.md); --resume reads it before
+  // the result directory is touched, so a refused resume leaves the interrupted study as it was.
+  const nlohmann::json config = tm::inversion_fingerprint(o);
+  o.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
+  o.fingerprint = config;
+  if (p.has("--resume")) o.resume = read_checkpoint(o.checkpoint, "inversion", config);
+  RunOutput out(dir, nullptr,
+                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     const std::vector<tm::InversionRun> runs = tm::run_inversion_study(o);  // validates the options
     nlohmann::json doc = tm::inversion_json(o, runs);
     out.write_json("manifest.json", make_manifest({split_words(command_line), doc, {}}));
     out.write_json("inversion.json", doc);
+    remove_checkpoint(o.checkpoint);  // a complete result holds no checkpoint
     {
       std::ofstream md(out.file("inversion.md"));
       md << tm::inversion_markdown(o, runs, command_line);

@@ -1,11 +1,17 @@
-// tmlab rig: a mechanical test as a generated mesh and an ordinary case file (calibration/rigs).
+// tmlab rig: a mechanical test as a generated mesh and an ordinary case file (calibration/rigs);
+// with --data, the test of a tmlab-measured/1 data set, driven by its measured displacement column
+// (calibration/rigs/data_rig.hpp).
 #include "commands.hpp"
 
 #include "cli_args.hpp"
 
+#include "calibration/data/measured_data.hpp"
+#include "calibration/rigs/data_rig.hpp"
 #include "calibration/rigs/rig.hpp"
 #include "core/base/error.hpp"
+#include "core/results/run_output.hpp"
 
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -67,20 +73,9 @@ void apply_geometry(const Parsed& p, rigs::RigSpec& s) {
   if (p.has("--grading")) s.grading = parse_double("--grading", p.get("--grading"));
 }
 
-// The displacement history and the material.
-void apply_loading(const Parsed& p, rigs::RigSpec& s) {
-  const bool tension = s.test == rigs::RigTest::UniaxialTension;
-  const double depth = p.has("--depth") ? parse_double("--depth", p.get("--depth")) : 0.1 * s.height;
-  const double signed_depth = tension ? -std::abs(depth) : depth;
-  const double ramp = p.has("--ramp") ? parse_double("--ramp", p.get("--ramp")) : 1.0;
-  if (p.has("--cycles")) {
-    const double n = parse_double("--cycles", p.get("--cycles"));
-    if (n != static_cast<int>(n)) throw UsageError("--cycles needs a whole number");
-    s.history = rigs::DisplacementHistory::cycles(signed_depth, ramp, static_cast<int>(n));
-  } else {
-    const double hold = p.has("--hold") ? parse_double("--hold", p.get("--hold")) : 0.0;
-    s.history = rigs::DisplacementHistory::ramp_hold(signed_depth, ramp, hold);
-  }
+// The material section and the model.
+void apply_material(const Parsed& p, rigs::RigSpec& s) {
+  if (p.has("--model")) s.model = p.get("--model");
   if (p.has("--material")) {
     try {
       s.material = nlohmann::json::parse(p.get("--material"));
@@ -94,6 +89,72 @@ void apply_loading(const Parsed& p, rigs::RigSpec& s) {
     const std::string opt = std::string("--") + key;
     if (p.has(opt)) s.material[key] = parse_double(opt, p.get(opt));
   }
+}
+
+// The displacement history.
+void apply_loading(const Parsed& p, rigs::RigSpec& s) {
+  const bool tension = s.test == rigs::RigTest::UniaxialTension;
+  const double depth = p.has("--depth") ? parse_double("--depth", p.get("--depth")) : 0.1 * s.height;
+  const double signed_depth = tension ? -std::abs(depth) : depth;
+  const double ramp = p.has("--ramp") ? parse_double("--ramp", p.get("--ramp")) : 1.0;
+  if (p.has("--cycles")) {
+    const double n = parse_double("--cycles", p.get("--cycles"));
+    if (n != static_cast<int>(n)) throw UsageError("--cycles needs a whole number");
+    s.history = rigs::DisplacementHistory::cycles(signed_depth, ramp, static_cast<int>(n));
+  } else {
+    const double hold = p.has("--hold") ? parse_double("--hold", p.get("--hold")) : 0.0;
+    s.history = rigs::DisplacementHistory::ramp_hold(signed_depth, ramp, hold);
+  }
+}
+
+// --data NAME.csv [--test ID]: the rig of a measured test (rig_from_data): the test, indenter,
+// sample and supports from NAME.json, the history from the test's time_s and displacement_m
+// columns. Only the mesh resolution, the material and the model are options.
+rigs::RigSpec data_rig(const Parsed& p) {
+  if (!p.positional.empty())
+    throw UsageError(
+        "rig --data takes the test from the data set (its key 'test'); give no test name (got '" +
+        p.positional[0] + "')");
+  for (const char* opt : {"--shape", "--size", "--radius", "--height", "--indenter", "--indenter-radius",
+                          "--at", "--bottom", "--platens", "--depth", "--ramp", "--hold", "--cycles"})
+    if (p.has(opt))
+      throw UsageError(std::string(opt) +
+                       " does not go with --data: the data set gives the sample, the fixture "
+                       "and the history");
+  const measured::DataSet data = measured::read_data_set(p.get("--data"));
+  std::size_t k = 0;
+  if (p.has("--test")) {
+    const std::string id = p.get("--test");
+    std::string ids;
+    for (k = 0; k < data.tests.size() && data.tests[k].id != id; ++k)
+      ids += (ids.empty() ? "" : ", ") + data.tests[k].id;
+    if (k == data.tests.size())
+      throw Error(p.get("--data") + ": --test: no test '" + id + "' (the tests: " + ids + ")");
+  } else if (data.tests.size() > 1) {
+    std::string ids;
+    for (const measured::Test& t : data.tests) ids += (ids.empty() ? "" : ", ") + t.id;
+    throw UsageError("rig --data: " + p.get("--data") + " holds " + std::to_string(data.tests.size()) +
+                     " tests; choose one with --test ID (" + ids + ")");
+  }
+  rigs::DataRigMesh mesh;
+  auto whole = [&](const char* opt, int& v) {
+    if (!p.has(opt)) return;
+    const double x = parse_double(opt, p.get(opt));
+    if (x != std::floor(x) || !(x >= 1 && x <= 1e6))
+      throw UsageError(std::string(opt) + " needs a whole number >= 1");
+    v = static_cast<int>(x);
+  };
+  whole("--cells", mesh.cells);
+  whole("--layers", mesh.layers);
+  if (p.has("--grading")) mesh.grading = parse_double("--grading", p.get("--grading"));
+  rigs::RigSpec s = rigs::rig_from_data(data, k, mesh);
+  whole("--steps-per-segment", s.steps_per_sample);
+  const std::string test_id = data.tests[k].id;
+  std::string name = data.meta.name + (test_id.empty() || data.tests.size() == 1 ? "" : "-" + test_id);
+  if (!result_name_problem(name).empty()) name = "data_rig";
+  s.name = p.get("--name", name);
+  apply_material(p, s);
+  return s;
 }
 
 }  // namespace
@@ -123,8 +184,21 @@ int cmd_rig(const std::vector<std::string>& args) {
                           "--nu",
                           "--density",
                           "--steps-per-segment",
-                          "--model"},
+                          "--model",
+                          "--data",
+                          "--test"},
                          {});
+  if (p.has("--data")) {
+    if (!p.has("--out")) throw UsageError("rig needs --out DIR (where NAME.json and NAME.msh go)");
+    const rigs::RigSpec s = data_rig(p);
+    const auto case_file = rigs::write_rig(s, p.get("--out"));
+    std::cout << "rig: " << rigs::rig_test_name(s.test) << " of " << p.get("--data") << " written to "
+              << case_file.string() << " (mesh " << (case_file.parent_path() / (s.name + ".msh")).string()
+              << "; " << s.history.t.size() << " history samples)\nrun it with: tmlab run "
+              << case_file.string() << "\n";
+    return 0;
+  }
+  if (p.has("--test")) throw UsageError("--test selects a test of a data set: it needs --data NAME.csv");
   if (p.positional.size() != 1) {
     throw UsageError("rig needs one test: indentation | unconfined | confined | tension (see tmlab help)");
   }
@@ -140,9 +214,9 @@ int cmd_rig(const std::vector<std::string>& args) {
     s.layers = 10;
     if (s.test == rigs::RigTest::UniaxialTension) s.platens = rigs::Support::Bonded;
   }
-  if (p.has("--model")) s.model = p.get("--model");
   apply_geometry(p, s);
   apply_loading(p, s);
+  apply_material(p, s);
   const auto case_file = rigs::write_rig(s, p.get("--out"));
   std::cout << "rig: " << rigs::rig_test_name(s.test) << " written to " << case_file.string() << " (mesh "
             << (case_file.parent_path() / (s.name + ".msh")).string() << ")\nrun it with: tmlab run "

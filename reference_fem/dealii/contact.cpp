@@ -22,8 +22,10 @@ using TrilinosVector = TrilinosWrappers::MPI::Vector;
 namespace {
 constexpr double kPi = 3.14159265358979323846;
 
+/// As the fast model's RigidBody::label(): "key 'contact.bodies[0]' (sphere 'indenter')".
 std::string body_label(const ContactBodySpec& b) {
-  return "contact body '" + b.name + "' (" + to_string(b.shape) + ")";
+  const std::string what = "(" + to_string(b.shape) + " '" + b.name + "')";
+  return b.key.empty() ? "contact body " + what : "key '" + b.key + "' " + what;
 }
 }  // namespace
 
@@ -58,7 +60,7 @@ Vec3 NodalContact::position(const TrilinosVector& u, std::size_t k) const {
   return mesh_.points[n] + Vec3(u[d[0]], u[d[1]], u[d[2]]);
 }
 
-void NodalContact::start(Solid& solid, double t0, const std::vector<double>& U0) {
+void NodalContact::start(Solid& solid, double t0, double t_end, const std::vector<double>& U0) {
   if (spec_.stiffness > 0.0) {
     eps_ = spec_.stiffness;
   } else {
@@ -116,8 +118,52 @@ void NodalContact::start(Solid& solid, double t0, const std::vector<double>& U0)
         << "; check its position and units, or raise contact.max_initial_gap for an approach phase";
       throw Error(m.str());
     }
+    check_extent(body, nearest, t0, t_end, U0);
   }
   trial_ = committed_;
+}
+
+void NodalContact::check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
+                                const std::vector<double>& U0) const {
+  if (body.shape == ContactShape::Plane) return;
+  // The sample's extent seen from the body's axis: the largest radial distance of a boundary vertex.
+  double extent = 0.0;
+  for (Index node : boundary_.nodes) {
+    const std::size_t n = static_cast<std::size_t>(node);
+    const Vec3 x = mesh_.points[n] + Vec3(U0[3 * n], U0[3 * n + 1], U0[3 * n + 2]);
+    extent = std::max(extent, body_radial_distance(body, x, t0));
+  }
+  double reach = body.radius;  // punch: its face
+  const char* what = "radius";
+  if (body.shape == ContactShape::Sphere) {
+    // Deepest travel along the axis over the run (the initial overlap is within tolerance).
+    const Vec3 axis = body_axis(body);
+    double depth = 0.0;
+    const int samples = 2000;
+    for (int i = 0; i <= samples; ++i) {
+      const double t = t0 + (t_end - t0) * i / samples;
+      depth = std::max(depth, (body.position(t) - body.position(t0)).dot(axis) - g0);
+    }
+    reach = std::sqrt(body.radius * std::max(depth, 0.0));
+    what = "Hertz contact radius sqrt(R d) at its deepest travel";
+  }
+  if (reach >= extent) {
+    std::ostringstream m;
+    m << file_ << ": " << body_label(body) << " is larger than its mesh: its " << what << " is " << reach
+      << " m, but the sample extends only " << extent
+      << " m from the body's axis; use a larger sample or a smaller body (or travel)";
+    throw Error(m.str());
+  }
+}
+
+std::string NodalContact::describe() const {
+  std::ostringstream m;
+  m << file_ << ": key 'contact' (";
+  for (std::size_t b = 0; b < spec_.bodies.size(); ++b) m << (b ? ", " : "") << body_label(spec_.bodies[b]);
+  m << "): the " << (spec_.method == ContactEnforcement::Penalty ? "penalty" : "augmented-Lagrangian")
+    << " contact (at most " << spec_.max_outer_iterations << " outer iterations per increment, gap_tol "
+    << gap_tol_ << " m, last natural residual " << natural_ << " m) did not converge";
+  return m.str();
 }
 
 void NodalContact::add_terms(const TrilinosVector& u, double t, TrilinosVector& r,

@@ -64,10 +64,12 @@ class NodalContact final : public NodalConstraints {
 
   /// eps from the unconstrained reference tangent K_0 of `solid` (or spec.stiffness), then the
   /// start at t0 with all vertex displacements U0 (every rank the same): a body penetrating by more
-  /// than initial_gap_tol, or farther than max_initial_gap from the sample, is refused
-  /// (tmlab::Error naming the case, the body, the node and the distance); vertices touching a
-  /// bonded body are glued.
-  void start(Solid& solid, double t0, const std::vector<double>& U0);
+  /// than initial_gap_tol, or farther than max_initial_gap from the sample, or larger than its mesh
+  /// (the fast model's check_contact_rig: a punch whose radius, or a sphere whose Hertz contact
+  /// radius sqrt(R d_max) at its deepest travel over [t0, t_end], reaches the sample's extent from
+  /// the body's axis) is refused (tmlab::Error naming the case, the body's key, and the node and
+  /// distance or the sizes); vertices touching a bonded body are glued.
+  void start(Solid& solid, double t0, double t_end, const std::vector<double>& U0);
 
   void add_terms(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t,
                  dealii::TrilinosWrappers::MPI::Vector& r,
@@ -79,6 +81,9 @@ class NodalContact final : public NodalConstraints {
   bool update(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) override;
   void commit(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) override;
   int max_outer_iterations() const override { return spec_.max_outer_iterations; }
+  /// "case.json: key 'contact' (key 'contact.bodies[0]' (sphere 'indenter')): the augmented-Lagrangian
+  /// outer loop (at most N outer iterations per increment, gap_tol G m, last natural residual R m)".
+  std::string describe() const override;
 
   /// Per body, reduced over ranks, at u (the committed state after commit()).
   std::vector<ContactBodyOutput> outputs(const dealii::TrilinosWrappers::MPI::Vector& u_ghost,
@@ -95,6 +100,9 @@ class NodalContact final : public NodalConstraints {
     std::vector<Vec3> anchor;  ///< glued point relative to c(t)
   };
   Vec3 position(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, std::size_t k) const;
+  /// Refuses a punch or sphere larger than the mesh (see start()); g0 the body's smallest gap at t0.
+  void check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
+                    const std::vector<double>& U0) const;
 
   ContactSpec spec_;
   std::string file_;

@@ -404,7 +404,8 @@ void add_contact(Problem& p) {
   }
   p.contact = std::make_unique<NodalContact>(p.cfg.contact, p.cfg.file, p.mesh, std::move(node_dofs),
                                              std::move(owned), p.comm);
-  p.contact->start(*p.solid, 0.0, std::vector<double>(3 * static_cast<std::size_t>(n), 0.0));
+  p.contact->start(*p.solid, 0.0, p.cfg.solver.t_end,
+                   std::vector<double>(3 * static_cast<std::size_t>(n), 0.0));
   p.solid->set_nodal_constraints(p.contact.get());
 }
 

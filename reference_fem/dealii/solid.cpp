@@ -775,6 +775,7 @@ StepStats Solid::advance(double t0, double t1) {
       msg << "reference: static Newton did not converge at t = " << t_try << " after " << newton_.max_cutbacks
           << " cut-backs of the load increment (last residual "
           << (stats.residuals.empty() ? 0.0 : stats.residuals.back()) << ")";
+      if (nodal_) msg << "; " << nodal_->describe();
       throw Error(msg.str());
     }
     h *= 0.5;

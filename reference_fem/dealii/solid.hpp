@@ -87,6 +87,9 @@ class NodalConstraints {
   /// The (sub-)increment to t is accepted at u.
   virtual void commit(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t) = 0;
   virtual int max_outer_iterations() const = 0;
+  /// What the constraints are, for the error when an increment does not converge (names the case
+  /// file's key).
+  virtual std::string describe() const = 0;
 };
 
 /// Per-step statistics, for the summary and docs/performance.md.

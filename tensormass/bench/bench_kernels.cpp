@@ -1,7 +1,10 @@
 // Kernel benchmarks: internal force of the TL oracle, the relative tensor-mass form, Picinbono's
 // absolute mesh-level storage; tensor-mass tangent action and in-place tangent assembly. Kuhn-split
 // cubes of 3,072 / 24,576 / 196,608 tets. Counter "time/tet" = seconds per tet (ns shown as "n").
+// Contact surface detection (docs/contact.md): the boundary extraction, the grid's build and its
+// per-iteration refit on cubes of 24,576 / 105,456 / 196,608 tets.
 #include "core/mesh/mesh_generator.hpp"
+#include "tensormass/contact/surface_grid.hpp"
 #include "tensormass/kernels/picinbono_storage.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
@@ -143,6 +146,44 @@ void BM_ViscoObjectiveForce(benchmark::State& state) {
   visco_force_bench(state, ViscoelasticOptions::History::Pk2);
 }
 
+/// The contact surface of a deformed cube: extracted once (boundary faces, tributary areas).
+void BM_ContactSurfaceExtract(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    ContactSurface surface = ContactSurface::extract(s.mesh);
+    benchmark::DoNotOptimize(surface.nodes.data());
+  }
+  set_counters(state, s.mesh.num_tets());
+}
+
+/// The candidate-search grid built over the deformed surface (once per contact object).
+void BM_SurfaceGridBuild(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  const ContactSurface surface = ContactSurface::extract(s.mesh);
+  for (auto _ : state) {
+    SurfaceGrid grid(s.mesh, surface, s.u);
+    benchmark::DoNotOptimize(&grid);
+  }
+  set_counters(state, s.mesh.num_tets());
+  state.counters["surface_nodes"] = static_cast<double>(surface.size());
+}
+
+/// The grid re-binned at new positions (every outer iteration of the contact solve).
+void BM_SurfaceGridRefit(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  const ContactSurface surface = ContactSurface::extract(s.mesh);
+  SurfaceGrid grid(s.mesh, surface, s.u);
+  for (auto _ : state) {
+    grid.refit(s.mesh, surface, s.v);
+    benchmark::DoNotOptimize(&grid);
+  }
+  set_counters(state, s.mesh.num_tets());
+  state.counters["surface_nodes"] = static_cast<double>(surface.size());
+}
+
+// cubes of 16^3, 26^3, 32^3 hexes x 6 = 24,576 / 105,456 / 196,608 tets
+#define CONTACT_SIZES ->Arg(16)->Arg(26)->Arg(32)->Unit(benchmark::kMicrosecond)
+
 BENCHMARK(BM_OracleForce) TM_SIZES;
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
 BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;
@@ -152,6 +193,9 @@ BENCHMARK(BM_PicinbonoAbsoluteForce) TM_SIZES;
 BENCHMARK(BM_OracleTangentApply) TM_SIZES;
 BENCHMARK(BM_TensorMassTangentApply) TM_SIZES;
 BENCHMARK(BM_TensorMassTangentAssembly) TM_SIZES;
+BENCHMARK(BM_ContactSurfaceExtract) CONTACT_SIZES;
+BENCHMARK(BM_SurfaceGridBuild) CONTACT_SIZES;
+BENCHMARK(BM_SurfaceGridRefit) CONTACT_SIZES;
 
 }  // namespace
 

@@ -18,6 +18,7 @@
 #include <iomanip>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <utility>
 
@@ -86,6 +87,82 @@ void check_options(const InversionStudyOptions& o) {
   if (o.cells.empty()) throw Error("inversion study: no mesh (cells is empty)");
   for (int n : o.cells)
     if (n < 2) throw Error("inversion study: cells must be >= 2 (got " + std::to_string(n) + ")");
+}
+
+/// The study's checkpoint: every finished (law, mesh) run by key "<law>.n<cells>", written after
+/// each; on --resume those of the interrupted study are taken from here. Every field of the run is
+/// stored as it is (doubles exactly, NaN included), so a resumed study's output equals an
+/// uninterrupted one's.
+class InversionCheckpoint {
+ public:
+  explicit InversionCheckpoint(const InversionStudyOptions& o) : o_(o) {
+    if (o.resume) d_ = *o.resume;
+  }
+
+  std::optional<InversionRun> restore(const std::string& key) const {
+    if (!d_.has(key + ".num")) return std::nullopt;
+    const std::vector<double>& v = d_.doubles(key + ".num");
+    const nlohmann::json t = nlohmann::json::parse(d_.text(key + ".text"));
+    const std::vector<double>& depth = d_.doubles(key + ".depth");
+    const std::vector<double>& min_j = d_.doubles(key + ".min_j");
+    const std::vector<double>& force = d_.doubles(key + ".force");
+    const std::vector<std::int64_t>& worst = d_.ints(key + ".worst_tet");
+    const std::vector<std::int64_t>& active = d_.ints(key + ".active_nodes");
+    const std::size_t n = depth.size();
+    if (v.size() != 12 || t.size() != 3 || min_j.size() != n || force.size() != n || worst.size() != n ||
+        active.size() != n)
+      throw Error(d_.source() + ": inconsistent entry " + key + "; run without --resume");
+    InversionRun r;
+    r.law = t[0], r.outcome = t[1], r.message = t[2];
+    r.cells = static_cast<int>(v[0]), r.tets = static_cast<Index>(v[1]), r.h_min = v[2];
+    r.inversion_depth = v[3], r.bracket_low = v[4], r.bracket_high = v[5], r.limit_depth = v[6];
+    r.deepest = v[7], r.deepest_min_j = v[8], r.worst_depth_below_top = v[9], r.worst_radius = v[10];
+    if (v[11] != static_cast<double>(n))
+      throw Error(d_.source() + ": inconsistent entry " + key + "; run without --resume");
+    for (std::size_t i = 0; i < n; ++i)
+      r.samples.push_back(
+          {depth[i], min_j[i], static_cast<Index>(worst[i]), force[i], static_cast<int>(active[i])});
+    return r;
+  }
+
+  /// Stores a finished run, writes the checkpoint (when the study has one), then stops here if a
+  /// signal is pending.
+  void store(const std::string& key, const InversionRun& r) {
+    if (o_.checkpoint.empty()) return;
+    std::vector<double> depth, min_j, force;
+    std::vector<std::int64_t> worst, active;
+    for (const InversionSample& s : r.samples) {
+      depth.push_back(s.depth), min_j.push_back(s.min_j), force.push_back(s.force);
+      worst.push_back(s.worst_tet), active.push_back(s.active_nodes);
+    }
+    d_.put(key + ".num",
+           std::vector<double>{static_cast<double>(r.cells), static_cast<double>(r.tets), r.h_min,
+                               r.inversion_depth, r.bracket_low, r.bracket_high, r.limit_depth, r.deepest,
+                               r.deepest_min_j, r.worst_depth_below_top, r.worst_radius,
+                               static_cast<double>(r.samples.size())});
+    d_.put_text(key + ".text", nlohmann::json::array({r.law, r.outcome, r.message}).dump());
+    d_.put(key + ".depth", std::move(depth));
+    d_.put(key + ".min_j", std::move(min_j));
+    d_.put(key + ".force", std::move(force));
+    d_.put(key + ".worst_tet", std::move(worst));
+    d_.put(key + ".active_nodes", std::move(active));
+    write_checkpoint(o_.checkpoint, "inversion", o_.fingerprint, d_);
+    check_interrupt("after the run " + key + "; the finished runs are in the checkpoint " +
+                    o_.checkpoint.string() + ": continue with the same command and --resume");
+  }
+
+ private:
+  const InversionStudyOptions& o_;
+  CheckpointData d_;
+};
+
+/// Where a stop request inside a run lands, and how to continue.
+std::string interrupt_where(const InversionStudyOptions& o, const std::string& law, int cells) {
+  std::string w = "during the run " + law + ".n" + std::to_string(cells);
+  if (!o.checkpoint.empty())
+    w += " (it starts again on resuming; the finished runs are in the checkpoint " + o.checkpoint.string() +
+         "): continue with the same command and --resume";
+  return w;
 }
 
 std::string fmt_mm(double metres, int digits = 2) {
@@ -160,7 +237,7 @@ InversionRun run_inversion(const InversionStudyOptions& o, const InversionLaw& l
       run.limit_depth = d_prev;
       break;
     }
-    check_interrupt("tmlab inversion: " + law.name + ", " + std::to_string(cells) + " cells");  // safe point
+    check_interrupt(interrupt_where(o, law.name, cells));  // safe point
     const auto [jmin, worst] = min_volume_ratio(mesh, u);
     InversionSample s;
     s.depth = t1 * o.max_depth;
@@ -196,13 +273,35 @@ InversionRun run_inversion(const InversionStudyOptions& o, const InversionLaw& l
   return run;
 }
 
+nlohmann::json inversion_fingerprint(const InversionStudyOptions& o) {
+  using nlohmann::json;
+  const std::vector<InversionLaw> laws = o.laws.empty() ? default_inversion_laws(o.young, o.poisson) : o.laws;
+  json jl = json::array();
+  for (const InversionLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
+  return {{"radius_m", o.radius},       {"half_width_m", o.half_width},
+          {"height_m", o.height},       {"young_Pa", o.young},
+          {"poisson", o.poisson},       {"grading", o.grading},
+          {"max_depth_m", o.max_depth}, {"increment_m", o.increment},
+          {"cells", o.cells},           {"laws", jl}};
+}
+
 std::vector<InversionRun> run_inversion_study(const InversionStudyOptions& options) {
   check_options(options);
   const std::vector<InversionLaw> laws =
       options.laws.empty() ? default_inversion_laws(options.young, options.poisson) : options.laws;
+  InversionCheckpoint ck(options);
   std::vector<InversionRun> runs;
   for (const InversionLaw& law : laws)
-    for (int n : options.cells) runs.push_back(run_inversion(options, law, n));
+    for (int n : options.cells) {
+      const std::string key = law.name + ".n" + std::to_string(n);
+      if (std::optional<InversionRun> done = ck.restore(key)) {
+        if (options.log) options.log(key + ": from the checkpoint of the interrupted study");
+        runs.push_back(std::move(*done));
+        continue;
+      }
+      runs.push_back(run_inversion(options, law, n));
+      ck.store(key, runs.back());
+    }
   return runs;
 }
 

@@ -25,12 +25,14 @@
 #pragma once
 
 #include "core/mesh/mesh.hpp"
+#include "core/results/checkpoint.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +62,14 @@ struct InversionStudyOptions {
   std::vector<InversionLaw> laws;               ///< empty: default_inversion_laws(young, poisson)
   std::vector<int> cells = {4, 6, 9};           ///< cells per axis of the quarter block (>= 2 each)
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
+  /// Checkpoints (empty: none): after every finished (law, mesh) run the finished runs are written
+  /// to this file (kind "inversion") with `fingerprint` (the effective options), and SIGINT/SIGTERM
+  /// stop the study there. A run interrupted half-way runs again from its start on --resume.
+  std::filesystem::path checkpoint;
+  nlohmann::json fingerprint = nlohmann::json::object();
+  /// --resume: a checkpoint read back (read_checkpoint kind "inversion"); its finished runs are
+  /// taken from it instead of run again.
+  std::optional<CheckpointData> resume;
 };
 
 /// One accepted increment.
@@ -101,7 +111,12 @@ Mesh inversion_block(const InversionStudyOptions& options, int cells);
 /// failing solve, which is an outcome).
 InversionRun run_inversion(const InversionStudyOptions& options, const InversionLaw& law, int cells);
 
-/// Runs every law on every mesh (laws outer, meshes inner).
+/// The effective options as JSON: geometry, moduli, depths, grading, cells and the laws with their
+/// parameters (what a --resume must match; also the "options" of inversion.json).
+nlohmann::json inversion_fingerprint(const InversionStudyOptions& options);
+
+/// Runs every law on every mesh (laws outer, meshes inner), taking the finished runs of
+/// `options.resume` from it and checkpointing after every run when `options.checkpoint` is set.
 std::vector<InversionRun> run_inversion_study(const InversionStudyOptions& options);
 
 /// The study as JSON (options, and per run the outcome and samples) and as a markdown table.

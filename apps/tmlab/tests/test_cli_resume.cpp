@@ -1,7 +1,7 @@
 // Interrupted commands resume (issue 12): `tmlab verify`, `run`, `paper`, `hereditary`,
-// `workprecision`, `fit`, `discover` and `discover --benchmark` stopped by SIGINT / SIGTERM, then
-// `--resume`, must give the same results as an uninterrupted run, bit for bit except the wall-clock times;
-// finished work is not done again.
+// `workprecision`, `inversion`, `fit`, `discover` and `discover --benchmark` stopped by SIGINT /
+// SIGTERM, then `--resume`, must give the same results as an uninterrupted run, bit for bit except the
+// wall-clock times; finished work is not done again.
 //
 // Where a run stops is deterministic: TMLAB_TEST_STOP_AFTER_PROGRESS=N[:SIGTERM] makes the driver
 // raise the signal in itself right after its N-th checkpoint (core/base/interrupt.hpp), through the
@@ -728,6 +728,68 @@ TEST_F(CliFitResume, InterruptedBenchmarkResumesToTheSameResult) {
             std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(out / "INTERRUPTED"));
+}
+
+/// `tmlab inversion`: a checkpoint after every finished (law, mesh) run. Four small runs (St VK, whose
+/// solve fails on the n = 4 mesh between 2.0 and 2.5 mm, and neo-Hookean, on 3 and 4 cells per
+/// axis), stopped after the first and after the third run, resumed: inversion.json and summary.json
+/// equal the uninterrupted study's except the clock times.
+TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
+  const std::vector<std::string> args = {"inversion", "--laws",      "stvk,neo_hookean", "--cells",
+                                         "3,4",       "--max-depth", "0.0025",           "--increment",
+                                         "0.0005",    "--no-plots"};
+  auto with = [&](const fs::path& res, bool resume) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"--results", res.string()});
+    if (resume) a.push_back("--resume");
+    return a;
+  };
+  auto result = [](const fs::path& res) {
+    nlohmann::json j = {{"inversion", nlohmann::json::parse(read_file(res / "inversion" / "inversion.json"))},
+                        {"summary", nlohmann::json::parse(read_file(res / "inversion" / "summary.json"))}};
+    strip_times(j);
+    return j;
+  };
+  const fs::path ref = dir_ / "inversion-ref";
+  const auto full = run_argv(with(ref, false), dir_ / "inv-ref.log");
+  ASSERT_EQ(full.status, 0) << full.output;
+  const nlohmann::json expected = result(ref);
+  ASSERT_EQ(expected["inversion"]["runs"].size(), 4u);
+  // The checkpoint must carry every kind of outcome: St VK fails on the n = 4 mesh.
+  EXPECT_EQ(expected["inversion"]["runs"][1]["outcome"], "solver_failed") << expected.dump(1);
+
+  for (const auto& [n, sig] : std::vector<std::pair<int, int>>{{1, SIGINT}, {3, SIGTERM}}) {
+    SCOPED_TRACE("stopped by " + tmlab::signal_name(sig) + " after run " + std::to_string(n));
+    const fs::path cut = dir_ / ("inversion-cut" + std::to_string(n));
+    {
+      const StopAfter stop(n, sig);
+      const auto r = run_argv(with(cut, false), dir_ / "inv-cut.log");
+      ASSERT_EQ(r.status, 128 + sig) << r.output;
+    }
+    EXPECT_FALSE(fs::exists(cut / "inversion" / "summary.json"));
+    const std::string marker = read_file(cut / "inversion" / "INTERRUPTED");
+    EXPECT_NE(marker.find("--resume"), std::string::npos) << marker;
+    const auto resumed = run_argv(with(cut, true), dir_ / "inv-resumed.log");
+    ASSERT_EQ(resumed.status, 0) << resumed.output;
+    EXPECT_NE(resumed.output.find("stvk.n3: from the checkpoint of the interrupted study"), std::string::npos)
+        << resumed.output;
+    EXPECT_FALSE(fs::exists(cut / "inversion" / ".incomplete" / "checkpoint.h5"));
+    EXPECT_EQ(result(cut), expected);
+  }
+  // Other options are refused, naming the key; the interrupted study stays resumable.
+  const fs::path other = dir_ / "inversion-other";
+  {
+    const StopAfter stop(1, SIGINT);
+    ASSERT_EQ(run_argv(with(other, false), dir_ / "inv-o.log").status, 128 + SIGINT);
+  }
+  std::vector<std::string> changed = with(other, true);
+  changed[8] = "0.00025";  // --increment
+  const auto refused = run_argv(changed, dir_ / "inv-o2.log");
+  EXPECT_EQ(refused.status, 1) << refused.output;
+  EXPECT_NE(refused.output.find("increment_m: the checkpoint has 0.0005, this run 0.00025"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_TRUE(fs::exists(other / "inversion" / "INTERRUPTED"));
 }
 
 }  // namespace

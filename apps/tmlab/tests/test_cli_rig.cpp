@@ -1,5 +1,6 @@
-// `tmlab rig`: a platen test written as a case file that `tmlab run` accepts, and clear refusals of
-// impossible rigs (exit 1 naming the field) and unknown tests (usage error, exit 2).
+// `tmlab rig`: a platen test written as a case file that `tmlab run` accepts, a measured data set's
+// test (--data) driven by its displacement column, and clear refusals of impossible rigs (exit 1
+// naming the field) and unknown tests (usage error, exit 2).
 #include "cli_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -52,6 +53,66 @@ TEST_F(CliRig, IndentationRigRunsWithItsContactBody) {
   EXPECT_GE(body["final_active_nodes"].get<int>(), 1);
   // The indenter's force is carried by the bonded bottom.
   EXPECT_NEAR(fz, s["final_reactions_N"]["bottom"][2].get<double>(), 1e-6 * fz);
+}
+
+/// A tmlab-measured/1 data set in the test's directory: NAME.csv and NAME.json.
+fs::path write_data(const fs::path& dir, const std::string& name, const std::string& csv,
+                    const std::string& meta) {
+  std::ofstream(dir / (name + ".json")) << meta;
+  std::ofstream(dir / (name + ".csv")) << csv;
+  return dir / (name + ".csv");
+}
+
+TEST_F(CliRig, DataSetTestBecomesARigDrivenByItsDisplacementColumn) {
+  // Two unconfined compression tests of a 20 mm x 10 mm cylinder; test "b" ramps to 0.8 mm, holds,
+  // and unloads half-way: no ramp-hold or cycle history the options could give.
+  const fs::path csv =
+      write_data(dir_, "disc",
+                 "test_id,time_s,displacement_m,force_N\n"
+                 "a,0,0,0\na,1,0.0005,0.1\n"
+                 "b,5,0,0\nb,6,0.0004,0.05\nb,7,0.0008,0.1\nb,9,0.0008,0.09\nb,10,0.0004,0.04\n",
+                 R"({"format": "tmlab-measured/1", "name": "disc", "test": "unconfined_compression",
+    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "bottom": "bonded",
+               "platens": "frictionless"}})");
+  const Result several =
+      run_argv({"rig", "--data", csv.string(), "--out", (dir_ / "rig").string()}, dir_ / "s.log");
+  EXPECT_EQ(several.status, 2) << several.output;
+  EXPECT_NE(several.output.find("--test ID (a, b)"), std::string::npos) << several.output;
+  const Result unknown = run_argv(
+      {"rig", "--data", csv.string(), "--test", "c", "--out", (dir_ / "rig").string()}, dir_ / "u.log");
+  EXPECT_EQ(unknown.status, 1) << unknown.output;
+  EXPECT_NE(unknown.output.find("no test 'c'"), std::string::npos) << unknown.output;
+  const Result mixed = run_argv(
+      {"rig", "--data", csv.string(), "--test", "b", "--depth", "0.001", "--out", (dir_ / "rig").string()},
+      dir_ / "m.log");
+  EXPECT_EQ(mixed.status, 2) << mixed.output;
+  EXPECT_NE(mixed.output.find("--depth does not go with --data"), std::string::npos) << mixed.output;
+  EXPECT_FALSE(fs::exists(dir_ / "rig"));
+
+  const Result w = run_argv({"rig", "--data", csv.string(), "--test", "b", "--out", (dir_ / "rig").string(),
+                             "--cells", "4", "--layers", "3", "--E", "10000", "--nu", "0.3"},
+                            dir_ / "rig.log");
+  ASSERT_EQ(w.status, 0) << w.output;
+  std::ifstream cin(dir_ / "rig" / "disc-b.json");
+  const nlohmann::json c = nlohmann::json::parse(cin);
+  EXPECT_EQ(c["material"]["E"].get<double>(), 10000.0);
+  EXPECT_EQ(c["solver"]["t_end"].get<double>(), 5.0);  // data time from the test's first sample
+  const nlohmann::json* top = nullptr;
+  for (const auto& b : c["boundary"])
+    if (b["name"] == "top_platen") top = &b;
+  ASSERT_NE(top, nullptr) << c.dump(1);
+  // The platen follows the displacement column: a table of d / d_max at the data's times.
+  EXPECT_EQ((*top)["function"]["type"], "table") << top->dump();
+  const nlohmann::json want = {{0.0, 0.0}, {1.0, 0.5}, {2.0, 1.0}, {4.0, 1.0}, {5.0, 0.5}};
+  EXPECT_EQ((*top)["function"]["points"], want) << top->dump();
+  const Result r = run_argv({"run", (dir_ / "rig" / "disc-b.json").string(), "--results",
+                             (dir_ / "results").string(), "--no-plots"},
+                            dir_ / "run.log");
+  ASSERT_EQ(r.status, 0) << r.output;
+  std::ifstream in(dir_ / "results" / "disc-b" / "summary.json");
+  const nlohmann::json s = nlohmann::json::parse(in);
+  // At the end the platen is back at 0.4 mm: the force is compressive.
+  EXPECT_GT(std::abs(s["final_reactions_N"]["top_platen"][2].get<double>()), 0.0);
 }
 
 TEST_F(CliRig, RefusesImpossibleRigsAndUnknownTests) {

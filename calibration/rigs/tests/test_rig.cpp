@@ -121,6 +121,37 @@ TEST_F(RigTest_, IndentationCaseHasTheIndenterTouchingTheTop) {
   EXPECT_NE(std::find(m.points.begin(), m.points.end(), Vec3(0, 0, s.height)), m.points.end());
 }
 
+// The driving histories as the case file's time function: a ramp-and-hold and triangle cycles,
+// tabulated as d(t) / peak, with the load steps landing on every kink.
+TEST(RigHistory, RampHoldAndCyclesBecomeTheTimeFunction) {
+  const DisplacementHistory rh = DisplacementHistory::ramp_hold(0.002, 1.0, 10.0);
+  EXPECT_EQ(rh.t, (std::vector<double>{0.0, 1.0, 11.0}));
+  EXPECT_EQ(rh.d, (std::vector<double>{0.0, 0.002, 0.002}));
+  const DisplacementHistory cy = DisplacementHistory::cycles(0.003, 0.5, 2);
+  EXPECT_EQ(cy.t, (std::vector<double>{0.0, 0.5, 1.0, 1.5, 2.0}));
+  EXPECT_EQ(cy.d, (std::vector<double>{0.0, 0.003, 0.0, 0.003, 0.0}));
+  EXPECT_DOUBLE_EQ(cy.peak(), 0.003);
+  EXPECT_THROW(DisplacementHistory::cycles(0.003, 0.5, 0), Error);
+  EXPECT_THROW(DisplacementHistory::ramp_hold(0.003, 0.0, 1.0), Error);
+
+  RigSpec s;
+  s.name = "cyc";
+  s.test = RigTest::UnconfinedCompression;
+  s.shape = SampleShape::Cylinder;
+  s.history = cy;
+  s.steps_per_sample = 4;
+  const nlohmann::json c = rig_case(s, "cyc.msh");
+  const nlohmann::json* top = nullptr;
+  for (const auto& b : c["boundary"])
+    if (b["name"] == "top_platen") top = &b;
+  ASSERT_NE(top, nullptr);
+  EXPECT_EQ((*top)["function"]["type"], "table");
+  EXPECT_EQ((*top)["function"]["points"], nlohmann::json::parse("[[0,0],[0.5,1],[1,0],[1.5,1],[2,0]]"));
+  EXPECT_DOUBLE_EQ((*top)["value"][2].get<double>(), -0.003);
+  EXPECT_EQ(c["solver"]["steps"].get<int>(), 16);  // 4 steps per 0.5 s segment: kinks on step ends
+  EXPECT_DOUBLE_EQ(c["solver"]["t_end"].get<double>(), 2.0);
+}
+
 TEST(RigValidation, RefusesImpossibleRigs) {
   RigSpec s;
   s.history = DisplacementHistory::ramp_hold(0.05, 1.0, 0.0);  // deeper than the 20 mm block

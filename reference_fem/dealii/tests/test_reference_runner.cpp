@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 
 namespace tmlab::ref {
 namespace {
@@ -580,13 +581,71 @@ TEST_F(ReferenceRunnerTest, RefusesContactItCannotRun) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("'contact'"), std::string::npos) << e.what();
   }
+}
+
+/// The error of a reference run that must fail; no summary.json (no result that looks complete).
+std::string reference_failure(const std::function<tmlab::RunResult()>& run, const fs::path& results) {
+  try {
+    run();
+  } catch (const Error& e) {
+    std::error_code ec;
+    for (const auto& entry : fs::recursive_directory_iterator(results, ec))
+      EXPECT_NE(entry.path().filename(), "summary.json") << entry.path();
+    return e.what();
+  }
+  ADD_FAILURE() << "the run did not fail";
+  return "";
+}
+
+// The bad contact input of issue 13, as the fast model reports it (test_case_runner_contact
+// BadContactInputStopsTheRunNamingTheKey): each error names the case file and the body's key.
+TEST_F(ReferenceRunnerTest, BadContactInputNamesTheKey) {
+  write_box("box.msh", Vec3(0.01, 0.01, 0.01), 2, 2, 2);
+  const fs::path results = dir_ / "results";
+  auto failure = [&](const nlohmann::json& j) {
+    return reference_failure([&] { return run_ref(j); }, results);
+  };
   // A platen that starts inside the sample, and one far above it.
   nlohmann::json deep = pressed_cube(true);
   deep["contact"]["bodies"][0]["point"] = {0, 0, 0.009};
-  EXPECT_THROW(run_ref(deep), Error);
+  std::string e = failure(deep);
+  EXPECT_NE(e.find("case.json: key 'contact.bodies[0]' (plane 'platen') penetrates"), std::string::npos) << e;
   nlohmann::json far = pressed_cube(true);
   far["contact"]["bodies"][0]["point"] = {0, 0, 0.02};
-  EXPECT_THROW(run_ref(far), Error);
+  e = failure(far);
+  EXPECT_NE(e.find("key 'contact.bodies[0]' (plane 'platen') does not touch"), std::string::npos) << e;
+  // A punch wider than the cube, and a sphere whose Hertz radius sqrt(R d) = sqrt(0.5 * 0.0005) m
+  // = 15.8 mm reaches beyond the cube's 14.1 mm extent from its axis through the corner (0, 0).
+  nlohmann::json punch = pressed_cube(true);
+  punch["contact"]["bodies"][0] = {{"name", "punch"},
+                                   {"type", "punch"},
+                                   {"center", {0, 0, 0.01}},
+                                   {"axis", {0, 0, -1}},
+                                   {"radius", 0.02},
+                                   {"displacement", {0, 0, -0.0005}},
+                                   {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", 1.0}}}};
+  e = failure(punch);
+  EXPECT_NE(e.find("key 'contact.bodies[0]' (punch 'punch') is larger than its mesh"), std::string::npos)
+      << e;
+  nlohmann::json sphere = punch;
+  sphere["contact"]["bodies"][0] = {{"name", "ball"},
+                                    {"type", "sphere"},
+                                    {"center", {0, 0, 0.51}},
+                                    {"radius", 0.5},
+                                    {"displacement", {0, 0, -0.0005}},
+                                    {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", 1.0}}}};
+  e = failure(sphere);
+  EXPECT_NE(e.find("key 'contact.bodies[0]' (sphere 'ball') is larger than its mesh"), std::string::npos)
+      << e;
+  EXPECT_NE(e.find("Hertz contact radius"), std::string::npos) << e;
+  // Contact that does not converge: one outer iteration allowed, no cut-back.
+  nlohmann::json stuck = pressed_cube(true);
+  stuck["solver"] = {{"type", "static"}, {"steps", 1}, {"newton", {{"max_cutbacks", 0}}}};
+  stuck["contact"]["max_outer_iterations"] = 1;
+  e = failure(stuck);
+  EXPECT_NE(e.find("did not converge"), std::string::npos) << e;
+  EXPECT_NE(e.find("case.json: key 'contact' (key 'contact.bodies[0]' (plane 'platen'))"), std::string::npos)
+      << e;
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Boundary-surface extraction and the candidate-search grid: tributary areas add up to the surface
-// area, and on a jittered, deformed box of more than 20k tets the grid returns exactly the nodes a
-// brute-force scan returns, for boxes and for the bodies' near regions, before and after refit().
+// area, and on jittered, deformed boxes of 24,576 and 105,456 tets the grid returns exactly the nodes
+// a brute-force scan returns, for boxes and for the bodies' near regions, before and after refit().
 #include "tensormass/contact/rigid_body.hpp"
 #include "tensormass/contact/surface_grid.hpp"
 #include "tensormass/testing/test_meshes.hpp"
@@ -50,10 +50,13 @@ std::vector<Index> brute_force(const Mesh& mesh, const ContactSurface& s, const 
   return out;
 }
 
-TEST(SurfaceGrid, SameCandidatesAsBruteForceOnALargeMesh) {
-  std::mt19937 rng(11);
-  const Mesh mesh = testing::jittered_box(16, 0.01, 0.2, rng);  // 16^3 * 6 = 24576 tets
-  ASSERT_GE(mesh.num_tets(), 20000);
+/// On a jittered box of n^3 x 6 tets (side 0.16 m whatever n), randomly displaced: the grid returns
+/// exactly the brute-force candidate sets for random boxes, the near regions of a sphere, a rounded
+/// punch, a plane and an oblique plane, before and after a deformation and refit().
+void check_grid_against_brute_force(int n, unsigned seed, Index min_tets) {
+  std::mt19937 rng(seed);
+  const Mesh mesh = testing::jittered_box(n, 0.16 / n, 0.2, rng);
+  ASSERT_GE(mesh.num_tets(), min_tets);
   const ContactSurface s = ContactSurface::extract(mesh);
   VecX u = testing::random_displacement(mesh.num_points(), 0.002, rng);
   SurfaceGrid grid(mesh, s, u);
@@ -80,13 +83,13 @@ TEST(SurfaceGrid, SameCandidatesAsBruteForceOnALargeMesh) {
       body.bounding_box(0.0, margin, lo, hi);
       std::vector<Index> got, want;
       for (Index k : grid.query(lo, hi)) {
-        const Index n = s.nodes[static_cast<std::size_t>(k)];
-        if (body.gap(mesh.points[static_cast<std::size_t>(n)] + u.segment<3>(3 * n), 0.0).g <= margin)
+        const Index i = s.nodes[static_cast<std::size_t>(k)];
+        if (body.gap(mesh.points[static_cast<std::size_t>(i)] + u.segment<3>(3 * i), 0.0).g <= margin)
           got.push_back(k);
       }
       for (Index k = 0; k < s.size(); ++k) {
-        const Index n = s.nodes[static_cast<std::size_t>(k)];
-        if (body.gap(mesh.points[static_cast<std::size_t>(n)] + u.segment<3>(3 * n), 0.0).g <= margin)
+        const Index i = s.nodes[static_cast<std::size_t>(k)];
+        if (body.gap(mesh.points[static_cast<std::size_t>(i)] + u.segment<3>(3 * i), 0.0).g <= margin)
           want.push_back(k);
       }
       EXPECT_EQ(got, want) << body.name << " pass " << pass;
@@ -96,15 +99,24 @@ TEST(SurfaceGrid, SameCandidatesAsBruteForceOnALargeMesh) {
     }
     // Deform further (a shear and a squash) and refit: the same cell size, new bins.
     const double cell = grid.cell_size();
-    for (Index n = 0; n < mesh.num_points(); ++n) {
-      const Vec3& X = mesh.points[static_cast<std::size_t>(n)];
-      u.segment<3>(3 * n) += Vec3(0.3 * X.z(), 0.0, -0.2 * X.z());
+    for (Index i = 0; i < mesh.num_points(); ++i) {
+      const Vec3& X = mesh.points[static_cast<std::size_t>(i)];
+      u.segment<3>(3 * i) += Vec3(0.3 * X.z(), 0.0, -0.2 * X.z());
     }
     grid.refit(mesh, s, u);
     EXPECT_EQ(grid.cell_size(), cell);
   }
   EXPECT_GT(total, 1000u);
 }
+
+TEST(SurfaceGrid, SameCandidatesAsBruteForceOnALargeMesh) {
+  check_grid_against_brute_force(16, 11, 20000);  // 16^3 * 6 = 24,576 tets
+}
+
+// Issue 13's "surface detection that holds at 100k tets": the same comparison on 26^3 * 6 = 105,456
+// tets (4,058 surface nodes). Build and refit times at this size: tmlab_bench_kernels
+// --benchmark_filter='SurfaceGrid|ContactSurface' (docs/contact.md).
+TEST(SurfaceGrid, SameCandidatesAsBruteForceAt100kTets) { check_grid_against_brute_force(26, 12, 100000); }
 
 }  // namespace
 }  // namespace tmlab::tm
