@@ -359,10 +359,14 @@ Diagnostic noise_ratio_diagnostic(const ResidualStudy& s, const Thresholds& th) 
   return d;
 }
 
-/// Periodicity: the most significant test (Bonferroni over the tests), kept in `period`.
+/// Periodicity: the most significant test (Bonferroni over the tests), kept in `period`. When no
+/// test has its largest ordinate at >= min_period_cycles (a trend, not a period), the statistic of
+/// the most significant low-frequency peak is still written, as passed, so that the report has a
+/// statistic for every diagnostic; the decision is the same.
 Diagnostic periodicity_diagnostic(const std::vector<SeriesView>& series, const Thresholds& th,
                                   const std::string& a, Periodicity& period) {
-  double best_p = 2.0;
+  double best_p = 2.0, trend_p = 2.0;
+  Periodicity trend;
   for (const auto& v : series) {
     const Periodicity pe = fisher_periodicity(v.t, v.residual);
     if (!pe.uniform) continue;
@@ -371,6 +375,11 @@ Diagnostic periodicity_diagnostic(const std::vector<SeriesView>& series, const T
       best_p = p;
       period = pe;
       period.p = p;
+    }
+    if (pe.cycles < th.min_period_cycles && p < trend_p) {
+      trend_p = p;
+      trend = pe;
+      trend.p = p;
     }
   }
   Diagnostic d{"periodicity",
@@ -386,9 +395,15 @@ Diagnostic periodicity_diagnostic(const std::vector<SeriesView>& series, const T
     d.p_value = period.p;
     d.passed = !(period.p < th.alpha);
     d.note = "largest ordinate at " + significant(period.frequency_hz, 3) + " Hz";
+  } else if (trend_p <= 1.0) {
+    period = trend;
+    d.statistic = trend.g;
+    d.p_value = trend.p;
+    d.note = "every test's largest ordinate lies below " + std::to_string(th.min_period_cycles) +
+             " cycles per test (here " + significant(trend.cycles, 3) + " at " +
+             significant(trend.frequency_hz, 3) + " Hz): a trend, not a period";
   } else {
-    d.note =
-        "no uniformly sampled test with a peak at >= " + std::to_string(th.min_period_cycles) + " cycles";
+    d.note = "no uniformly sampled test of 16 samples or more";
   }
   return d;
 }

@@ -81,6 +81,22 @@ double poro_length(const Prepared& p, std::size_t k) {
 
 }  // namespace
 
+bool pinned_at_bound(const fit::Parameter& q, double x) {
+  switch (q.transform()) {
+    case fit::Transform::Logit:
+      return std::abs(q.to_internal(x)) > 12.0;
+    case fit::Transform::Log: {
+      const bool low = std::isfinite(q.lower);
+      const double gap = low ? x - q.lower : q.upper - x,
+                   reach = low ? q.start_high - q.lower : q.upper - q.start_low;
+      return gap < 1e-9 * reach;
+    }
+    case fit::Transform::Identity:
+      return false;
+  }
+  return false;
+}
+
 std::string to_string(EffectKind k) {
   switch (k) {
     case EffectKind::material:
@@ -361,6 +377,10 @@ std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepa
   const auto [ta, tb] = tau_range(p);
   std::vector<fit::Parameter> v = fit::law_parameters(spec_of(s), modulus, p.duration);
   // Relaxation times spread log-uniformly over what the data resolve; starts over the whole range.
+  // A relaxation time is bounded by the longest test: a term that has not decayed by the end of
+  // the data is elastic stiffness, confounded with E_inf (without the bound a St VK baseline on
+  // stiffening data put its stiffness into a term at tau ~ 1e13 s with E_inf ~ 0.01 Pa, and a law
+  // swapped in from there started at that E_inf and could not leave: docs/discover.md section 1).
   const std::size_t m = std::size_t(s.prony_terms), first = v.size() - 2 * m;
   for (std::size_t j = 0; j < m; ++j) {
     fit::Parameter& e = v[first + j];
@@ -369,8 +389,9 @@ std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepa
     e.start_high = 2.0 * modulus;
     fit::Parameter& tau = v[first + m + j];
     tau.value = std::exp(std::log(ta) + (double(j) + 0.5) / double(m) * (std::log(tb) - std::log(ta)));
+    tau.upper = tb;
     tau.start_low = ta;
-    tau.start_high = tb;
+    tau.start_high = 0.999 * tb;
   }
   const double fpk = p.peak_force, dmx = p.max_depth, T = std::max(p.duration, 1e-9);
   double emax = p.max_depth * p.strain_scale;
@@ -409,8 +430,10 @@ std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepa
   if (previous && previous_values && s.prony_terms > previous->prony_terms && s.law == previous->law) {
     std::vector<double> taus = {ta, tb};
     const std::vector<fit::Parameter> prev = structure_parameters(*previous, p, poisson, fix_poisson);
-    for (std::size_t i = 0; i < prev.size(); ++i)
-      if (prev[i].name.rfind("tau", 0) == 0) taus.push_back((*previous_values)[i]);
+    for (std::size_t i = 0; i < prev.size(); ++i) {
+      const double t = (*previous_values)[i];
+      if (prev[i].name.rfind("tau", 0) == 0 && t > ta && t < tb) taus.push_back(t);  // live terms only
+    }
     std::sort(taus.begin(), taus.end());
     double best = -1.0, mid = std::sqrt(ta * tb);
     for (std::size_t i = 1; i < taus.size(); ++i)
@@ -425,13 +448,15 @@ std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepa
     }
   }
   // Values carried over by name from the previous model (a model with one more Prony term keeps
-  // the old terms under their names; the new one keeps the gap start above).
+  // the old terms under their names; the new one keeps the gap start above). A value pinned at a
+  // bound is not carried over (pinned_at_bound): the fit could not move it from there.
   if (previous && previous_values) {
     const std::vector<fit::Parameter> prev = structure_parameters(*previous, p, poisson, fix_poisson);
     for (auto& q : v)
-      for (std::size_t i = 0; i < prev.size(); ++i)
-        if (prev[i].name == q.name && (*previous_values)[i] > q.lower && (*previous_values)[i] < q.upper)
-          q.value = (*previous_values)[i];
+      for (std::size_t i = 0; i < prev.size(); ++i) {
+        const double x = (*previous_values)[i];
+        if (prev[i].name == q.name && x > q.lower && x < q.upper && !pinned_at_bound(q, x)) q.value = x;
+      }
   }
   for (auto& q : v) {
     if (q.name == "poisson") {

@@ -113,9 +113,16 @@ Structure with_effect(const Structure& s, const std::string& effect);
 /// Empty when `effect` can be added to `s` for data `p`, else why not (one clause).
 std::string not_applicable(const std::string& effect, const Structure& s, const Prepared& p);
 
+/// True when `x` sits where `q`'s fit coordinate is flat, at one of its bounds: logit beyond +-12
+/// (within 6e-6 of the range from a bound), or for a one-sided bound closer to it than 1e-9 of the
+/// start range's reach (e.g. a Prony modulus at 0). A fit started there cannot move the parameter;
+/// the term it belongs to has died (tau -> 0, e -> 0, or tau at the longest test).
+bool pinned_at_bound(const fit::Parameter& q, double x);
+
 /// The parameters of `s`, with starting values scaled by the data, poisson fixed at `poisson`
 /// when `fix_poisson`. Values named as in `previous` (same name) are carried over from
-/// `previous_values`; a new law starts from the previous small-strain modulus.
+/// `previous_values` unless pinned at a bound (pinned_at_bound: they start afresh); a new law starts
+/// from the previous small-strain modulus. Relaxation times are bounded by the longest test.
 std::vector<fit::Parameter> structure_parameters(const Structure& s, const Prepared& p, double poisson,
                                                  bool fix_poisson, const Structure* previous = nullptr,
                                                  const std::vector<double>* previous_values = nullptr);

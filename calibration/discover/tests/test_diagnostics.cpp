@@ -122,5 +122,31 @@ TEST(Diagnostics, StudyCallsNoiseNoiseAndASinusoidPeriodic) {
   EXPECT_NE(describe_signature(per).find("periodic at 0.7 Hz"), std::string::npos) << describe_signature(per);
 }
 
+TEST(Diagnostics, EveryDiagnosticHasAStatisticAndAThresholdEvenForATrend) {
+  // A smooth misfit (a slow bow, as a baseline leaves): its largest periodogram ordinate lies below
+  // five cycles, so it is not called periodic, but the report still gets the statistic.
+  SeriesView s;
+  s.id = "a";
+  const auto e = white(300, 0.01, 5);
+  for (std::size_t i = 0; i < 300; ++i) {
+    s.t.push_back(0.2 * double(i));
+    s.d.push_back(1e-5 * double(i));
+    s.force.push_back(100.0 * s.d.back() + e[i]);
+    s.residual.push_back(0.1 * std::sin(3.14159265358979 * double(i) / 300.0) + e[i]);
+  }
+  const ResidualStudy st = study_residual({s}, 1.0, 100.0);
+  EXPECT_TRUE(st.structured);
+  for (const auto& d : st.diagnostics) {
+    EXPECT_TRUE(std::isfinite(d.statistic)) << d.name << ": " << d.note;
+    EXPECT_FALSE(d.threshold.empty()) << d.name;
+    if (d.name == "periodicity") {
+      EXPECT_TRUE(d.passed) << d.note;
+      EXPECT_LT(st.period.cycles, 5.0);
+      EXPECT_NE(d.note.find("a trend, not a period"), std::string::npos) << d.note;
+    }
+  }
+  EXPECT_EQ(describe_signature(st).find("periodic"), std::string::npos) << describe_signature(st);
+}
+
 }  // namespace
 }  // namespace tmlab::discover
