@@ -111,6 +111,16 @@ TEST(PaperFit, BadSettingsNameTheKey) {
   q = p;
   q["rig"]["cellz"] = 3;
   EXPECT_THROW(paper_fit_settings(q, "f.json", false), Error);
+  for (const char* key : {"contact_stiffness_factor", "newton_max_iterations"}) {
+    q = p;
+    q["rig"][key] = -1;
+    try {
+      paper_fit_settings(q, "f.json", false);
+      ADD_FAILURE() << key << " = -1 accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  }
   q = p;
   q.erase("quick");
   EXPECT_THROW(paper_fit_settings(q, "f.json", true), Error);
