@@ -10,7 +10,10 @@
 // differences would need a time step of the sample's wave transit (~1e-5 s for a 2 cm, 3 kPa
 // sample), 1e5-1e7 steps per test; the static solver takes one load step per data sample (or
 // `substeps`), and a viscoelastic model's history advances once per accepted step with dt the
-// data's sampling interval (the solvers' begin_step/commit_step protocol).
+// data's sampling interval (the solvers' begin_step/commit_step protocol). A load step that does not
+// converge is approached through intermediate, uncommitted targets: cut-backs find the starting
+// iterate and never refine the history's time steps, so the forces are a smooth function of the
+// parameters whatever the solver needed (fe_rig.cpp, load_step).
 //
 // The model of each law (the fast model where the paper has one):
 //   stvk                 TensorMassStVK (the paper's tensor-mass model);
@@ -42,6 +45,17 @@ struct FeRigOptions {
   rigs::DataRigMesh mesh;      ///< the rigs' mesh resolution
   int substeps = 1;            ///< static load steps per data sampling interval
   double newton_rtol = 1e-11;  ///< tight: the fit differentiates the forces numerically
+  /// Newton iterations before a load step is cut back (a cut-back only finds a starting iterate:
+  /// it does not change the step's result, see fe_rig.cpp load_step).
+  int newton_max_iterations = 40;
+  /// Indentation: > 0 sets the contact stiffness eps = factor x the mean K_0 zz-diagonal over the
+  /// top-face nodes within the contact radius at peak depth (sqrt(R d_max) for a sphere, R for a
+  /// punch) of the indenter's axis, the stiffness scale of the nodes that touch (the approach of
+  /// verification/checks/contact_checks.cpp). 0: the contact solver's default (100 x the mean over
+  /// every boundary DOF), which a graded mesh's far-field cells dominate: eps then exceeds the
+  /// contact nodes' stiffness by orders of magnitude and Newton stalls at the contact edge. The
+  /// solution does not depend on eps beyond the contact tolerance (the same stopping test).
+  double contact_stiffness_factor = 0.0;
   /// Builds each test's mesh instead of rigs::rig_mesh(spec) (e.g. a mesh graded for one study,
   /// verification/studies/paper_fit.cpp). It must cover the rig's sample (the same extent) and name
   /// the faces as rig_mesh does ("bottom", "top"), since the rig's boundary conditions select them.
@@ -49,10 +63,23 @@ struct FeRigOptions {
   std::function<Mesh(const rigs::RigSpec&)> mesh_builder;
 };
 
-/// The FE-rig forward model of `data` for the law of `spec`; tmlab::Error (naming the data's JSON
+/// The FE-rig forward model of `data` for the law of `spec` (predict_warm restarts each load step from
+/// the displacements and contact multipliers of a previous prediction at that sample; effort()
+/// counts solves, load steps, Newton and contact iterations, cut-backs); tmlab::Error (naming the data's JSON
 /// key) when a test has no rig.
 std::unique_ptr<ForwardModel> make_fe_rig_model(const measured::DataSet& data, const ModelSpec& spec,
                                                 const FeRigOptions& options = {});
+
+/// The solver effort of an FE-rig model, summed over its predictions so far.
+struct FeRigEffort {
+  long solves = 0, warm = 0;  ///< predictions, of which warm-started
+  long steps = 0;             ///< load steps (accepted increments asked for)
+  long newton = 0;            ///< Newton iterations (over every contact outer iteration and cut-back)
+  long outer = 0;             ///< contact (Uzawa) outer iterations
+  long cutbacks = 0;
+};
+/// The effort of `model`; tmlab::Error when it is not an FE-rig model.
+FeRigEffort fe_rig_effort(const ForwardModel& model);
 
 /// The problem with the FE-rig model for the final numbers and, when the data and law have one, the
 /// closed-form surrogate (surrogates.hpp) as the global stage's model (Problem::global_model; its

@@ -53,6 +53,7 @@ struct Evaluator {
   std::vector<double> held;       ///< physical values of every parameter (the free ones overwritten)
   double delta = 0.0;             ///< L1 smoothing
   std::atomic<long>* solves = nullptr;
+  bool warm = false;  ///< Jacobian columns start from the base point's solver state (FitOptions)
 
   std::size_t n_data() const { return problem->data.size(); }
   std::size_t n() const { return problem->data.size() + priors.size(); }
@@ -63,13 +64,15 @@ struct Evaluator {
     for (std::size_t j = 0; j < free.size(); ++j) x[free[j]] = problem->parameters[free[j]].to_physical(t[j]);
     return x;
   }
-  /// Weighted force errors w (model - data); false when the model cannot be evaluated.
-  bool errors(const double* t, std::vector<double>& e, std::vector<double>* prediction = nullptr) const {
+  /// Weighted force errors w (model - data); false when the model cannot be evaluated. With `warm`,
+  /// the model starts from `from` and keeps its state in *keep (ForwardModel::predict_warm).
+  bool errors(const double* t, std::vector<double>& e, std::vector<double>* prediction = nullptr,
+              const WarmStart* from = nullptr, std::shared_ptr<const WarmStart>* keep = nullptr) const {
     const std::vector<double> x = physical(t);
     std::vector<double> f;
     ++*solves;
     try {
-      f = model->predict(x);
+      f = warm ? model->predict_warm(x, from, keep) : model->predict(x);
     } catch (const Error&) {
       return false;
     }
@@ -116,6 +119,10 @@ struct GslData {
   int threads = 1;
   std::vector<double> last_t, last_r;
   bool last_ok = false;
+  std::shared_ptr<const WarmStart> last_state;  ///< the solver state of last_t (warm Jacobian columns)
+  /// The solver state of the point of the last Jacobian (the trust region's centre), from which the
+  /// trial points' solves start.
+  std::shared_ptr<const WarmStart> centre_state;
   const FitOptions* options = nullptr;
   bool report = false;
 };
@@ -128,9 +135,11 @@ int gsl_f(const gsl_vector* x, void* params, gsl_vector* f) {
   const Evaluator& ev = *g->ev;
   std::vector<double> t(x->data, x->data + ev.p()), e;
   for (std::size_t j = 0; j < ev.p(); ++j) t[j] = gsl_vector_get(x, j);
-  const bool ok = ev.errors(t.data(), e);
+  std::shared_ptr<const WarmStart> state;
+  const bool ok = ev.errors(t.data(), e, nullptr, g->centre_state.get(), &state);
   if (ok) ev.to_residuals(e);
   for (std::size_t i = 0; i < ev.n(); ++i) gsl_vector_set(f, i, ok ? e[i] : ev.failure_value());
+  g->last_state = ok ? std::move(state) : nullptr;
   g->last_t = t;
   g->last_r = ok ? e : std::vector<double>(ev.n(), ev.failure_value());
   g->last_ok = ok;
@@ -138,7 +147,8 @@ int gsl_f(const gsl_vector* x, void* params, gsl_vector* f) {
 }
 
 /// Forward-difference Jacobian in the internal coordinates, one column per forward solve, the
-/// columns in parallel.
+/// columns in parallel, each started from the base point's solver state (warm: a step of 1e-6 moves
+/// the solution little, so the column's solve needs a few iterations instead of a cold start's).
 int gsl_df(const gsl_vector* x, void* params, gsl_matrix* J) {
   if (pending_interrupt() != 0) return GSL_EBADFUNC;  // as gsl_f
   auto* g = static_cast<GslData*>(params);
@@ -151,15 +161,17 @@ int gsl_df(const gsl_vector* x, void* params, gsl_matrix* J) {
     gsl_vector_free(f);
   }
   const std::vector<double> r0 = g->last_r;
+  g->centre_state = g->last_state;
+  const WarmStart* base = g->last_state.get();
   std::vector<std::vector<double>> cols(ev.p());
   parallel_for(ev.p(), g->threads, [&](std::size_t j) {
     std::vector<double> tj = t, e;
     double h = ev.jacobian_step(t[j]);
     tj[j] += h;
-    if (!ev.errors(tj.data(), e)) {
+    if (!ev.errors(tj.data(), e, nullptr, base)) {
       tj[j] = t[j] - h;
       h = -h;
-      if (!ev.errors(tj.data(), e)) {
+      if (!ev.errors(tj.data(), e, nullptr, base)) {
         cols[j].assign(ev.n(), 0.0);
         return;
       }
@@ -451,10 +463,10 @@ Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
 
 // The optimum's residuals, cost, RMS and information criteria; returns the force errors.
 std::vector<double> optimum_stats(const Problem& pr, const Evaluator& ev, const std::vector<double>& t,
-                                  FitResult& res) {
+                                  FitResult& res, std::shared_ptr<const WarmStart>& state) {
   const std::size_t p = ev.p(), n = ev.n_data();
   std::vector<double> e0;
-  ev.errors(t.data(), e0, &res.prediction);
+  ev.errors(t.data(), e0, &res.prediction, nullptr, &state);
   res.cost = ev.cost_of(e0);
   res.n = n;
   res.k = p;
@@ -480,7 +492,7 @@ struct Covariance {
 };
 
 Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vector<double>& t,
-                      const std::vector<double>& e0, const FitResult& res) {
+                      const std::vector<double>& e0, const FitResult& res, const WarmStart* base) {
   const std::size_t p = ev.p(), n = ev.n(), nd = ev.n_data();
   Eigen::MatrixXd J(n, p);
   parallel_for(p, opt.threads, [&](std::size_t j) {
@@ -488,7 +500,7 @@ Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vec
     std::vector<double> tp = t, tm = t, ep, em;
     tp[j] += h;
     tm[j] -= h;
-    const bool okp = ev.errors(tp.data(), ep), okm = ev.errors(tm.data(), em);
+    const bool okp = ev.errors(tp.data(), ep, nullptr, base), okm = ev.errors(tm.data(), em, nullptr, base);
     for (std::size_t i = 0; i < n; ++i)
       J(Eigen::Index(i), Eigen::Index(j)) = okp && okm ? (ep[i] - em[i]) / (2 * h)
                                             : okp      ? (ep[i] - e0[i]) / h
@@ -847,6 +859,7 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   ev.cost = opt.cost;
   ev.delta = 1e-6 * pr.data.peak_force;
   ev.solves = &solves;
+  ev.warm = opt.warm_start;
   for (std::size_t i = 0; i < pr.parameters.size(); ++i) {
     ev.held.push_back(pr.parameters[i].value);
     if (!pr.parameters[i].fixed) ev.free.push_back(i);
@@ -884,14 +897,16 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   std::vector<std::size_t> order;
   const std::vector<std::vector<double>> cand = global_units(pr, opt, ev, gev, res, order, log);
   const std::vector<double> t = local_stage(pr, opt, ev, cand, order, res, log).t;
-  const std::vector<double> e0 = optimum_stats(pr, ev, t, res);
-  const Covariance c = covariance(opt, ev, t, e0, res);
+  std::shared_ptr<const WarmStart> optimum_state;
+  const std::vector<double> e0 = optimum_stats(pr, ev, t, res, optimum_state);
+  const Covariance c = covariance(opt, ev, t, e0, res, optimum_state.get());
   parameter_results(pr, ev, t, c, res);
   confounding_report(pr, c.identifiable, res);
   check_interrupt("after the local stage of the fit");
   if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res, log);
   check_interrupt("during the profile likelihood");
   res.forward_solves = solves.load();
+  res.model_effort = pr.model->effort();
   res.global_solves = pr.global_model ? global_solves.load() : 0;
   if (!pr.priors.empty()) prior_notes(pr, ev, c, res);
   res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();

@@ -81,6 +81,11 @@ struct FitOptions {
   double siman_t_initial = 1.0, siman_t_min = 1e-3;
   int max_iterations = 200;
   bool profile = true;  ///< profile likelihood of the worst-determined parameter
+  /// Levenberg-Marquardt's forward solves (trial points, Jacobian columns, the covariance's
+  /// columns) start from the solver state at the current point (ForwardModel::predict_warm): the
+  /// same equations and stopping tests, fewer iterations. Deterministic (the states come from the
+  /// serial sequence of points).
+  bool warm_start = true;
   /// Called with one line of progress (iteration, cost, current standard errors); may be empty.
   std::function<void(const std::string&)> progress;
   FitResume resume;  ///< checkpoints (tmlab fit --resume); empty: none
@@ -127,6 +132,7 @@ struct FitResult {
   std::size_t n = 0, k = 0;
   double aic = 0.0, bic = 0.0;
   long forward_solves = 0;           ///< solves of the model of the final numbers (model_name)
+  std::string model_effort;          ///< ForwardModel::effort() after the fit (solver iterations)
   std::string global_stage;          ///< "multistart" or "siman"
   std::string global_model_name;     ///< the global stage's model (the surrogate, or model_name)
   long global_solves = 0;            ///< solves of the surrogate (0 without one)

@@ -23,6 +23,13 @@ struct Observations {
   std::size_t size() const { return force.size(); }
 };
 
+/// The solver state one prediction leaves behind (an FE model: its displacements and contact
+/// multipliers at every sample), from which a prediction at nearby parameters may start its
+/// iterations. Opaque to the fitter; a model's own subclass.
+struct WarmStart {
+  virtual ~WarmStart() = default;
+};
+
 class ForwardModel {
  public:
   virtual ~ForwardModel() = default;
@@ -37,6 +44,20 @@ class ForwardModel {
   /// closed forms (round-off only), larger for iterative solvers whose forces carry the solver's
   /// tolerance (the difference must stand well above it).
   virtual double jacobian_step() const { return 1e-7; }
+  /// predict(x) with the solver started from `from` (the state a prediction of this model left at
+  /// nearby parameters; null: started as predict does), keeping this prediction's state in *keep
+  /// (when keep is not null). Only the starting iterates change, not the equations or the stopping
+  /// tests: the forces agree with predict(x) to the solver's tolerance. The fitter uses it for the
+  /// columns of its finite-difference Jacobians. Default: predict(x), no state kept.
+  virtual std::vector<double> predict_warm(const std::vector<double>& x, const WarmStart* from,
+                                           std::shared_ptr<const WarmStart>* keep) const {
+    (void)from;
+    if (keep) keep->reset();
+    return predict(x);
+  }
+  /// The solver effort of every prediction so far, one line ("" when the model has none to report:
+  /// closed forms).
+  virtual std::string effort() const { return {}; }
 };
 
 /// A Gaussian prior on one parameter (regularisation, docs/identification.md): the residual

@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <fstream>
 #include <ostream>
 #include <random>
@@ -102,6 +103,11 @@ PaperFitSettings paper_fit_settings(const json& params_in, const std::string& wh
     s.patch_cells = f.require<int>("patch_cells");
     s.outer_cells = f.require<int>("outer_cells");
     s.substeps = f.get<int>("substeps", 1);
+    s.contact_stiffness_factor = f.get<double>("contact_stiffness_factor", 0.0);
+    s.newton_max_iterations = f.get<int>("newton_max_iterations", 40);
+    if (s.newton_max_iterations < 1) throw f.error("newton_max_iterations", "must be >= 1");
+    if (!(s.contact_stiffness_factor >= 0.0) || !std::isfinite(s.contact_stiffness_factor))
+      throw f.error("contact_stiffness_factor", "must be >= 0 (0: the contact solver's default)");
     if (s.patch_cells < 1) throw f.error("patch_cells", "must be >= 1");
     if (s.outer_cells < 1) throw f.error("outer_cells", "must be >= 1");
     if (s.substeps < 1) throw f.error("substeps", "must be >= 1");
@@ -242,6 +248,17 @@ Mesh paper_fit_mesh(const rigs::RigSpec& s, double patch_factor, int patch_cells
   return mesh;
 }
 
+fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s) {
+  fit::FeRigOptions fe;
+  fe.substeps = s.substeps;
+  fe.contact_stiffness_factor = s.contact_stiffness_factor;
+  fe.newton_max_iterations = s.newton_max_iterations;
+  const double pf = s.patch_factor;
+  const int np = s.patch_cells, no = s.outer_cells;
+  fe.mesh_builder = [pf, np, no](const rigs::RigSpec& r) { return paper_fit_mesh(r, pf, np, no); };
+  return fe;
+}
+
 namespace {
 
 /// One identification: a kind ("closed_form" or "tensor_mass"), a law, a depth.
@@ -278,12 +295,7 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     fo.starts = std::max(12, s.starts);
     fo.local_runs = 3;
   } else {
-    fit::FeRigOptions fe;
-    fe.substeps = s.substeps;
-    const double pf = s.patch_factor;
-    const int np = s.patch_cells, no = s.outer_cells;
-    fe.mesh_builder = [pf, np, no](const rigs::RigSpec& r) { return paper_fit_mesh(r, pf, np, no); };
-    pr = fit::make_fe_rig_problem(data, spec, {}, {}, fe);
+    pr = fit::make_fe_rig_problem(data, spec, {}, {}, paper_fe_rig_options(s));
     fo.starts = s.starts;
     fo.local_runs = s.local_runs;
   }
@@ -299,6 +311,8 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
   j["force_N"] = t.force_N;
   j["reference_force_N"] = paper_reference_force(s, visco, t);
   const auto t0 = std::chrono::steady_clock::now();
+  const std::clock_t c0 =
+      std::clock();  // process CPU time: every thread of this fit (fits run one at a time)
   try {
     const fit::FitResult r = fit::fit(pr, fo);
     j["status"] = "ok";
@@ -320,6 +334,7 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     j["residual_rms_N"] = r.rms;
     j["residual_rms_percent_of_peak"] = r.rms_percent_peak;
     j["forward_solves"] = r.forward_solves;
+    j["forward_effort"] = r.model_effort;
     j["surrogate_solves"] = r.global_solves;
     j["local_iterations"] = r.iterations;
     j["stop_reason"] = r.stop_reason;
@@ -337,10 +352,13 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     j["reason"] = e.what();
   }
   j["wall_seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  j["cpu_seconds"] = double(std::clock() - c0) / CLOCKS_PER_SEC;
   if (log)
     *log << "tmlab paper: " << job.id() << " at " << mm(s.depths[job.depth_index]) << ": "
-         << j["status"].get<std::string>() << " (" << significant(j["wall_seconds"].get<double>(), 3)
-         << " s)\n";
+         << j["status"].get<std::string>() << " (" << significant(j["wall_seconds"].get<double>(), 3) << " s"
+         << (j.value("forward_effort", std::string()).empty() ? ""
+                                                              : "; " + j["forward_effort"].get<std::string>())
+         << ")\n";
   return j;
 }
 
@@ -363,6 +381,11 @@ std::string value_se(const json& fitj, const std::string& name, double scale) {
   if ((*p)["fixed"].get<bool>()) return v + " (fixed)";
   const json& se = (*p)["standard_error"];
   return v + " ± " + (se.is_null() ? std::string("inf") : significant(se.get<double>() * scale, 2));
+}
+
+/// The CPU seconds of a fit ("-" for a fit file written before they were recorded).
+std::string cpu_of(const json& f) {
+  return f.contains("cpu_seconds") ? significant(f["cpu_seconds"].get<double>(), 3) : std::string("-");
 }
 
 /// The St VK usable-depth finding from the tensor-mass fits.
@@ -455,12 +478,12 @@ std::string table_markdown(const std::string& table, const PaperFitSettings& s, 
     }
   md << "| depth | identified by | law |";
   for (const auto& n : names) md << " " << n << (n.rfind("tau", 0) == 0 ? " [s]" : " [Pa]") << " |";
-  md << " RMS % peak | truth in 95 % | forward solves | wall s |\n|---|---|---|";
+  md << " RMS % peak | truth in 95 % | forward solves | wall s | CPU s |\n|---|---|---|";
   for (std::size_t i = 0; i < names.size(); ++i) md << "---|";
-  md << "---|---|---|---|\n";
+  md << "---|---|---|---|---|\n";
   md << "| (truth) | generating values | |";
   for (const auto& n : names) md << " " << significant(truth_of(s, n), 5) << " |";
-  md << " | | | |\n";
+  md << " | | | | |\n";
   for (const auto& f : fits) {
     md << "| " << significant(f["depth_m"].get<double>() * 1e3, 3) << " mm | "
        << (f["kind"] == "closed_form" ? std::string(visco ? "Lee-Radok (check)" : "Hertz (check)")
@@ -468,7 +491,8 @@ std::string table_markdown(const std::string& table, const PaperFitSettings& s, 
        << " | " << f["law"].get<std::string>() << " |";
     if (f["status"] != "ok") {
       for (std::size_t i = 0; i < names.size(); ++i) md << " failed |";
-      md << " - | - | - | " << significant(f["wall_seconds"].get<double>(), 3) << " |\n";
+      md << " - | - | - | " << significant(f["wall_seconds"].get<double>(), 3) << " | " << cpu_of(f)
+         << " |\n";
       continue;
     }
     int inside = 0, total = 0;
@@ -480,7 +504,8 @@ std::string table_markdown(const std::string& table, const PaperFitSettings& s, 
     for (const auto& n : names) md << " " << value_se(f, n, 1.0) << " |";
     md << " " << significant(f["residual_rms_percent_of_peak"].get<double>(), 3) << " | " << inside << "/"
        << total << " | " << f["forward_solves"].get<long>() << " (+" << f["surrogate_solves"].get<long>()
-       << " closed form) | " << significant(f["wall_seconds"].get<double>(), 3) << " |\n";
+       << " closed form) | " << significant(f["wall_seconds"].get<double>(), 3) << " | " << cpu_of(f)
+       << " |\n";
   }
   md << "\n**St VK usable depth.** " << usable["statement"].get<std::string>()
      << ". Criteria: residual RMS <= " << significant(s.max_rms_percent, 3)
@@ -553,7 +578,7 @@ json run_paper_fit(const std::string& target, const PaperFitSettings& s, const P
   // Solve counts: FE solves of the tensor-mass fits; closed-form solves of the checks and of the
   // FE fits' global stage.
   long solves = 0, surrogate = 0;
-  double wall = 0.0;
+  double wall = 0.0, cpu = 0.0;
   for (const auto& f : fits) {
     const long fs_ = f.value("forward_solves", 0L), ss = f.value("surrogate_solves", 0L);
     if (f["kind"] == "tensor_mass") {
@@ -563,6 +588,7 @@ json run_paper_fit(const std::string& target, const PaperFitSettings& s, const P
       surrogate += fs_;
     }
     wall += f["wall_seconds"].get<double>();
+    cpu += f.value("cpu_seconds", 0.0);
   }
   json all = {{"target", target},      {"table", table}, {"figure", figure},      {"params", o.params_file},
               {"viscoelastic", visco}, {"fits", fits},   {"usable_depth", usable}};
@@ -575,8 +601,8 @@ json run_paper_fit(const std::string& target, const PaperFitSettings& s, const P
                 {"law", f["law"]},
                 {"status", f["status"]},
                 {"wall_seconds", f["wall_seconds"]}};
-    for (const char* k :
-         {"parameters", "residual_rms_percent_of_peak", "forward_solves", "surrogate_solves", "reason"})
+    for (const char* k : {"parameters", "residual_rms_percent_of_peak", "forward_solves", "surrogate_solves",
+                          "forward_effort", "cpu_seconds", "reason"})
       if (f.contains(k)) row[k] = f[k];
     tj["rows"].push_back(row);
   }
@@ -587,6 +613,7 @@ json run_paper_fit(const std::string& target, const PaperFitSettings& s, const P
                   {"fe_forward_solves", solves},
                   {"closed_form_solves", surrogate},
                   {"fit_wall_seconds", wall},
+                  {"fit_cpu_seconds", cpu},
                   {"usable_depth", usable["statement"]},
                   {"plots", "skipped (--no-plots)"}};
   if (o.plots) {

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "calibration/data/measured_data.hpp"
+#include "calibration/fit/fe_rig.hpp"
 #include "calibration/rigs/rig.hpp"
 #include "core/mesh/mesh.hpp"
 
@@ -51,6 +52,9 @@ struct PaperFitSettings {
   // The FE rig's mesh (paper_fit_mesh) and load steps.
   double patch_factor = 1.5;  ///< patch half-width / the deepest contact radius sqrt(R d)
   int patch_cells = 3, outer_cells = 3, substeps = 1;
+  /// > 0: contact stiffness from the nodes under the indenter (fit::FeRigOptions); 0: solver default.
+  double contact_stiffness_factor = 0.0;
+  int newton_max_iterations = 40;  ///< before a load step is cut back (fit::FeRigOptions)
   // Identification.
   std::vector<std::string> laws = {"stvk", "neo_hookean"};
   int starts = 12, local_runs = 1, max_iterations = 20, threads = 2;
@@ -81,6 +85,10 @@ std::vector<double> paper_reference_force(const PaperFitSettings& s, bool viscoe
 /// outer_cells cells growing geometrically to each face (a = sqrt(R d_max)); faces named as
 /// rigs::rig_mesh names them.
 Mesh paper_fit_mesh(const rigs::RigSpec& spec, double patch_factor, int patch_cells, int outer_cells);
+
+/// The FE-rig options of the study's tensor-mass fits: paper_fit_mesh with the settings' patch,
+/// their load steps and contact stiffness.
+fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s);
 
 /// Coordinates on [lo, hi]: uniform cells of size w / np within w of `focus` (clipped to the
 /// interval), then no cells per side growing geometrically to the ends. tmlab::Error when the patch

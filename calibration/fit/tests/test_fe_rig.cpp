@@ -151,6 +151,63 @@ TEST(FeRig, FitRecoversItsOwnParametersWithTheSurrogateAsGlobalStage) {
   EXPECT_GT(r.global_solves, 0);
 }
 
+TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
+  // Viscoelastic platen compression: a solve started from the one at parameters 1e-6 away gives the
+  // cold solve's forces to well below the difference the step makes, in fewer Newton iterations.
+  const ms::DataSet d = block_compression(0.15, 3.0);
+  const ModelSpec spec = parse_model_spec("neo_hookean+prony:1");
+  const std::vector<double> x = {5000.0, 0.3, 3000.0, 0.5};
+  std::vector<double> xp = x;
+  xp[0] *= 1.0 + 1e-6;
+  xp[3] *= 1.0 + 1e-6;
+  const auto cold = make_fe_rig_model(d, spec, coarse());
+  const auto warm = make_fe_rig_model(d, spec, coarse());
+  std::shared_ptr<const WarmStart> state;
+  const std::vector<double> f = cold->predict_warm(x, nullptr, &state);
+  ASSERT_TRUE(state);
+  EXPECT_EQ(f, cold->predict(x));  // keeping the state changes nothing
+  const std::vector<double> fc = cold->predict(xp), fw = warm->predict_warm(xp, state.get(), nullptr);
+  double dh = 0.0, dw = 0.0;
+  for (std::size_t i = 0; i < f.size(); ++i) {
+    dh = std::max(dh, std::abs(fc[i] - f[i]));
+    dw = std::max(dw, std::abs(fw[i] - fc[i]));
+  }
+  EXPECT_GT(dh, 0.0);
+  EXPECT_LT(dw, 1e-3 * dh);
+  const FeRigEffort ec = fe_rig_effort(*cold), ew = fe_rig_effort(*warm);
+  EXPECT_EQ(ec.solves, 3);
+  EXPECT_EQ(ew.solves, 1);
+  EXPECT_EQ(ew.warm, 1);
+  EXPECT_EQ(ew.steps, long(d.tests[0].size()) - 1);
+  EXPECT_LT(ew.newton, ec.newton / 3) << "cold " << ec.newton / 3 << " per solve, warm " << ew.newton;
+  std::cout << "platen: Newton iterations per solve cold " << ec.newton / 3.0 << ", warm " << ew.newton
+            << "\n";
+  EXPECT_NE(cold->effort().find("3 FE solves"), std::string::npos) << cold->effort();
+}
+
+TEST(FeRig, WarmJacobianColumnsGiveTheColdFit) {
+  ms::DataSet d = block_compression(0.2, 2.0);
+  const ModelSpec spec = parse_model_spec("neo_hookean+prony:1,poisson=0.3");
+  testing::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3, 4000.0, 0.4}));
+  FitOptions o;
+  o.starts = 4;
+  o.local_runs = 1;
+  o.profile = false;
+  std::vector<FitResult> r;
+  for (const bool warm : {false, true}) {
+    const Problem pr = make_fe_rig_problem(d, spec, {}, {}, coarse());
+    o.warm_start = warm;
+    r.push_back(fit(pr, o));
+  }
+  ASSERT_EQ(r[0].parameters.size(), r[1].parameters.size());
+  for (std::size_t i = 0; i < r[0].parameters.size(); ++i) {
+    EXPECT_NEAR(r[1].parameters[i].value, r[0].parameters[i].value, 1e-6 * std::abs(r[0].parameters[i].value))
+        << r[0].parameters[i].name;
+  }
+  EXPECT_NEAR(r[1].parameters[0].value, 8000.0, 1e-3);
+  EXPECT_NE(r[1].model_effort.find("warm-started"), std::string::npos);
+}
+
 TEST(FeRig, DataWithoutARigIsRefusedNamingTheKey) {
   ms::DataSet d = block_compression(0.1, 1.0);
   d.meta.sample.platens.reset();
