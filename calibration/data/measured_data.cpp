@@ -110,12 +110,10 @@ bool valid_identifier(const std::string& s) {
 
 // Units: a name carries its unit as a suffix, quantity_unit, where unit is an atom or
 // atom_per_atom[_per_atom...] ("speed_m_per_s"); "_1" marks a dimensionless number.
-const std::set<std::string>& unit_atoms() {
-  static const std::set<std::string> atoms = {"1",  "percent", "s",  "ms",  "us",  "min", "h",   "Hz", "m",
-                                              "cm", "mm",      "um", "m2",  "mm2", "m3",  "mm3", "s2", "N",
-                                              "mN", "kN",      "Pa", "kPa", "MPa", "GPa", "kg",  "g",  "J",
-                                              "mJ", "W",       "C",  "K",   "rad", "deg"};
-  return atoms;
+std::set<std::string> unit_atoms() {
+  return {"1",   "percent", "s",   "ms", "us",  "min", "h", "Hz", "m",  "cm",  "mm",
+          "um",  "m2",      "mm2", "m3", "mm3", "s2",  "N", "mN", "kN", "Pa",  "kPa",
+          "MPa", "GPa",     "kg",  "g",  "J",   "mJ",  "W", "C",  "K",  "rad", "deg"};
 }
 }  // namespace
 
@@ -133,8 +131,9 @@ bool has_unit_suffix(const std::string& name) {
   t.push_back(cur);
   if (t.size() < 2) return false;
   std::size_t k = t.size() - 1;  // index of the first token of the unit
-  if (!unit_atoms().count(t[k])) return false;
-  while (k >= 3 && t[k - 1] == "per" && unit_atoms().count(t[k - 2])) k -= 2;
+  const std::set<std::string> atoms = unit_atoms();
+  if (!atoms.count(t[k])) return false;
+  while (k >= 3 && t[k - 1] == "per" && atoms.count(t[k - 2])) k -= 2;
   if (t[k - 1] == "per") return false;  // "speed_per_s": a rate without its numerator unit
   for (std::size_t i = 0; i < k; ++i)
     if (t[i].empty()) return false;

@@ -92,10 +92,7 @@ void set(std::vector<fit::Parameter>& ps, std::vector<double>& x, const std::str
 
 }  // namespace
 
-const std::vector<std::string>& outside_effects() {
-  static const std::vector<std::string> v = {"actuator_resonance", "preconditioning"};
-  return v;
-}
+std::vector<std::string> outside_effects() { return {"actuator_resonance", "preconditioning"}; }
 
 std::string to_string(BenchmarkRig r) {
   return r == BenchmarkRig::sphere    ? "sphere_indentation"
@@ -112,8 +109,8 @@ SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig)
                        : rig == BenchmarkRig::tension ? "tension-"
                                                       : "") +
            truth + "-" + std::to_string(seed);
-  const bool outside =
-      std::find(outside_effects().begin(), outside_effects().end(), truth) != outside_effects().end();
+  const std::vector<std::string> outside_names = outside_effects();
+  const bool outside = std::find(outside_names.begin(), outside_names.end(), truth) != outside_names.end();
   s.kind = truth == "noise_only" ? Truth::noise_only : outside ? Truth::outside_library : Truth::library;
   s.data = protocol(s.name, rig);
   const Prepared p = prepare(s.data, 1u << 30);

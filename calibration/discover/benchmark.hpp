@@ -40,7 +40,7 @@ struct SyntheticSet {
 /// The outside-library effects the benchmark plants: "actuator_resonance" (a 0.7 Hz oscillation
 /// of 2 % of the peak force, always present) and "preconditioning" (the first test 15 % stiffer:
 /// the virgin sample before Mullins softening).
-const std::vector<std::string>& outside_effects();
+std::vector<std::string> outside_effects();
 
 /// One set with `truth` present (an effect_library() name, "noise_only" or an outside effect).
 SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig = BenchmarkRig::unconfined);

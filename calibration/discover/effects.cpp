@@ -125,8 +125,8 @@ std::string to_string(Rig r) {
   return "?";
 }
 
-const std::vector<EffectInfo>& effect_library() {
-  static const std::vector<EffectInfo> lib = [] {
+std::vector<EffectInfo> effect_library() {
+  return [] {
     std::vector<EffectInfo> v;
     const auto m = EffectKind::material, x = EffectKind::experiment, g = EffectKind::geometry;
     v.push_back(
@@ -180,14 +180,14 @@ const std::vector<EffectInfo>& effect_library() {
          "an indentation residual growing with depth beyond d^{3/2}: the support stiffens deep indents"});
     return v;
   }();
-  return lib;
 }
 
-const EffectInfo& effect_info(const std::string& name) {
-  for (const auto& e : effect_library())
+EffectInfo effect_info(const std::string& name) {
+  const std::vector<EffectInfo> lib = effect_library();
+  for (const auto& e : lib)
     if (e.name == name) return e;
   std::vector<std::string> names;
-  for (const auto& e : effect_library()) names.push_back(e.name);
+  for (const auto& e : lib) names.push_back(e.name);
   throw Error("discover: unknown effect '" + name + "' (known: " + choice_list(names) + ")");
 }
 

@@ -53,9 +53,9 @@ struct EffectInfo {
 };
 
 /// Every effect of the library, in the order the loop tries them.
-const std::vector<EffectInfo>& effect_library();
+std::vector<EffectInfo> effect_library();
 /// The library entry `name` (tmlab::Error listing the names when unknown).
-const EffectInfo& effect_info(const std::string& name);
+EffectInfo effect_info(const std::string& name);
 /// The law a *_hyperelastic effect swaps in ("" for other effects).
 std::string effect_law(const std::string& effect);
 

@@ -108,10 +108,8 @@ LameConstants lame(Reader& r, const std::string& where, const std::string& law) 
 
 }  // namespace
 
-const std::vector<std::string>& law_names() {
-  static const std::vector<std::string> names = {"stvk", "neo_hookean", "mooney_rivlin",
-                                                 "yeoh", "ogden",       "veronda_westmann"};
-  return names;
+std::vector<std::string> law_names() {
+  return {"stvk", "neo_hookean", "mooney_rivlin", "yeoh", "ogden", "veronda_westmann"};
 }
 
 Law make_law(const std::string& name, const nlohmann::json& params, const std::string& where,

@@ -22,7 +22,7 @@
 namespace tmlab::tm {
 
 /// The accepted law names, in the order above.
-const std::vector<std::string>& law_names();
+std::vector<std::string> law_names();
 
 /// Builds the law `name` from `params` (a JSON object). `where` prefixes every message and names
 /// the object in the user's file (e.g. "case.json: material"), keys are reported as
