@@ -47,10 +47,18 @@ double ViscoelasticHyperelastic::branch_form(std::size_t t, const double* h, dou
   // Psi = sum_j alpha_j/2 V h_j : C_0^{-1} : h_j, h:C_0^{-1}:h = (h:h - lambda/(3 lambda + 2 mu) (tr h)^2)/(2
   // mu)
   const double V = elastic_.rest(static_cast<Index>(t)).volume, lam = c0_.lambda, mu = c0_.mu;
-  return branch_sums(h, rate, [&](const double* hj) {
+  // (the loop as before the shared bookkeeping, not branch_sums: the compiled arithmetic, and so the
+  // branch energy, stays the same to the last bit)
+  double psi = 0.0, d = 0.0;
+  for (std::size_t j = 0; j < prony().size(); ++j) {
+    const double* hj = h + 6 * j;
     const double tr = hj[0] + hj[1] + hj[2];
-    return V * (voigt_dot(hj, hj) - lam / (3.0 * lam + 2.0 * mu) * tr * tr) / (2.0 * mu);
-  });
+    const double q = V * (voigt_dot(hj, hj) - lam / (3.0 * lam + 2.0 * mu) * tr * tr) / (2.0 * mu);
+    psi += 0.5 * prony().alpha(j) * q;
+    d += prony().alpha(j) * q / prony().tau(j);
+  }
+  *rate = d;
+  return psi;
 }
 
 void ViscoelasticHyperelastic::trial_changed() {
