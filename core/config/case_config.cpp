@@ -19,14 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-Vec3 read_vec3(ConfigReader& r, const std::string& key) {
-  const auto v = r.require<std::vector<double>>(key);
-  if (v.size() != 3) throw r.error(key, "must be a list of 3 numbers");
-  for (double x : v)
-    if (!std::isfinite(x)) throw r.error(key, "must be finite");
-  return Vec3(v[0], v[1], v[2]);
-}
-
 std::array<bool, 3> read_components(ConfigReader& r, const std::string& key) {
   const std::string s = r.get<std::string>(key, "xyz");
   std::array<bool, 3> c{false, false, false};
@@ -246,7 +238,7 @@ std::vector<BoundarySpec> parse_boundary(ConfigReader& root) {
     s.name = b.get<std::string>("name", "boundary" + std::to_string(i));
     s.nodes = NodeSelector::from_json(b.raw("nodes"), root.where() + ": key '" + b.key_path("nodes") + "'");
     s.components = read_components(b, "components");
-    s.value = b.has("value") ? read_vec3(b, "value") : Vec3::Zero();
+    s.value = b.has("value") ? b.vec3("value") : Vec3::Zero();
     s.function = read_function(b);
     b.finish();
     out.push_back(s);
@@ -266,7 +258,7 @@ LoadSpec parse_load(const nlohmann::json& j, const std::string& where, std::size
   if (type == "nodal_force") {
     s.type = LoadSpec::Type::NodalForce;
     s.selector = selector("nodes");
-    s.vector = read_vec3(l, "force");
+    s.vector = l.vec3("force");
   } else if (type == "pressure") {
     s.type = LoadSpec::Type::Pressure;
     s.selector = selector("faces");
@@ -277,10 +269,10 @@ LoadSpec parse_load(const nlohmann::json& j, const std::string& where, std::size
     // A dead traction vector per unit reference area on the selected boundary faces.
     s.type = LoadSpec::Type::Traction;
     s.selector = selector("faces");
-    s.vector = read_vec3(l, "traction");
+    s.vector = l.vec3("traction");
   } else if (type == "gravity") {
     s.type = LoadSpec::Type::Gravity;
-    s.vector = read_vec3(l, "acceleration");
+    s.vector = l.vec3("acceleration");
   } else {
     throw l.error("type",
                   "unknown load type '" + type + "' (expected nodal_force, pressure, traction or gravity)");
@@ -395,7 +387,7 @@ OutputSpec parse_output(ConfigReader& root) {
       ConfigReader p(arr[i], o.where(), o.key_path("probes") + "[" + std::to_string(i) + "]");
       ProbeSpec ps;
       ps.name = p.require<std::string>("name");
-      ps.point = read_vec3(p, "point");
+      ps.point = p.vec3("point");
       p.finish();
       output.probes.push_back(ps);
     }

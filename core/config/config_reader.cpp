@@ -118,6 +118,14 @@ double ConfigReader::positive(const std::string& key, double fallback, bool allo
   return has(key) ? positive(key, allow_zero) : fallback;
 }
 
+Eigen::Vector3d ConfigReader::vec3(const std::string& key) {
+  const auto v = require<std::vector<double>>(key);
+  if (v.size() != 3) throw error(key, "must be a list of 3 numbers");
+  for (double x : v)
+    if (!std::isfinite(x)) throw error(key, "must be finite");
+  return Eigen::Vector3d(v[0], v[1], v[2]);
+}
+
 void ConfigReader::finish() const {
   std::string unknown;
   for (auto it = j_.begin(); it != j_.end(); ++it) {

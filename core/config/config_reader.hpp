@@ -7,6 +7,7 @@
 
 #include "core/base/error.hpp"
 
+#include <Eigen/Core>
 #include <nlohmann/json.hpp>
 
 #include <cmath>
@@ -47,6 +48,8 @@ class ConfigReader {
   /// require<double> with a check that the value is > 0 (or >= 0 when allow_zero).
   double positive(const std::string& key, bool allow_zero = false);
   double positive(const std::string& key, double fallback, bool allow_zero = false);
+  /// A required list of 3 finite numbers (a point, direction, force, ...).
+  Eigen::Vector3d vec3(const std::string& key);
 
   /// Throws naming every key present in the object that was never read.
   void finish() const;

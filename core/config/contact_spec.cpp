@@ -17,16 +17,8 @@ const char* const kShapeNames[] = {"sphere", "punch", "plane"};
 const char* const kModeNames[] = {"frictionless", "bonded"};
 const char* const kMethodNames[] = {"augmented_lagrangian", "penalty"};
 
-Vec3 read_vec3(ConfigReader& r, const std::string& key) {
-  const auto v = r.require<std::vector<double>>(key);
-  if (v.size() != 3) throw r.error(key, "must be a list of 3 numbers");
-  for (double x : v)
-    if (!std::isfinite(x)) throw r.error(key, "must be finite");
-  return Vec3(v[0], v[1], v[2]);
-}
-
 Vec3 read_direction(ConfigReader& r, const std::string& key) {
-  const Vec3 v = read_vec3(r, key);
+  const Vec3 v = r.vec3(key);
   if (!(v.norm() > 0.0)) throw r.error(key, "must be a non-zero vector");
   return v.normalized();
 }
@@ -61,12 +53,12 @@ ContactBodySpec parse_body(const nlohmann::json& j, const std::string& where, co
   if (!r.has("type")) throw r.error("type", "is required (" + choice_list(enum_names(kShapeNames)) + ")");
   b.shape = read_choice(r, "type", ContactShape::Plane, kShapeNames);
   b.mode = read_choice(r, "mode", ContactBodyMode::Frictionless, kModeNames);
-  b.displacement = r.has("displacement") ? read_vec3(r, "displacement") : Vec3::Zero();
+  b.displacement = r.has("displacement") ? r.vec3("displacement") : Vec3::Zero();
   if (r.has("function"))
     b.function = TimeFunction::from_json(r.raw("function"), where + ": key '" + r.key_path("function") + "'");
   switch (b.shape) {
     case ContactShape::Sphere:
-      b.reference = read_vec3(r, "center");
+      b.reference = r.vec3("center");
       b.radius = read_positive(r, "radius");
       // The axis only orients the contact-radius output; by default the direction of travel.
       if (r.has("axis"))
@@ -77,14 +69,14 @@ ContactBodySpec parse_body(const nlohmann::json& j, const std::string& where, co
         b.axis = -Vec3::UnitZ();
       break;
     case ContactShape::Punch:
-      b.reference = read_vec3(r, "center");
+      b.reference = r.vec3("center");
       b.axis = read_direction(r, "axis");
       b.radius = read_positive(r, "radius");
       b.edge_radius = read_nonnegative(r, "edge_radius", 0.0);
       if (b.edge_radius > b.radius) throw r.error("edge_radius", "must not exceed radius");
       break;
     case ContactShape::Plane:
-      b.reference = read_vec3(r, "point");
+      b.reference = r.vec3("point");
       b.axis = read_direction(r, "normal");
       break;
   }

@@ -22,6 +22,7 @@
 #pragma once
 
 #include "core/config/time_function.hpp"
+#include "core/geometry/rigid_gap.hpp"
 #include "core/mesh/mesh.hpp"
 
 #include <nlohmann/json.hpp>
@@ -32,7 +33,6 @@
 
 namespace tmlab {
 
-enum class ContactShape { Sphere, Punch, Plane };
 enum class ContactBodyMode {
   Frictionless,  ///< unilateral, g >= 0, normal force only
   Bonded,        ///< a node that touches sticks to the body (glue, never released)

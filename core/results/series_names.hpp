@@ -62,6 +62,26 @@ struct ContactValues {
   double max_penetration = 0.0;  ///< m, largest penetration of a node in contact
 };
 
+/// The contact values of one body's record in either model (the fast model's ContactBodyState, the
+/// deal.II reference's ContactBodyOutput): both name their members name, position, force, moment
+/// (Vec3), area, radius_equivalent, radius_max, active_nodes and max_penetration; the largest nodal
+/// pressure is given (each model keeps it its own way).
+template <class Body>
+ContactValues contact_values(const Body& b, double max_pressure) {
+  ContactValues c;
+  c.body = b.name;
+  c.position = {b.position.x(), b.position.y(), b.position.z()};
+  c.force = {b.force.x(), b.force.y(), b.force.z()};
+  c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
+  c.area = b.area;
+  c.radius = b.radius_equivalent;
+  c.radius_max = b.radius_max;
+  c.active_nodes = b.active_nodes;
+  c.max_pressure = max_pressure;
+  c.max_penetration = b.max_penetration;
+  return c;
+}
+
 /// Appends the series of one body's contact outputs (contact_<body>_...) to the table.
 inline void add_contact(SeriesTable& table, const ContactValues& c) {
   const std::string b = contact(c.body);

@@ -92,7 +92,7 @@ void NodalContact::start(Solid& solid, double t0, double t_end, const std::vecto
     for (std::size_t k = 0; k < boundary_.nodes.size(); ++k) {
       const std::size_t n = static_cast<std::size_t>(boundary_.nodes[k]);
       const Vec3 x = mesh_.points[n] + Vec3(U0[3 * n], U0[3 * n + 1], U0[3 * n + 2]);
-      const BodyGap gp = body_gap(body, x, t0);
+      const GapPoint gp = body_gap(body, x, t0);
       nearest = std::min(nearest, gp.g);
       if (-gp.g > deepest) {
         deepest = -gp.g;
@@ -189,7 +189,7 @@ void NodalContact::add_terms(const TrilinosVector& u, double t, TrilinosVector& 
         H = eps_ * Eigen::Matrix3d::Identity();
       } else {
         // Phi = (<lambda - eps g>_+^2 - lambda^2) / (2 eps): dPhi/dx = -p n, d2Phi = eps n n^T - p H_g.
-        const BodyGap gp = body_gap(body, x, t);
+        const GapPoint gp = body_gap(body, x, t);
         const double p = (penalty ? 0.0 : d.lambda[k]) - eps_ * gp.g;
         if (p <= 0.0) continue;
         force = -p * gp.normal;
@@ -268,7 +268,7 @@ void NodalContact::commit(const TrilinosVector& u, double t) {
     BodyData& d = committed_[b];
     for (std::size_t k : mine_) {
       if (d.bonded[k] || !(d.lambda[k] > 0.0)) continue;
-      const BodyGap gp = body_gap(body, position(u, k), t);
+      const GapPoint gp = body_gap(body, position(u, k), t);
       d.bonded[k] = 1;
       d.anchor[k] = gp.closest - body.position(t);
       d.lambda_b[k] = -d.lambda[k] * gp.normal;
@@ -288,7 +288,7 @@ std::vector<ContactBodyOutput> NodalContact::outputs(const TrilinosVector& u, do
     o.position = body.position(t);
     double min_lambda = std::numeric_limits<double>::infinity();
     for (std::size_t k : mine_) {
-      const BodyGap gp = body_gap(body, position(u, k), t);
+      const GapPoint gp = body_gap(body, position(u, k), t);
       Vec3 f;  // force of the body on the sample at this vertex
       if (d.bonded[k]) {
         f = -d.lambda_b[k];

@@ -8,91 +8,14 @@
 
 namespace tmlab::ref {
 
-namespace {
-
-using Mat3 = Eigen::Matrix3d;
-
-/// A unit vector perpendicular to a (the radial direction of a point exactly on the axis).
-Vec3 any_perpendicular(const Vec3& a) {
-  const Vec3 trial = std::abs(a.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY();
-  return (trial - trial.dot(a) * a).normalized();
-}
-
-BodyGap sphere(const Vec3& x, double radius) {
-  BodyGap p;
-  const double d = x.norm();
-  p.normal = d > 0.0 ? Vec3(x / d) : Vec3::UnitZ();  // at the centre any direction is a subgradient
-  p.g = d - radius;
-  p.closest = radius * p.normal;
-  if (d > 0.0) p.hessian = (Mat3::Identity() - p.normal * p.normal.transpose()) / d;
-  return p;
-}
-
-BodyGap plane(const Vec3& x, const Vec3& normal) {
-  BodyGap p;
-  p.normal = normal;
-  p.g = x.dot(normal);
-  p.closest = x - p.g * normal;
-  return p;
-}
-
-/// Cylindrical coordinates about the axis: s along a, r radial (e_r), hoop e_theta; the core
-/// K = {s + rho <= 0, r <= R - rho}, g = dist_K - rho.
-BodyGap punch(const Vec3& x, const Vec3& a, double radius, double rho) {
-  const double s = x.dot(a);
-  const Vec3 radial = x - s * a;
-  const double r = radial.norm();
-  const bool on_axis = !(r > 1e-300);
-  const Vec3 er = on_axis ? any_perpendicular(a) : Vec3(radial / r);
-  const Vec3 et = a.cross(er);
-  const double ds = s + rho, dr = r - radius + rho;
-  const Mat3 hoop = on_axis ? Mat3::Zero() : Mat3(et * et.transpose() / r);
-  BodyGap p;
-  double d;
-  if (dr > 0.0 && ds > 0.0) {  // beyond the rim: distance to the rim circle
-    d = std::hypot(dr, ds);
-    p.normal = (dr * er + ds * a) / d;
-    const Vec3 tangent = (ds * er - dr * a) / d;
-    p.hessian = tangent * tangent.transpose() / d + (dr / d) * hoop;
-  } else if (dr > 0.0 || (ds <= 0.0 && dr > ds)) {  // beside the side (or inside, nearer the side)
-    d = dr;
-    p.normal = er;
-    p.hessian = hoop;
-  } else {  // above the face (or inside, nearer the face)
-    d = ds;
-    p.normal = a;
-  }
-  p.g = d - rho;
-  p.closest = x - p.g * p.normal;
-  return p;
-}
-
-}  // namespace
-
 Vec3 body_axis(const ContactBodySpec& body) { return body.axis.normalized(); }
 
-BodyGap body_gap(const ContactBodySpec& body, const Vec3& x, double t) {
-  const Vec3 c = body.position(t);
-  BodyGap p;
-  switch (body.shape) {
-    case ContactShape::Sphere:
-      p = sphere(x - c, body.radius);
-      break;
-    case ContactShape::Punch:
-      p = punch(x - c, body_axis(body), body.radius, body.edge_radius);
-      break;
-    case ContactShape::Plane:
-      p = plane(x - c, body_axis(body));
-      break;
-  }
-  p.closest += c;
-  return p;
+GapPoint body_gap(const ContactBodySpec& body, const Vec3& x, double t) {
+  return rigid_gap(body.shape, body.position(t), body_axis(body), body.radius, body.edge_radius, x);
 }
 
 double body_radial_distance(const ContactBodySpec& body, const Vec3& x, double t) {
-  if (body.shape == ContactShape::Plane) return 0.0;
-  const Vec3 a = body_axis(body), rel = x - body.position(t);
-  return (rel - rel.dot(a) * a).norm();
+  return radial_distance(body.shape, body.position(t), body_axis(body), x);
 }
 
 double ContactBoundary::contact_area(std::size_t k, const Vec3& n) const {

@@ -3,17 +3,15 @@
 // core/config/contact_spec.hpp) and the contact boundary of the mesh (boundary nodes, reference
 // tributary areas, mean boundary edge). Deal.II-free.
 //
-// The reference may depend on core only, so these are the reference's own copy of the formulas of
-// tensormass/contact (rigid_body.cpp, surface_grid.cpp); test_reference_contact checks that both
-// copies give the same gap, normal, closest point, Hessian, areas and mean edge to round-off, so they
-// cannot drift apart unnoticed. Shapes, with c(t) the body's reference point and a its unit axis:
-//   sphere:  g = |x - c| - R,  n = (x - c)/|x - c|,  H = (I - n n^T)/|x - c|
-//   plane:   g = (x - c).a,  n = a,  H = 0
-//   punch:   the cylinder s = (x - c).a <= 0, r <= R with its rim rounded by rho: g = dist_K - rho,
-//            K = {s <= -rho, r <= R - rho} (face, side, or rim-circle region)
+// The gap itself is core's one copy (core/geometry/rigid_gap.hpp, the fast model's rigid bodies use
+// it too); here it is evaluated for a ContactBodySpec at time t. The boundary is the reference's own
+// copy of tensormass/contact/surface_grid.cpp's (the reference may depend on core only);
+// test_reference_runner (ReferenceContactGeometry) checks that both give the same areas and mean
+// edge to round-off, and that the gap of a spec equals the fast model's RigidBody::gap.
 #pragma once
 
 #include "core/config/contact_spec.hpp"
+#include "core/geometry/rigid_gap.hpp"
 #include "core/mesh/mesh.hpp"
 
 #include <Eigen/Core>
@@ -23,19 +21,10 @@
 
 namespace tmlab::ref {
 
-/// The gap of one point against a body: signed distance (< 0 inside), outward unit normal dg/dx,
-/// closest surface point x - g n, Hessian d^2 g/dx^2.
-struct BodyGap {
-  double g = 0.0;
-  Vec3 normal = Vec3::UnitZ();
-  Vec3 closest = Vec3::Zero();
-  Eigen::Matrix3d hessian = Eigen::Matrix3d::Zero();
-};
-
 /// The body's unit axis (the spec's axis, normalised; the spec parser refuses a zero axis).
 Vec3 body_axis(const ContactBodySpec& body);
 /// The gap of x against `body` at its position at time t.
-BodyGap body_gap(const ContactBodySpec& body, const Vec3& x, double t);
+GapPoint body_gap(const ContactBodySpec& body, const Vec3& x, double t);
 /// Distance of x from the body's axis line through c(t) (0 for the plane).
 double body_radial_distance(const ContactBodySpec& body, const Vec3& x, double t);
 

@@ -540,7 +540,8 @@ class StepRecorder {
     }
     if (p_.contact) {
       contact_ = p_.contact->outputs(solid.solution(), t);
-      for (const ContactBodyOutput& b : contact_) s.contact.push_back(contact_values(b));
+      for (const ContactBodyOutput& b : contact_)
+        s.contact.push_back(series_names::contact_values(b, b.max_pressure));
     }
     rec_.record(s);
     if (!write_fields) return;
@@ -565,21 +566,6 @@ class StepRecorder {
   const std::vector<ContactBodyOutput>& contact() const { return contact_; }
 
  private:
-  static series_names::ContactValues contact_values(const ContactBodyOutput& b) {
-    series_names::ContactValues c;
-    c.body = b.name;
-    c.position = {b.position.x(), b.position.y(), b.position.z()};
-    c.force = {b.force.x(), b.force.y(), b.force.z()};
-    c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
-    c.area = b.area;
-    c.radius = b.radius_equivalent;
-    c.radius_max = b.radius_max;
-    c.active_nodes = b.active_nodes;
-    c.max_pressure = b.max_pressure;
-    c.max_penetration = b.max_penetration;
-    return c;
-  }
-
   /// The displacement, volume ratio, von Mises stress and MPI subdomain of frame `frame`.
   void write_vtu(double t, int frame) {
     const Solid& solid = *p_.solid;

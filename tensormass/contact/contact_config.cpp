@@ -8,26 +8,8 @@ namespace {
 
 RigidBody rigid_body(const ContactBodySpec& s, const std::string& where) {
   RigidBody b;
-  b.name = s.name;
+  static_cast<ContactBodySpec&>(b) = s;
   b.origin = where + ": key '" + s.key + "'";
-  switch (s.shape) {
-    case ContactShape::Sphere:
-      b.shape = RigidShape::Sphere;
-      break;
-    case ContactShape::Punch:
-      b.shape = RigidShape::Punch;
-      break;
-    case ContactShape::Plane:
-      b.shape = RigidShape::Plane;
-      break;
-  }
-  b.mode = s.mode == ContactBodyMode::Bonded ? ContactMode::Bonded : ContactMode::Frictionless;
-  b.reference = s.reference;
-  b.axis = s.axis;
-  b.radius = s.radius;
-  b.edge_radius = s.edge_radius;
-  b.displacement = s.displacement;
-  b.function = s.function;
   b.validate();
   return b;
 }

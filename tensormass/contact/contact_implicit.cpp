@@ -21,19 +21,11 @@ ContactImplicitDynamics::ContactImplicitDynamics(const MechanicalSystem& system,
 void ContactImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
   t_ = t0;
   u_ = u0;
-  system_.bc().apply(t0, u_);
   v_ = v0;
-  system_.model().begin_step(0.0);
-  system_.model().commit_step(u_);
+  // The bodies touch without force at t0, so the initial acceleration is the plain one.
+  implicit_initial_state(system_, t0, u_, v_, a_);
   contact_ = std::make_unique<ContactStaticSolver>(system_, mesh_, bodies_, options_, newton_, t0, u_, 0);
   contact_->add_mass_scale(implicit_coefficients(scheme_, dt_).ca);
-  // The bodies touch without force at t0, so the initial acceleration is the plain one.
-  VecX fint, fext, fd;
-  system_.model().internal_force(u_, fint);
-  system_.loads().assemble(u_, t0, fext);
-  system_.damping_force(v_, fd);
-  a_ = (fext - fint - fd).cwiseQuotient(system_.mass());
-  for (Index d : system_.bc().dofs()) a_[d] = 0.0;
 }
 
 ContactStepReport ContactImplicitDynamics::step(double t, double dt) {

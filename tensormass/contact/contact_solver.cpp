@@ -1,4 +1,5 @@
 #include "tensormass/contact/contact_solver.hpp"
+#include "tensormass/solvers/load_increments.hpp"
 
 #include "core/base/error.hpp"
 
@@ -321,33 +322,27 @@ ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, Vec
   const InnerResidualFactory statics = [this](double t, const VecX& u0) {
     return std::make_unique<StaticResidual>(system_, t, u0);
   };
-  double t_done = t_prev;
-  double h = t_next - t_prev;
-  int depth = 0;
-  while (t_done < t_next) {
-    const double t_try = (t_next - t_done <= h * (1.0 + 1e-12)) ? t_next : t_done + h;
+  LoadIncrements inc(t_prev, t_next, max_cutbacks_);
+  while (inc.more()) {
+    const double t_try = inc.next();
     VecX u_try = u;
     bool ok = false;
-    system_.model().begin_step(t_try - t_done);
+    system_.model().begin_step(t_try - inc.done());
     try {
-      ok = solve(t_try, t_done, u_try, report, statics);
+      ok = solve(t_try, inc.done(), u_try, report, statics);
     } catch (const Error&) {
       ok = false;  // a non-finite residual in a too-large increment: cut back
-      if (depth >= max_cutbacks_) throw;
+      if (inc.exhausted()) throw;
     }
     if (ok) {
       system_.model().commit_step(u_try);
       u.swap(u_try);
       accept(t_try, u);
-      t_done = t_try;
+      inc.accept(t_try);
       ++report.solver.sub_increments;
-      if (depth > 0) {
-        h *= 2.0;
-        --depth;
-      }
       continue;
     }
-    if (depth >= max_cutbacks_) {
+    if (inc.exhausted()) {
       std::ostringstream msg;
       msg << "static solve with contact did not converge at t = " << t_try << " after " << max_cutbacks_
           << " cut-backs (outer iterations " << report.outer_iterations
@@ -359,8 +354,7 @@ ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, Vec
              "or solver.steps)";
       throw Error(msg.str());
     }
-    h *= 0.5;
-    ++depth;
+    inc.cut_back();
     ++report.solver.cutbacks;
   }
   report.bodies = state_;

@@ -126,25 +126,12 @@ class NewtonLog {
   std::vector<std::vector<double>> history_;
 };
 
-/// The viscoelastic model of a run, whichever class it is: ViscoelasticStVK (the tensor-mass model,
-/// every Prony scheme) or ViscoelasticHyperelastic (any law on the F-based kernel, objective scheme);
-/// both keep the same committed-energy bookkeeping. Empty for an elastic run.
-struct Viscous {
-  const ViscoelasticStVK* stvk = nullptr;
-  const ViscoelasticHyperelastic* law = nullptr;
-  explicit operator bool() const { return stvk || law; }
-  /// f(model) on the one that is set (call only when set).
-  template <class F>
-  auto get(F&& f) const {
-    return stvk ? f(*stvk) : f(*law);
-  }
-};
-
 /// The elastic model a case asks for; `visco` is set when it is a viscoelastic one. tensor_mass and
 /// tl_oracle are St Venant-Kirchhoff models (the paper's and its oracle): another law is refused
 /// with the name of the model that runs it, hyperelastic_tl (HyperelasticTL, any law).
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
-                                         const StVenantKirchhoff& material, const Law& law, Viscous& visco) {
+                                         const StVenantKirchhoff& material, const Law& law,
+                                         const ViscoelasticBase*& visco) {
   if (cfg.material.law != MaterialLaw::StVK && cfg.model != CaseModel::HyperelasticTL)
     throw Error(
         cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
@@ -175,11 +162,11 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
       } catch (const Error& e) {
         throw Error(cfg.file + ": key 'material.viscoelastic' (model hyperelastic_tl): " + e.what());
       }
-      visco.law = vm.get();
+      visco = vm.get();
       return vm;
     }
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
-    visco.stvk = vm.get();
+    visco = vm.get();
     return vm;
   }
   if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
@@ -256,7 +243,8 @@ struct Problem {
   double size;                 ///< bounding-box diagonal, m
   StVenantKirchhoff material;  ///< the small-strain St VK (the law of tensor_mass and tl_oracle)
   Law law;                     ///< the case's law (hyperelastic_tl; St VK as `material` otherwise)
-  Viscous visco;               ///< the model when it is viscoelastic
+  /// The model when it is viscoelastic (ViscoelasticStVK or ViscoelasticHyperelastic), else null.
+  const ViscoelasticBase* visco = nullptr;
   std::unique_ptr<ElasticModel> model;
   TotalLagrangianStVK fields_kernel;  // per-tet F for output (geometry only: the stress is the law's)
   VecX node_mass;
@@ -373,16 +361,12 @@ class StepRecorder {
     // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
     // the Maxwell-branch energies of the committed state (the same definition as the deal.II
     // reference); dissipation is the model's own count.
-    const Viscous& visco = p_.visco;
-    if (visco) {
-      visco.get([&](const auto& m) {
-        s.elastic_energy = m.committed_elastic_energy() + m.committed_branch_energy();
-        s.extras = {{series_names::kSpringEnergy, "J", m.committed_elastic_energy()},
-                    {series_names::kBranchEnergy, "J", m.committed_branch_energy()},
-                    {series_names::kDissipatedEnergy, "J", m.total_dissipation()},
-                    {series_names::kStepDissipation, "J", m.step_dissipation()}};
-        return 0;
-      });
+    if (const ViscoelasticBase* m = p_.visco) {
+      s.elastic_energy = m->committed_elastic_energy() + m->committed_branch_energy();
+      s.extras = {{series_names::kSpringEnergy, "J", m->committed_elastic_energy()},
+                  {series_names::kBranchEnergy, "J", m->committed_branch_energy()},
+                  {series_names::kDissipatedEnergy, "J", m->total_dissipation()},
+                  {series_names::kStepDissipation, "J", m->step_dissipation()}};
     } else {
       s.elastic_energy = p_.model->energy(u);
     }
@@ -404,18 +388,9 @@ class StepRecorder {
   }
 
   static series_names::ContactValues contact_values(const ContactBodyState& b) {
-    series_names::ContactValues c;
-    c.body = b.name;
-    c.position = {b.position.x(), b.position.y(), b.position.z()};
-    c.force = {b.force.x(), b.force.y(), b.force.z()};
-    c.moment = {b.moment.x(), b.moment.y(), b.moment.z()};
-    c.area = b.area;
-    c.radius = b.radius_equivalent;
-    c.radius_max = b.radius_max;
-    c.active_nodes = b.active_nodes;
-    for (double pr : b.pressure) c.max_pressure = std::max(c.max_pressure, pr);
-    c.max_penetration = b.max_penetration;
-    return c;
+    double max_pressure = 0.0;
+    for (double pr : b.pressure) max_pressure = std::max(max_pressure, pr);
+    return series_names::contact_values(b, max_pressure);
   }
 
   /// The contact forces on the sample's nodes, added to f.
@@ -1199,7 +1174,7 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
   const SeriesTable& table = rec.recorder().table();
   const double stored = table.last(series_names::kElasticEnergy);
   const double kinetic = table.last(series_names::kKineticEnergy);
-  const double dissipated = p.visco ? p.visco.get([](const auto& m) { return m.total_dissipation(); }) : 0.0;
+  const double dissipated = p.visco ? p.visco->total_dissipation() : 0.0;
   const double work = rec.external_work();
   summary["energy"] = {{"external_work_J", work},
                        {"stored_J", stored},
@@ -1208,11 +1183,10 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
                        {"balance_residual_J", work - stored - kinetic - dissipated}};
   if (p.visco) {
     const ViscoelasticSpec& vs = cfg.material.viscoelastic;
-    summary["viscoelastic"] = {
-        {"history", to_string(vs.history)},
-        {"integration", to_string(vs.integration)},
-        {"relaxation", to_string(vs.relaxation)},
-        {"prony_long_term", p.visco.get([](const auto& m) { return m.prony().to_json(); })}};
+    summary["viscoelastic"] = {{"history", to_string(vs.history)},
+                               {"integration", to_string(vs.integration)},
+                               {"relaxation", to_string(vs.relaxation)},
+                               {"prony_long_term", p.visco->prony().to_json()}};
   }
   return summary;
 }

@@ -68,20 +68,24 @@ ImplicitDynamics::ImplicitDynamics(const MechanicalSystem& system, ImplicitSchem
                                    NewtonOptions options)
     : system_(system), scheme_(scheme), options_(options), linear_(options.linear_solver) {}
 
+void implicit_initial_state(const MechanicalSystem& system, double t0, VecX& u, const VecX& v, VecX& a) {
+  system.bc().apply(t0, u);
+  // The initial state is the committed one: an initial displacement is applied instantaneously.
+  system.model().begin_step(0.0);
+  system.model().commit_step(u);
+  VecX fint, fext, fd;
+  system.model().internal_force(u, fint);
+  system.loads().assemble(u, t0, fext);
+  system.damping_force(v, fd);
+  a = (fext - fint - fd).cwiseQuotient(system.mass());
+  for (Index d : system.bc().dofs()) a[d] = 0.0;
+}
+
 void ImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& v0) {
   t_ = t0;
   u_ = u0;
-  system_.bc().apply(t0, u_);
   v_ = v0;
-  // The initial state is the committed one: an initial displacement is applied instantaneously.
-  system_.model().begin_step(0.0);
-  system_.model().commit_step(u_);
-  VecX fint, fext, fd;
-  system_.model().internal_force(u_, fint);
-  system_.loads().assemble(u_, t0, fext);
-  system_.damping_force(v_, fd);
-  a_ = (fext - fint - fd).cwiseQuotient(system_.mass());
-  for (Index d : system_.bc().dofs()) a_[d] = 0.0;
+  implicit_initial_state(system_, t0, u_, v_, a_);
 }
 
 void ImplicitDynamics::restore(double t, const VecX& u, const VecX& v, const VecX& a) {

@@ -50,6 +50,12 @@ class ImplicitStepResidual final : public NonlinearSystem {
   double scale_ = 0.0;
 };
 
+/// The start of an implicit run at t0 (ImplicitDynamics, and the contact loop around it): the
+/// Dirichlet values of t0 applied to u, u committed as the model's initial state (an initial
+/// displacement is applied instantaneously), and the initial acceleration a solving
+/// M a = f_ext - f_int - C v, zero on the constrained DOFs.
+void implicit_initial_state(const MechanicalSystem& system, double t0, VecX& u, const VecX& v, VecX& a);
+
 class ImplicitDynamics {
  public:
   ImplicitDynamics(const MechanicalSystem& system, ImplicitScheme scheme, NewtonOptions options);

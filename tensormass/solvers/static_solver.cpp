@@ -1,4 +1,5 @@
 #include "tensormass/solvers/static_solver.hpp"
+#include "tensormass/solvers/load_increments.hpp"
 
 #include "core/base/error.hpp"
 
@@ -43,37 +44,31 @@ NewtonResult StaticSolver::solve(double t, VecX& u) {
 
 StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
   StaticStepReport report;
-  double t_done = t_prev;
-  double h = t_next - t_prev;
-  int depth = 0;
-  while (t_done < t_next) {
-    const double t_try = (t_next - t_done <= h * (1.0 + 1e-12)) ? t_next : t_done + h;
+  LoadIncrements inc(t_prev, t_next, max_cutbacks_);
+  while (inc.more()) {
+    const double t_try = inc.next();
     VecX u_try = u;
     NewtonResult nr;
     bool ok = false;
-    system_.model().begin_step(t_try - t_done);  // trial history for this (sub-)increment
+    system_.model().begin_step(t_try - inc.done());  // trial history for this (sub-)increment
     try {
       nr = solve(t_try, u_try);
       ok = nr.converged;
     } catch (const Error&) {
       ok = false;  // a non-finite residual in a too-large increment: cut back like non-convergence
-      if (depth >= max_cutbacks_) throw;
+      if (inc.exhausted()) throw;
     }
     report.newton_iterations += nr.iterations;
     if (ok) {
       system_.model().commit_step(u_try);  // the increment is accepted: advance the history once
       u.swap(u_try);
-      t_done = t_try;
+      inc.accept(t_try);
       report.newton = nr;
       report.at_roundoff = report.at_roundoff || nr.at_roundoff;
       ++report.sub_increments;
-      if (depth > 0) {  // success after a cut-back: let the increment grow back
-        h *= 2.0;
-        --depth;
-      }
       continue;
     }
-    if (depth >= max_cutbacks_) {
+    if (inc.exhausted()) {
       std::ostringstream msg;
       msg << "static Newton did not converge at t = " << t_try << " after " << max_cutbacks_
           << " cut-backs of the load increment (last residual " << nr.residual_final << " from "
@@ -83,8 +78,7 @@ StaticStepReport StaticSolver::advance(double t_prev, double t_next, VecX& u) {
              "under strong compression)";
       throw Error(msg.str());
     }
-    h *= 0.5;
-    ++depth;
+    inc.cut_back();
     ++report.cutbacks;
   }
   return report;

@@ -9,6 +9,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 namespace tmlab {
 namespace {
@@ -83,6 +84,30 @@ TEST_F(ConfigReaderTest, SyntaxErrorNamesFileLineAndColumn) {
   const std::string m = error_of<double>("{\n  \"E\": 1,\n  \"nu\" 0.3\n}", "E");
   EXPECT_NE(m.find("c.json: invalid JSON"), std::string::npos) << m;
   EXPECT_NE(m.find("line 3"), std::string::npos) << m;
+}
+
+TEST(ConfigReader, Vec3ReadsThreeFiniteNumbersOrNamesTheKey) {
+  nlohmann::json j = nlohmann::json::parse(
+      R"({"p": [1, -2.5, 3e-3], "short": [1, 2], "text": [1, "a", 2], "big": [1, 1e308, 0], "none": 4})");
+  j["inf"] = {1.0, std::numeric_limits<double>::infinity(), 0.0};
+  ConfigReader r(j, "case.json", "load");
+  EXPECT_EQ(r.vec3("p"), Eigen::Vector3d(1.0, -2.5, 3e-3));
+  const auto message = [&](const std::string& key) {
+    try {
+      r.vec3(key);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(message("short").find("case.json: key 'load.short' must be a list of 3 numbers"),
+            std::string::npos)
+      << message("short");
+  EXPECT_NE(message("text").find("load.text"), std::string::npos);
+  EXPECT_NE(message("none").find("load.none"), std::string::npos);
+  EXPECT_NE(message("missing").find("is required"), std::string::npos);
+  EXPECT_NE(message("inf").find("key 'load.inf' must be finite"), std::string::npos) << message("inf");
+  EXPECT_EQ(r.vec3("big"), Eigen::Vector3d(1.0, 1e308, 0.0));
 }
 
 }  // namespace

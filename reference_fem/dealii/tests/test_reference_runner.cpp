@@ -476,8 +476,8 @@ TEST(ReferenceContactGeometry, GapAndBoundaryEqualTheFastModels) {
     for (double t : {0.0, 0.5}) {
       double worst = 0.0;
       for (const Vec3& x : points) {
-        const tm::GapPoint g = fast[b].gap(x, t);
-        const BodyGap h = body_gap(*ref[b], x, t);
+        const GapPoint g = fast[b].gap(x, t);
+        const GapPoint h = body_gap(*ref[b], x, t);
         worst =
             std::max({worst, std::abs(g.g - h.g) / 0.01, (g.normal - h.normal).norm(),
                       (g.closest - h.closest).norm() / 0.01, (g.hessian - h.hessian).norm() * 1e-3,
