@@ -32,6 +32,48 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// The checkpoint of a discover command whose units are a list of T (fits, benchmark sets): writes
+/// the finished units through `put`, and with --resume reads them back through `get` before the
+/// result directory is touched. Not copyable or movable (its writer refers to `done`).
+template <class T>
+class UnitList {
+ public:
+  using Put = void (*)(CheckpointData&, const std::vector<T>&);
+  using Get = std::vector<T> (*)(const CheckpointData&);
+  UnitList(const fs::path& dir, const std::string& kind, const nlohmann::json& fingerprint,
+           const CheckpointSchedule& schedule, Put put, std::string noun)
+      : noun_(std::move(noun)),
+        ck(dir / RunOutput::kStaging / "checkpoint.h5", kind, fingerprint, schedule, [this, put] {
+          CheckpointData d;
+          put(d, done_);
+          return d;
+        }) {}
+  UnitList(const UnitList&) = delete;
+  UnitList& operator=(const UnitList&) = delete;
+
+  /// The units of the interrupted run (--resume), said on standard error.
+  std::vector<T> restore(Get get) {
+    done_ = get(ck.read());
+    ck.resumed_from(count());
+    std::cerr << "tmlab discover: resuming from " << ck.path().string() << ": " << count()
+              << " taken from it, the rest runs\n";
+    return done_;
+  }
+  /// Records a finished unit (a checkpoint when one is due).
+  void finished(const T& unit) {
+    done_.push_back(unit);
+    ck.unit_finished(count());
+  }
+
+ private:
+  std::string count() const { return std::to_string(done_.size()) + " finished " + noun_; }
+  std::vector<T> done_;
+  std::string noun_;
+
+ public:
+  UnitCheckpoint ck;
+};
+
 std::string html_escape(const std::string& s) {
   std::string o;
   for (const char c : s) {
@@ -219,24 +261,11 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
                               {"rig", p.has("--rig") ? p.get("--rig") : "all"},
                               {"only", p.has("--only") ? p.get("--only") : "all"}};
   discover::BenchmarkLog log;
-  std::vector<discover::BenchmarkEntry> done;
-  UnitCheckpoint ck(dir / RunOutput::kStaging / "checkpoint.h5", "discover-benchmark", fingerprint,
-                    checkpoint_schedule(p), [&done] {
-                      CheckpointData d;
-                      put_benchmark_entries(d, done);
-                      return d;
-                    });
-  if (p.has("--resume")) {
-    log.restored = get_benchmark_entries(ck.read());
-    done = log.restored;
-    ck.resumed_from(std::to_string(done.size()) + " benchmark set(s)");
-    std::cerr << "tmlab discover: resuming from " << ck.path().string() << ": " << done.size()
-              << " finished benchmark set(s) taken from it, the rest runs\n";
-  }
-  log.finished = [&](const discover::BenchmarkEntry& e) {
-    done.push_back(e);
-    ck.unit_finished(std::to_string(done.size()) + " benchmark set(s)");
-  };
+  UnitList<discover::BenchmarkEntry> units(dir, "discover-benchmark", fingerprint, checkpoint_schedule(p),
+                                           put_benchmark_entries, "benchmark set(s)");
+  UnitCheckpoint& ck = units.ck;
+  if (p.has("--resume")) log.restored = units.restore(get_benchmark_entries);
+  log.finished = [&units](const discover::BenchmarkEntry& e) { units.finished(e); };
   RunOutput out(dir, &std::cerr,
                 p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
@@ -377,24 +406,11 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
                              {"max_samples", fe.max_samples}};
   fingerprint["data"] = {{"csv", file_hash(csv)}, {"metadata", file_hash(measured::metadata_path(csv))}};
   discover::FitLog log;
-  std::vector<discover::FitOutcome> done;
-  UnitCheckpoint ck(dir / RunOutput::kStaging / "checkpoint.h5", "discover", fingerprint,
-                    checkpoint_schedule(p), [&done] {
-                      CheckpointData d;
-                      put_fit_outcomes(d, done);
-                      return d;
-                    });
-  if (p.has("--resume")) {
-    log.restored = get_fit_outcomes(ck.read());
-    done = log.restored;
-    ck.resumed_from(std::to_string(done.size()) + " fit(s)");
-    std::cerr << "tmlab discover: resuming from " << ck.path().string() << ": " << done.size()
-              << " finished fit(s) taken from it, the rest runs\n";
-  }
-  log.finished = [&](const discover::FitOutcome& f) {
-    done.push_back(f);
-    ck.unit_finished(std::to_string(done.size()) + " fit(s)");
-  };
+  UnitList<discover::FitOutcome> units(dir, "discover", fingerprint, checkpoint_schedule(p), put_fit_outcomes,
+                                       "fit(s)");
+  UnitCheckpoint& ck = units.ck;
+  if (p.has("--resume")) log.restored = units.restore(get_fit_outcomes);
+  log.finished = [&units](const discover::FitOutcome& f) { units.finished(f); };
   o.fit_log = &log;
   RunOutput out(dir, &std::cerr,
                 p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
