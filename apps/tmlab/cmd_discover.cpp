@@ -116,6 +116,8 @@ std::string report_html(const nlohmann::json& j, bool plots) {
   if (j["selected_effects"].empty()) h << "none";
   for (std::size_t i = 0; i < j["selected_effects"].size(); ++i)
     h << (i ? ", " : "") << "<code>" << cell(j["selected_effects"][i]) << "</code>";
+  for (std::size_t i = 0; i < j["removed_effects"].size(); ++i)
+    h << (i ? ", " : "; removed again: ") << "<code>" << cell(j["removed_effects"][i]) << "</code>";
   h << ". <b>Unexplained structure:</b> " << (j["unexplained_structure"].get<bool>() ? "yes: " : "no")
     << cell(j["unexplained_signature"]) << "</p>\n";
   h << "<p>Stopped: " << cell(j["stop_reason"]) << ". Selection rule: " << cell(j["selection_rule"])
@@ -131,7 +133,8 @@ std::string report_html(const nlohmann::json& j, bool plots) {
       << "</td><td>" << cell(m["bic"], 7) << "</td><td>" << cell(m["free_parameters"]) << "</td><td>"
       << (m["residual"]["structured"].get<bool>() ? "no" : "yes") << "</td></tr>\n";
   h << "</table><p>Peak force " << cell(j["peak_force_N"]) << " N; " << cell(j["samples"]) << " samples in "
-    << cell(j["tests"]) << " tests (every " << cell(j["decimation_stride"]) << "th sample kept).</p>\n";
+    << cell(j["tests"]) << " tests (" << discover::stride_text(j["decimation_stride"].get<std::size_t>())
+    << ").</p>\n";
   if (j.contains("fe_rig")) {
     // --forward fe_rig: the baseline and the final model refitted on the FE rig.
     h << "<h2>On the FE rig (--forward fe_rig)</h2><p>" << cell(j["fe_rig"]["description"])
@@ -152,14 +155,16 @@ std::string report_html(const nlohmann::json& j, bool plots) {
   if (plots)
     for (const char* p : {"discover_fits.png", "discover_residuals.png", "discover_residual_vs_strain.png"})
       h << "<p><img src=\"" << p << "\" alt=\"" << p << "\"></p>\n";
-  h << "<h2>Steps</h2><table><tr><th>round</th><th>effect</th><th>model</th><th>RMS [N]</th><th>dBIC</th>"
+  h << "<h2>Steps</h2><table><tr><th>round</th><th>action</th><th>effect</th><th>model</th><th>RMS "
+       "[N]</th><th>dBIC</th>"
        "<th>held-out RMS [N]</th><th>current held-out [N]</th><th>accepted</th><th>why</th></tr>\n";
   for (const auto& s : j["steps"])
     h << "<tr class=\"" << (s["accepted"].get<bool>() ? "yes" : "") << "\"><td>" << cell(s["round"])
-      << "</td><td><code>" << cell(s["effect"]) << "</code></td><td>" << cell(s["model"]) << "</td><td>"
-      << cell(s["rms_N"]) << "</td><td>" << cell(s["criterion"]["delta_bic"]) << "</td><td>"
-      << cell(s["held_out_rms_N"]) << "</td><td>" << cell(s["criterion"]["current_held_out_rms_N"])
-      << "</td><td>" << cell(s["accepted"]) << "</td><td>" << cell(s["reason"]) << "</td></tr>\n";
+      << "</td><td>" << cell(s["action"]) << "</td><td><code>" << cell(s["effect"]) << "</code></td><td>"
+      << cell(s["model"]) << "</td><td>" << cell(s["rms_N"]) << "</td><td>"
+      << cell(s["criterion"]["delta_bic"]) << "</td><td>" << cell(s["held_out_rms_N"]) << "</td><td>"
+      << cell(s["criterion"]["current_held_out_rms_N"]) << "</td><td>" << cell(s["accepted"]) << "</td><td>"
+      << cell(s["reason"]) << "</td></tr>\n";
   h << "</table>\n";
   for (const auto& [name, m] : {std::pair<std::string, const nlohmann::json&>{"baseline", b}, {"final", f}}) {
     h << "<h2>Residual diagnostics, " << name
@@ -287,8 +292,9 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
         if (rigs.find("," + discover::to_string(s.rig) + ",") != std::string::npos)
           kept.push_back(std::move(s));
       if (kept.empty())
-        throw UsageError("--rig: no benchmark set on '" + p.get("--rig") +
-                         "' (unconfined_compression, sphere_indentation, uniaxial_tension)");
+        throw UsageError(
+            "--rig: no benchmark set on '" + p.get("--rig") +
+            "' (unconfined_compression, sphere_indentation, uniaxial_tension, confined_compression)");
       sets = std::move(kept);
     }
     if (p.has("--only")) {
@@ -369,7 +375,9 @@ void print_discover_report(const discover::Report& r, const std::vector<discover
             << " N (" << significant(r.baseline.fit.rms_percent_peak, 3) << " % of peak), max "
             << significant(r.baseline.max_abs, 4) << " N\n";
   for (const auto& s : r.steps)
-    if (s.accepted) std::cout << "round " << s.round << ": added " << s.effect << " (" << s.reason << ")\n";
+    if (s.accepted)
+      std::cout << "round " << s.round << (s.removal ? ": removed " : ": added ") << s.effect << " ("
+                << s.reason << ")\n";
   std::cout << "final " << r.final.structure.label() << ": RMS " << significant(r.final.fit.rms, 4) << " N ("
             << significant(r.final.fit.rms_percent_peak, 3) << " % of peak), max "
             << significant(r.final.max_abs, 4) << " N\n"

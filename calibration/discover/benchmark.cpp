@@ -27,8 +27,13 @@ const double kRates[3] = {0.02, 0.05, 0.1};
 // Prony terms absorb a third one within the noise).
 constexpr double kSphereRadius = 2.5e-3;
 const double kDepths[3] = {1e-4, 2e-4, 3e-4}, kDepthRates[3] = {1e-4, 5e-5, 3e-5};
+constexpr double kSphereHold = 60.0;
 // Uniaxial tension of a strip 5 x 2 mm, gauge length 20 mm, to 25 % stretch at the platen rates.
 constexpr double kStripW = 5e-3, kStripT = 2e-3, kGauge = 0.02;
+// Confined compression of the platen cylinder in a frictionless chamber, to 10 % strain at the
+// platen rates (ramps of 5, 2 and 1 s): the confined modulus of a nearly incompressible sample is
+// about 17 x E, so confined tests stay at small strain.
+constexpr double kConfinedStrain = 0.10;
 
 DataSet protocol(const std::string& name, BenchmarkRig rig) {
   DataSet d;
@@ -44,6 +49,13 @@ DataSet protocol(const std::string& name, BenchmarkRig rig) {
     d.meta.sample.shape = SampleShape::block;
     d.meta.sample.size_m = {kStripW, kStripT, kGauge};
     d.meta.sample.bottom = Interface::bonded;
+  } else if (rig == BenchmarkRig::confined) {
+    d.meta.test = TestType::confined_compression;
+    d.meta.sample.shape = SampleShape::cylinder;
+    d.meta.sample.radius_m = kRadius;
+    d.meta.sample.height_m = kHeight;
+    d.meta.sample.bottom = Interface::frictionless;
+    d.meta.sample.platens = Interface::frictionless;
   } else {
     d.meta.test = TestType::unconfined_compression;
     d.meta.sample.shape = SampleShape::cylinder;
@@ -60,23 +72,25 @@ DataSet protocol(const std::string& name, BenchmarkRig rig) {
     if (rig == BenchmarkRig::sphere) {
       stroke = kDepths[k];
       v = kDepthRates[k];
+    } else if (rig == BenchmarkRig::confined) {
+      stroke = kConfinedStrain * kHeight;
     } else if (rig == BenchmarkRig::tension) {
       stroke = kStrain * kGauge;
       v = kRates[k] * kGauge;
       sign = -1.0;
     }
-    const double tr = stroke / v;
-    const double total = 2.0 * tr + kHold + kRest;
+    const double tr = stroke / v, hold = rig == BenchmarkRig::sphere ? kSphereHold : kHold;
+    const double total = 2.0 * tr + hold + kRest;
     const int n = int(std::round(total * kRate));
     for (int i = 0; i <= n; ++i) {
       const double tt = double(i) / kRate;
       double u = 0.0;
       if (tt <= tr)
         u = v * tt;
-      else if (tt <= tr + kHold)
+      else if (tt <= tr + hold)
         u = stroke;
-      else if (tt <= 2.0 * tr + kHold)
-        u = stroke - v * (tt - tr - kHold);
+      else if (tt <= 2.0 * tr + hold)
+        u = stroke - v * (tt - tr - hold);
       t.time_s.push_back(tt);
       t.displacement_m.push_back(sign * std::max(u, 0.0));
       t.force_N.push_back(sign * (1e-3 + std::max(u, 0.0) / stroke));  // placeholder, replaced by the model
@@ -95,9 +109,10 @@ void set(std::vector<fit::Parameter>& ps, std::vector<double>& x, const std::str
 std::vector<std::string> outside_effects() { return {"actuator_resonance", "preconditioning"}; }
 
 std::string to_string(BenchmarkRig r) {
-  return r == BenchmarkRig::sphere    ? "sphere_indentation"
-         : r == BenchmarkRig::tension ? "uniaxial_tension"
-                                      : "unconfined_compression";
+  return r == BenchmarkRig::sphere     ? "sphere_indentation"
+         : r == BenchmarkRig::tension  ? "uniaxial_tension"
+         : r == BenchmarkRig::confined ? "confined_compression"
+                                       : "unconfined_compression";
 }
 
 SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig) {
@@ -105,9 +120,10 @@ SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig)
   s.truth = truth;
   s.rig = rig;
   s.name = "bench-" +
-           std::string(rig == BenchmarkRig::sphere    ? "sphere-"
-                       : rig == BenchmarkRig::tension ? "tension-"
-                                                      : "") +
+           std::string(rig == BenchmarkRig::sphere     ? "sphere-"
+                       : rig == BenchmarkRig::tension  ? "tension-"
+                       : rig == BenchmarkRig::confined ? "confined-"
+                                                       : "") +
            truth + "-" + std::to_string(seed);
   const std::vector<std::string> outside_names = outside_effects();
   const bool outside = std::find(outside_names.begin(), outside_names.end(), truth) != outside_names.end();
@@ -208,10 +224,12 @@ SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig)
 
 std::vector<SyntheticSet> benchmark_sets(bool quick) {
   std::vector<std::pair<std::string, BenchmarkRig>> truths;
-  const auto U = BenchmarkRig::unconfined, S = BenchmarkRig::sphere, T = BenchmarkRig::tension;
+  const auto U = BenchmarkRig::unconfined, S = BenchmarkRig::sphere, T = BenchmarkRig::tension,
+             C = BenchmarkRig::confined;
   if (quick) {
-    truths = {{"noise_only", U},  {"contact_offset", U},     {"neo_hookean_hyperelastic", U},
-              {"force_drift", U}, {"actuator_resonance", U}, {"finite_layer_thickness", S}};
+    truths = {{"noise_only", U},      {"contact_offset", U},     {"neo_hookean_hyperelastic", U},
+              {"force_drift", U},     {"actuator_resonance", U}, {"finite_layer_thickness", S},
+              {"extra_prony_term", C}};
   } else {
     // Every library effect that applies to platen data, plus separate bulk and shear relaxation
     // (which the loop cannot tell from a Prony term on one rig's forces: scored as confounded).
@@ -229,6 +247,8 @@ std::vector<SyntheticSet> benchmark_sets(bool quick) {
     // Uniaxial tension.
     for (const char* e : {"extra_prony_term", "yeoh_hyperelastic", "force_offset", "noise_only"})
       truths.emplace_back(e, T);
+    // Confined compression.
+    for (const char* e : {"extra_prony_term", "contact_offset", "noise_only"}) truths.emplace_back(e, C);
   }
   std::vector<SyntheticSet> sets;
   unsigned seed = 1;
@@ -237,9 +257,10 @@ std::vector<SyntheticSet> benchmark_sets(bool quick) {
 }
 
 bool library_match(const std::string& truth, const std::vector<std::string>& found) {
+  if (truth == "separate_bulk_shear_relaxation")
+    return found.empty() || (found.size() == 1 && found[0] == "extra_prony_term");
   if (found.size() != 1) return false;
   if (found[0] == truth) return true;
-  if (truth == "separate_bulk_shear_relaxation") return found[0] == "extra_prony_term";
   return !effect_law(truth).empty() && !effect_law(found[0]).empty();
 }
 
@@ -293,7 +314,10 @@ BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Optio
       if (log && log->finished) log->finished(e);
     }
     if (s.kind == Truth::library) {
-      e.correct = library_match(s.truth, e.found);
+      // Bulk relaxation on one rig's forces is a relaxation the baseline's free terms may absorb:
+      // right is nothing or one Prony term, with the residual at the noise (library_match).
+      e.correct =
+          library_match(s.truth, e.found) && (s.truth != "separate_bulk_shear_relaxation" || !e.unexplained);
       ++b.library_sets;
       b.library_correct += e.correct ? 1 : 0;
       b.library_exact += e.found.size() == 1 && e.found[0] == s.truth ? 1 : 0;
@@ -345,7 +369,9 @@ nlohmann::json to_json(const BenchmarkResult& b) {
       "strain, hold 20 s, unload, rest 5 s, 5 Hz; sphere indentation (bench-sphere-*): R 2.5 mm on a "
       "half-space, depths 0.1, 0.2, 0.3 mm at 0.1, 0.05, 0.03 mm/s, same hold, rest and sampling; "
       "uniaxial tension (bench-tension-*): strip 5 x 2 mm, gauge 20 mm, to 25 % stretch at the platen "
-      "rates; truth St VK E_inf 30 kPa nu 0.49, Prony e 12, 8 kPa tau 0.5, 15 s; white noise 0.3 % of peak";
+      "rates; confined compression (bench-confined-*): the platen cylinder in a frictionless chamber to 10 % "
+      "strain at the platen rates; truth St VK E_inf 30 kPa nu 0.49, Prony e 12, 8 kPa tau 0.5, 15 s; white "
+      "noise 0.3 % of peak";
   j["confusion"] = {{"rows_truth", b.rows}, {"columns_found", b.columns}, {"counts", b.confusion}};
   j["library_sets"] = b.library_sets;
   j["library_correct"] = b.library_correct;

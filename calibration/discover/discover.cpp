@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 namespace tmlab::discover {
 
@@ -195,6 +196,213 @@ std::vector<std::string> protocol_notes(const Prepared& p) {
   return notes;
 }
 
+std::string stride_text(std::size_t stride) {
+  if (stride <= 1) return "all samples kept";
+  const std::size_t tens = stride % 100, last = stride % 10;
+  const char* suffix = (tens >= 11 && tens <= 13) ? "th"
+                       : last == 1                ? "st"
+                       : last == 2                ? "nd"
+                       : last == 3                ? "rd"
+                                                  : "th";
+  return "every " + std::to_string(stride) + suffix + " sample kept";
+}
+
+Fitted refit_from(const Prepared& p, const Fitted& cur, const Fitted& c, const Options& o) {
+  return fit_structure(p, cur.structure,
+                       structure_parameters(cur.structure, p, o.poisson, o.fix_poisson, &c.structure, &c.x),
+                       o, o.starts);
+}
+
+Structure without_effect(const Structure& s, const std::string& effect, const Structure& baseline) {
+  Structure out = s;
+  if (!effect_law(effect).empty() && s.law != baseline.law && effect_law(effect) == s.law) {
+    out.law = baseline.law;
+  } else if (effect == "extra_prony_term" && s.prony_terms > baseline.prony_terms) {
+    out.prony_terms -= 1;
+  } else {
+    const auto it = std::find(out.effects.begin(), out.effects.end(), effect);
+    if (it == out.effects.end() || baseline.has(effect))
+      throw Error("discover: " + s.label() + " has no '" + effect + "' beyond " + baseline.label() +
+                  " to remove");
+    out.effects.erase(it);
+  }
+  return out;
+}
+
+std::vector<std::string> backward_step(const Prepared& p, const Structure& baseline, Fitted& cur,
+                                       const std::string& just_added, int round, const Options& o,
+                                       std::vector<Step>& steps) {
+  std::vector<std::string> removed;
+  bool again = true;
+  while (again) {  // after a removal the others are tried again against the smaller model
+    again = false;
+    std::vector<std::string> present = effects_in(cur.structure, baseline);
+    present.erase(std::unique(present.begin(), present.end()), present.end());  // extra terms: once
+    for (const auto& e : present) {
+      if (e == just_added) continue;
+      Step st;
+      st.round = round;
+      st.removal = true;
+      st.effect = e;
+      const Structure s2 = without_effect(cur.structure, e, baseline);
+      st.model = s2.label();
+      try {
+        Fitted red = fit_structure(
+            p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o,
+            o.starts);
+        st.free_parameters = red.fit.k;
+        st.rms = red.fit.rms;
+        st.bic = red.fit.bic;
+        st.delta_bic = red.fit.bic - cur.fit.bic;  // > 0: the effect still pays for itself
+        if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
+        red.held_out_rms = held_out_rms(p, red, o);
+        st.held_out_rms = red.held_out_rms;
+        st.current_held_out_rms = cur.held_out_rms;
+        const bool bic_earned = -st.delta_bic < -o.bic_threshold;
+        const bool held_out_earned = cur.held_out_rms < o.held_out_ratio * red.held_out_rms;
+        if (bic_earned && held_out_earned) {
+          st.reason = "kept: without it BIC rises by " + significant(st.delta_bic, 4) +
+                      " and the held-out RMS from " + significant(cur.held_out_rms, 4) + " to " +
+                      significant(red.held_out_rms, 4) + " N";
+        } else {
+          st.accepted = true;
+          st.reason =
+              "removed: it would not be accepted now (" +
+              std::string(bic_earned ? "" : "BIC without it rises by only " + significant(st.delta_bic, 3)) +
+              std::string(!bic_earned && !held_out_earned ? "; " : "") +
+              std::string(held_out_earned ? ""
+                                          : "held-out RMS with it " + significant(cur.held_out_rms, 4) +
+                                                " N not below " + significant(o.held_out_ratio, 3) + " x " +
+                                                significant(red.held_out_rms, 4) + " N without") +
+              ")";
+          cur = std::move(red);
+          removed.push_back(e);
+          again = true;
+        }
+        say(o, "round " + std::to_string(round) + " backward: " + e + " " + st.reason);
+      } catch (const Interrupted&) {
+        throw;
+      } catch (const std::exception& ex) {
+        st.reason = std::string("kept: the model without it cannot be fitted: ") + ex.what();
+        say(o, "round " + std::to_string(round) + " backward: " + e + " " + st.reason);
+      }
+      steps.push_back(st);
+      if (again) break;
+    }
+  }
+  return removed;
+}
+
+namespace {
+
+/// The candidates of one round, each fitted from the current optimum (a Step each, in library order).
+std::vector<Fitted> fit_candidates(const Prepared& p, const Fitted& cur, int round, const Options& o,
+                                   Report& r, std::vector<std::size_t>& step_of) {
+  std::vector<Fitted> cand;
+  for (const auto& e : effect_library()) {
+    if (!o.effects.empty() && std::find(o.effects.begin(), o.effects.end(), e.name) == o.effects.end())
+      continue;
+    const std::string why = not_applicable(e.name, cur.structure, p);
+    if (!why.empty()) {
+      if (round == 1 && std::none_of(r.not_applicable.begin(), r.not_applicable.end(),
+                                     [&](const auto& n) { return n.first == e.name; }))
+        r.not_applicable.emplace_back(e.name, why);  // once (a round may run twice)
+      continue;
+    }
+    const Structure s2 = with_effect(cur.structure, e.name);
+    Step st;
+    st.round = round;
+    st.effect = e.name;
+    st.model = s2.label();
+    try {
+      Fitted f = fit_structure(
+          p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o, o.starts);
+      st.free_parameters = f.fit.k;
+      st.rms = f.fit.rms;
+      st.bic = f.fit.bic;
+      st.delta_bic = f.fit.bic - cur.fit.bic;
+      say(o, "  round " + std::to_string(round) + " " + e.name + ": RMS " + significant(st.rms, 4) +
+                 " N, dBIC " + significant(st.delta_bic, 4));
+      cand.push_back(std::move(f));
+      step_of.push_back(r.steps.size());
+    } catch (const Interrupted&) {
+      throw;  // a stop request is not a failed candidate
+    } catch (const std::exception& ex) {
+      st.reason = std::string("fit failed: ") + ex.what();
+      say(o, "  round " + std::to_string(round) + " " + e.name + ": " + st.reason);
+    }
+    r.steps.push_back(st);
+  }
+  return cand;
+}
+
+/// Round `round`'s decision over its candidates (best BIC first): the accepted one becomes `cur`.
+/// Returns the accepted effect ("" when none); `refitted` is set when the current model re-fitted
+/// from a candidate's optimum (refit_from) beat the current optimum, and `cur` is then that refit
+/// (until a candidate is accepted).
+std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
+                   const std::vector<std::size_t>& step_of, int round, const Options& o, Report& r,
+                   std::optional<Fitted>& refitted) {
+  std::vector<std::size_t> order(cand.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return cand[a].fit.bic < cand[b].fit.bic; });
+  int tried = 0;
+  std::string accepted;
+  for (const std::size_t i : order) {
+    Step& st = r.steps[step_of[i]];
+    if (!accepted.empty()) {
+      st.reason = "a better candidate was accepted";
+      continue;
+    }
+    st.delta_bic = cand[i].fit.bic - cur.fit.bic;  // against the current model as it now stands
+    if (!(st.delta_bic < -o.bic_threshold)) {
+      st.reason = "BIC falls by " + significant(-st.delta_bic, 3) + " <= " + significant(o.bic_threshold, 3);
+      continue;
+    }
+    if (tried >= 3) {
+      st.reason = "not held-out tested (three better-BIC candidates failed it)";
+      continue;
+    }
+    ++tried;
+    // The gain must be the effect's: the current structure re-fitted from the candidate's optimum.
+    Fitted again = refit_from(p, cur, cand[i], o);
+    st.current_refit_rms = again.fit.rms;
+    if (again.fit.sse < cur.fit.sse) {
+      say(o, "round " + std::to_string(round) + ": " + cur.structure.label() + " re-fitted from the " +
+                 st.effect + " optimum reaches RMS " + significant(again.fit.rms, 4) + " N (was " +
+                 significant(cur.fit.rms, 4) + " N): the current model from now on");
+      cur = std::move(again);
+      refitted = cur;
+      st.delta_bic = cand[i].fit.bic - cur.fit.bic;
+      if (!(st.delta_bic < -o.bic_threshold)) {
+        st.reason = "the current model re-fitted from this candidate's optimum reaches RMS " +
+                    significant(cur.fit.rms, 4) + " N; against it BIC falls by only " +
+                    significant(-st.delta_bic, 3) + " (the gain was the optimizer's, not the effect's)";
+        continue;
+      }
+    }
+    if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
+    cand[i].held_out_rms = held_out_rms(p, cand[i], o);
+    st.held_out_rms = cand[i].held_out_rms;
+    st.current_held_out_rms = cur.held_out_rms;
+    if (cand[i].held_out_rms < o.held_out_ratio * cur.held_out_rms) {
+      st.accepted = true;
+      st.reason = "BIC falls by " + significant(-st.delta_bic, 4) + " and the held-out RMS from " +
+                  significant(cur.held_out_rms, 4) + " to " + significant(cand[i].held_out_rms, 4) + " N";
+      accepted = st.effect;
+      say(o, "round " + std::to_string(round) + ": accepted " + st.effect + " (" + st.reason + ")");
+      cur = cand[i];
+    } else {
+      st.reason = "held-out RMS " + significant(cand[i].held_out_rms, 4) + " N not below " +
+                  significant(o.held_out_ratio, 3) + " x " + significant(cur.held_out_rms, 4) + " N";
+    }
+  }
+  return accepted;
+}
+
+}  // namespace
+
 Report run(const measured::DataSet& data, const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Report r;
@@ -209,8 +417,8 @@ Report run(const measured::DataSet& data, const Options& o) {
   base.law = o.baseline_law;
   base.prony_terms = o.baseline_prony;
   say(o, "discover " + p.name + ": " + std::to_string(p.size()) + " samples in " +
-             std::to_string(p.series.size()) + " tests (every " + std::to_string(p.stride) +
-             "th kept), forward model " + to_string(p.rig));
+             std::to_string(p.series.size()) + " tests (" + stride_text(p.stride) + "), forward model " +
+             to_string(p.rig));
   r.baseline =
       fit_structure(p, base, structure_parameters(base, p, o.poisson, o.fix_poisson), o, 3 * o.starts);
   r.forward_model = DiscoverModel(p, base).name();
@@ -220,91 +428,43 @@ Report run(const measured::DataSet& data, const Options& o) {
              (r.baseline.study.structured ? ", residual structured" : ", residual is noise"));
   Fitted cur = r.baseline;
   r.stop_reason = "round limit (" + std::to_string(o.max_rounds) + ")";
+  bool redone = false;
   for (int round = 1; round <= o.max_rounds; ++round) {
     if (!cur.study.structured) {
       r.stop_reason = "the residual is noise (every decisive diagnostic passes)";
       break;
     }
-    std::vector<Fitted> cand;
     std::vector<std::size_t> step_of;
-    for (const auto& e : effect_library()) {
-      if (!o.effects.empty() && std::find(o.effects.begin(), o.effects.end(), e.name) == o.effects.end())
-        continue;
-      const std::string why = not_applicable(e.name, cur.structure, p);
-      if (!why.empty()) {
-        if (round == 1) r.not_applicable.emplace_back(e.name, why);
-        continue;
-      }
-      const Structure s2 = with_effect(cur.structure, e.name);
-      Step st;
-      st.round = round;
-      st.effect = e.name;
-      st.model = s2.label();
-      try {
-        Fitted f = fit_structure(
-            p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o,
-            o.starts);
-        st.free_parameters = f.fit.k;
-        st.rms = f.fit.rms;
-        st.bic = f.fit.bic;
-        st.delta_bic = f.fit.bic - cur.fit.bic;
-        say(o, "  round " + std::to_string(round) + " " + e.name + ": RMS " + significant(st.rms, 4) +
-                   " N, dBIC " + significant(st.delta_bic, 4));
-        cand.push_back(std::move(f));
-        step_of.push_back(r.steps.size());
-      } catch (const Interrupted&) {
-        throw;  // a stop request is not a failed candidate
-      } catch (const std::exception& ex) {
-        st.reason = std::string("fit failed: ") + ex.what();
-        say(o, "  round " + std::to_string(round) + " " + e.name + ": " + st.reason);
-      }
-      r.steps.push_back(st);
+    std::vector<Fitted> cand = fit_candidates(p, cur, round, o, r, step_of);
+    std::optional<Fitted> refitted;
+    const std::string accepted = decide(p, cur, cand, step_of, round, o, r, refitted);
+    const bool improved = refitted.has_value();
+    if (improved && r.selected.empty() && refitted->structure.label() == base.label()) {
+      // The baseline re-fitted from a candidate's optimum: its better optimum is the error before.
+      r.notes.push_back("the baseline's multi-start fit (RMS " + significant(r.baseline.fit.rms, 4) +
+                        " N) was improved by the re-fit from a candidate's optimum to RMS " +
+                        significant(refitted->fit.rms, 4) + " N: that is the error before");
+      say(o, "note: " + r.notes.back());
+      r.baseline = *refitted;
     }
-    std::vector<std::size_t> order(cand.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(),
-              [&](std::size_t a, std::size_t b) { return cand[a].fit.bic < cand[b].fit.bic; });
-    int tried = 0;
-    bool accepted = false;
-    for (const std::size_t i : order) {
-      Step& st = r.steps[step_of[i]];
-      if (accepted) {
-        st.reason = "a better candidate was accepted";
+    if (accepted.empty()) {
+      if (improved && !redone && cur.study.structured) {
+        // The candidates were fitted from the old optimum: once more from the better one.
+        say(o, "round " + std::to_string(round) + ": nothing accepted; the round again from the re-fitted " +
+                   cur.structure.label());
+        redone = true;
+        --round;
         continue;
       }
-      if (!(st.delta_bic < -o.bic_threshold)) {
-        st.reason =
-            "BIC falls by " + significant(-st.delta_bic, 3) + " <= " + significant(o.bic_threshold, 3);
-        continue;
-      }
-      if (tried >= 3) {
-        st.reason = "not held-out tested (three better-BIC candidates failed it)";
-        continue;
-      }
-      ++tried;
-      if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
-      cand[i].held_out_rms = held_out_rms(p, cand[i], o);
-      st.held_out_rms = cand[i].held_out_rms;
-      st.current_held_out_rms = cur.held_out_rms;
-      if (cand[i].held_out_rms < o.held_out_ratio * cur.held_out_rms) {
-        st.accepted = true;
-        st.reason = "BIC falls by " + significant(-st.delta_bic, 4) + " and the held-out RMS from " +
-                    significant(cur.held_out_rms, 4) + " to " + significant(cand[i].held_out_rms, 4) + " N";
-        accepted = true;
-        r.selected.push_back(st.effect);
-        say(o, "round " + std::to_string(round) + ": accepted " + st.effect + " (" + st.reason + ")");
-        cur = cand[i];
-      } else {
-        st.reason = "held-out RMS " + significant(cand[i].held_out_rms, 4) + " N not below " +
-                    significant(o.held_out_ratio, 3) + " x " + significant(cur.held_out_rms, 4) + " N";
-      }
-    }
-    if (!accepted) {
-      r.stop_reason =
-          cand.empty() ? "no applicable candidate" : "no candidate passes both BIC and held-out prediction";
+      r.stop_reason = !cur.study.structured ? "the residual is noise (every decisive diagnostic passes)"
+                      : cand.empty()        ? "no applicable candidate"
+                                            : "no candidate passes both BIC and held-out prediction";
       say(o, "round " + std::to_string(round) + ": " + r.stop_reason);
       break;
     }
+    redone = false;
+    r.selected.push_back(accepted);
+    for (const auto& e : backward_step(p, base, cur, accepted, round, o, r.steps)) r.removed.push_back(e);
   }
   if (!cur.study.structured) r.stop_reason = "the residual is noise (every decisive diagnostic passes)";
   r.final = cur;
@@ -411,6 +571,7 @@ nlohmann::json to_json(const Report& r) {
   j["steps"] = json::array();
   for (const auto& s : r.steps)
     j["steps"].push_back({{"round", s.round},
+                          {"action", s.removal ? "remove" : "add"},
                           {"effect", s.effect},
                           {"model", s.model},
                           {"free_parameters", s.free_parameters},
@@ -421,17 +582,23 @@ nlohmann::json to_json(const Report& r) {
                             {"delta_bic", num(s.delta_bic)},
                             {"bic_threshold", -r.options.bic_threshold},
                             {"current_held_out_rms_N", num(s.current_held_out_rms)},
+                            {"current_refit_from_candidate_rms_N", num(s.current_refit_rms)},
                             {"held_out_ratio_required", r.options.held_out_ratio}}},
                           {"accepted", s.accepted},
                           {"reason", s.reason}});
   j["selected_effects"] = r.selected;
+  j["removed_effects"] = r.removed;
   j["final_effects"] = r.final_effects;
   j["unexplained_structure"] = r.unexplained;
   j["unexplained_signature"] = r.signature;
   j["stop_reason"] = r.stop_reason;
-  j["selection_rule"] = "accept the lowest-BIC candidate when BIC falls by more than " +
-                        significant(r.options.bic_threshold, 3) + " and the held-out RMS falls below " +
-                        significant(r.options.held_out_ratio, 3) + " x the current model's";
+  j["selection_rule"] =
+      "accept the lowest-BIC candidate when BIC falls by more than " +
+      significant(r.options.bic_threshold, 3) + " and the held-out RMS falls below " +
+      significant(r.options.held_out_ratio, 3) +
+      " x the current model's, both against the current model re-fitted from the candidate's "
+      "optimum; after each acceptance every earlier effect that would not be accepted now is "
+      "removed";
   j["held_out"] = r.held_out_scheme;
   j["notes"] = r.notes;
   j["not_applicable"] = json::array();

@@ -6,9 +6,14 @@
 //   4. the candidate with the lowest BIC is accepted only if BIC drops by more than 10 (Kass and
 //      Raftery's "very strong") AND the held-out RMS (tests left out, or alternate time blocks of a
 //      single test, each fold fitted without them and predicting them) drops below 0.98 x the current
-//      model's; the next two by BIC are tried when it fails the held-out check;
-//   5. repeat until the residual is noise, no candidate passes, or the round limit;
-//   6. whatever structure remains is reported with its signature (describe_signature), not forced
+//      model's; the next two by BIC are tried when it fails the held-out check; before either
+//      check, the current model is re-fitted from the candidate's optimum (refit_from), so that a
+//      gain the current model reaches itself from there (the optimizer's, not the effect's) is not
+//      credited to the effect;
+//   5. after each acceptance, the backward step (backward_step): each earlier effect is removed in
+//      turn and removed for good when it would not be accepted now (BIC or held-out check);
+//   6. repeat until the residual is noise, no candidate passes, or the round limit;
+//   7. whatever structure remains is reported with its signature (describe_signature), not forced
 //      onto an effect.
 #pragma once
 
@@ -74,11 +79,13 @@ struct Fitted {
 
 struct Step {
   int round = 0;
+  bool removal = false;  ///< a backward step: the model without `effect` (else: with it)
   std::string effect, model;
   std::size_t free_parameters = 0;
   double rms = kNaN, bic = kNaN, delta_bic = kNaN;
   double held_out_rms = kNaN, current_held_out_rms = kNaN;
-  bool accepted = false;
+  double current_refit_rms = kNaN;  ///< the current model re-fitted from this candidate's optimum
+  bool accepted = false;            ///< added (or, for a removal, removed)
   std::string reason;
 };
 
@@ -88,6 +95,7 @@ struct Report {
   Fitted baseline, final;
   std::vector<Step> steps;
   std::vector<std::string> selected;       ///< accepted effects, in the order of the steps
+  std::vector<std::string> removed;        ///< effects the backward step took out again, in order
   std::vector<std::string> final_effects;  ///< what the final model has beyond the baseline
   std::vector<std::pair<std::string, std::string>> not_applicable;  ///< effect, why (first round)
   bool unexplained = false;
@@ -115,6 +123,27 @@ Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Par
 /// The pooled held-out RMS of `f`'s structure: each fold refitted from f's optimum without its
 /// held-out samples, which it then predicts.
 double held_out_rms(const Prepared& p, const Fitted& f, const Options& o);
+
+/// The current model `cur`'s structure re-fitted from candidate `c`'s optimum (the values they
+/// share by name): what the current structure itself reaches from there. A candidate whose gain
+/// this refit matches gained by a better optimum of the shared parameters, not by its effect.
+Fitted refit_from(const Prepared& p, const Fitted& cur, const Fitted& c, const Options& o);
+
+/// `s` without `effect` (a law effect reverts to `baseline`'s law, extra_prony_term drops the last
+/// term); tmlab::Error when `s` does not have it beyond `baseline`.
+Structure without_effect(const Structure& s, const std::string& effect, const Structure& baseline);
+
+/// The backward step after `just_added` was accepted: every other effect of `cur` beyond `baseline`
+/// is removed in turn (the reduced model re-fitted from cur's optimum) and removed for good when it
+/// would not be accepted if it were added to the reduced model now: its BIC drop is not more than
+/// o.bic_threshold, or the held-out RMS with it is not below o.held_out_ratio x that without it.
+/// Appends a removal Step per effect tried (round `round`) and returns the effects removed.
+std::vector<std::string> backward_step(const Prepared& p, const Structure& baseline, Fitted& cur,
+                                       const std::string& just_added, int round, const Options& o,
+                                       std::vector<Step>& steps);
+
+/// "all samples kept" or "every k-th sample kept" (the progress line and the report).
+std::string stride_text(std::size_t stride);
 
 /// Caveats the data's protocol imposes on what the loop can conclude (e.g. one rate, no hold).
 std::vector<std::string> protocol_notes(const Prepared& p);

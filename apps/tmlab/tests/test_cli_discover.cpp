@@ -62,6 +62,34 @@ TEST_F(CliDiscover, StudiesThePhantom) {
   }
 }
 
+TEST_F(CliDiscover, ConfinedCompressionEndToEnd) {
+  // A confined compression data set in the interchange format (the benchmark's noise-only set,
+  // written with --write-sets) through `tmlab discover` like any measured file: the confined
+  // forward model, nothing added, no structure claimed, the result protocol complete.
+  const fs::path bench = dir_ / "bench";
+  const Result w = tmlab({"discover", "--benchmark", "--rig", "confined_compression", "--only", "noise_only",
+                          "--write-sets", "--out", bench.string()});
+  ASSERT_EQ(w.status, 0) << w.output;
+  EXPECT_NE(w.output.find("bench-confined-noise_only"), std::string::npos) << w.output;
+  fs::path csv;
+  for (const auto& e : fs::directory_iterator(bench / "sets"))
+    if (e.path().extension() == ".csv") csv = e.path();
+  ASSERT_FALSE(csv.empty());
+  const nlohmann::json meta = nlohmann::json::parse(read_file(fs::path(csv).replace_extension(".json")));
+  EXPECT_EQ(meta["test"], "confined_compression") << meta.dump();
+  const fs::path out = dir_ / "conf";
+  const Result r = tmlab({"discover", csv.string(), "--out", out.string(), "--no-plots"});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("all samples kept"), std::string::npos) << r.output;
+  ASSERT_TRUE(fs::exists(out / "summary.json"));
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "report.json"));
+  EXPECT_EQ(j["rig"], "platen_confined");
+  EXPECT_EQ(j["forward_model"]["name"], "qlv_platen_confined");
+  EXPECT_TRUE(j["selected_effects"].empty()) << j["selected_effects"];
+  EXPECT_FALSE(j["unexplained_structure"].get<bool>());
+  EXPECT_LT(j["final"]["rel_rms"].get<double>(), 0.0045);  // the noise: 0.3 % of the peak force
+}
+
 TEST_F(CliDiscover, BadOptionsAreRefused) {
   const fs::path csv = convert();
   Result r = tmlab({"discover"});

@@ -1,11 +1,12 @@
 // The benchmark's confusion matrix is diagonal within the stated tolerance (docs/discover.md,
 // section 6). Quick (label unit): noise only, a contact offset, a neo-Hookean law, a force drift and
-// an actuator resonance on unconfined compression, and a finite layer under a sphere indenter
-// (the indentation forward model end to end); every one must come out right: the library sets exactly their
+// an actuator resonance on unconfined compression, a finite layer under a sphere indenter
+// (the indentation forward model end to end) and an extra Prony term in confined compression (the
+// confined forward model end to end); every one must come out right: the library sets exactly their
 // effect, the noise-only set nothing and no structure, the resonance unexplained and periodic at 0.7 Hz. Full
 // (label slow, TMLAB_DISCOVER_FULL_BENCHMARK=1 or the slow ctest): every applicable library effect and
 // separate bulk and shear relaxation on unconfined compression, three noise-only sets, two outside effects,
-// seven sphere-indentation and four tension sets; tolerance below.
+// seven sphere-indentation, four tension and three confined-compression sets; tolerance below.
 #include "calibration/discover/benchmark.hpp"
 
 #include <gtest/gtest.h>
@@ -18,7 +19,8 @@ namespace {
 TEST(Benchmark, QuickConfusionMatrixIsDiagonal) {
   Options o;
   const BenchmarkResult b = run_benchmark(benchmark_sets(true), o);
-  ASSERT_EQ(b.entries.size(), 6u);
+  ASSERT_EQ(b.entries.size(), 7u);
+  EXPECT_EQ(b.entries.back().rig, "confined_compression");
   for (const auto& e : b.entries) {
     std::string f;
     for (const auto& x : e.found) f += x + " ";
@@ -47,8 +49,13 @@ TEST(Benchmark, FullConfusionMatrixIsDiagonalWithinTolerance) {
   // within the hyperelastic family), no false positive on the noise-only sets, every outside set
   // flagged as unexplained structure.
   EXPECT_GE(b.diagonal_fraction, 0.8);
-  EXPECT_EQ(b.library_sets, 23);
-  EXPECT_EQ(b.noise_sets, 5);
+  EXPECT_EQ(b.library_sets, 25);
+  EXPECT_EQ(b.noise_sets, 6);
+  for (const auto& e : b.entries) {
+    if (e.rig == "confined_compression") {
+      EXPECT_TRUE(e.correct) << e.name;
+    }
+  }
   EXPECT_EQ(b.noise_false_positives, 0);
   EXPECT_EQ(b.outside_flagged, b.outside_sets);
 }

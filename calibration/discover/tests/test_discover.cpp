@@ -2,8 +2,11 @@
 // keys of the issue) and the held-out folds. Effects present and outside the library: the quick
 // benchmark (test_benchmark.cpp).
 #include "calibration/discover/benchmark.hpp"
+#include "core/base/error.hpp"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 namespace tmlab::discover {
 namespace {
@@ -42,6 +45,78 @@ TEST(Discover, LawSwappedInFromTheFittedBaselineReachesTheNoise) {
       fit_structure(p, yeoh, structure_parameters(yeoh, p, o.poisson, true, &base, &b.x), o, o.starts);
   EXPECT_LT(y.fit.rms, 1.1 * 0.003 * p.peak_force);
   EXPECT_FALSE(y.study.structured);
+}
+
+TEST(Discover, AGainTheCurrentModelReachesItselfIsNotCreditedToTheEffect) {
+  // The benchmark's unconfined extra_prony_term set (bench-extra_prony_term-1). The baseline's
+  // multi-start stops at RMS 0.029 N; the same two-term model re-fitted from the three-term
+  // candidate's optimum reaches 0.0084 N. Before the refit check, how much of a candidate's gain
+  // was the optimizer's depended on the last bits of the BLAS under GSL: through `tmlab` (netlib
+  // BLAS) the three-term fit stopped at 0.0074 N and force_drift was accepted after it in round 2
+  // (its gain, 0.0074 -> 0.0070 N, was the three-term model's own optimum). Now each gain is
+  // measured against the current model re-fitted from the candidate's optimum: the error before is
+  // the better baseline optimum, and exactly the planted term is found.
+  Options o;
+  const Report r = run(make_set("extra_prony_term", 1).data, o);
+  ASSERT_EQ(r.final_effects.size(), 1u);
+  EXPECT_EQ(r.final_effects[0], "extra_prony_term");
+  EXPECT_FALSE(r.unexplained);
+  EXPECT_LT(r.baseline.fit.rms, 0.5 * 0.02927);  // the re-fitted baseline, not the first multi-start
+  EXPECT_LT(r.final.fit.rms, 1.1 * 0.003 * r.data.peak_force);
+  bool checked = false;
+  for (const auto& st : r.steps) checked |= std::isfinite(st.current_refit_rms);
+  EXPECT_TRUE(checked);
+  EXPECT_EQ(to_json(r)["steps"][0]["criterion"].count("current_refit_from_candidate_rms_N"), 1u);
+}
+
+TEST(Discover, BackwardStepRemovesAnEffectThatNoLongerEarnsItsPlace) {
+  // Data with a contact offset only. A model that carries a force offset as well (as if a force
+  // offset had been accepted in an earlier round, before the contact offset explained the toe):
+  // after the contact offset's acceptance the backward step must take the force offset out again.
+  Options o;
+  const Prepared p = prepare(make_set("contact_offset", 1).data, o.max_samples);
+  Structure base;
+  Structure both = with_effect(with_effect(base, "force_offset"), "contact_offset");
+  Fitted cur = fit_structure(p, both, structure_parameters(both, p, o.poisson, true), o, o.starts);
+  std::vector<Step> steps;
+  const auto removed = backward_step(p, base, cur, "contact_offset", 2, o, steps);
+  ASSERT_EQ(removed.size(), 1u);
+  EXPECT_EQ(removed[0], "force_offset");
+  EXPECT_FALSE(cur.structure.has("force_offset"));
+  EXPECT_TRUE(cur.structure.has("contact_offset"));
+  ASSERT_EQ(steps.size(), 1u);
+  EXPECT_TRUE(steps[0].removal);
+  EXPECT_TRUE(steps[0].accepted);
+  EXPECT_LT(steps[0].delta_bic, 0.0);  // BIC falls without it: it never paid for its parameter
+  // An effect that is present is kept: with a force drift just added, the contact offset stays.
+  Structure drift = with_effect(with_effect(base, "contact_offset"), "force_drift");
+  Fitted cur2 = fit_structure(p, drift, structure_parameters(drift, p, o.poisson, true), o, o.starts);
+  std::vector<Step> steps2;
+  EXPECT_TRUE(backward_step(p, base, cur2, "force_drift", 2, o, steps2).empty());
+  ASSERT_EQ(steps2.size(), 1u);
+  EXPECT_EQ(steps2[0].effect, "contact_offset");
+  EXPECT_FALSE(steps2[0].accepted);
+  EXPECT_TRUE(cur2.structure.has("contact_offset"));
+}
+
+TEST(Discover, WithoutEffectUndoesWithEffect) {
+  Structure base;
+  for (const char* e : {"extra_prony_term", "yeoh_hyperelastic", "force_drift"}) {
+    const Structure s = with_effect(with_effect(base, "contact_offset"), e);
+    const Structure back = without_effect(s, e, base);
+    EXPECT_EQ(back.label(), with_effect(base, "contact_offset").label()) << e;
+  }
+  EXPECT_THROW(without_effect(base, "force_drift", base), Error);
+  EXPECT_THROW(without_effect(base, "extra_prony_term", base), Error);
+}
+
+TEST(Discover, ProgressSaysWhichSamplesAreKept) {
+  EXPECT_EQ(stride_text(1), "all samples kept");
+  EXPECT_EQ(stride_text(2), "every 2nd sample kept");
+  EXPECT_EQ(stride_text(3), "every 3rd sample kept");
+  EXPECT_EQ(stride_text(4), "every 4th sample kept");
+  EXPECT_EQ(stride_text(11), "every 11th sample kept");
+  EXPECT_EQ(stride_text(21), "every 21st sample kept");
 }
 
 TEST(Discover, HeldOutFoldsCoverEverySampleOnce) {
