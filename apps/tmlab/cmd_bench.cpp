@@ -23,7 +23,7 @@ namespace fs = std::filesystem;
 
 int cmd_bench(const std::vector<std::string>& args, const std::string& command_line) {
   const Parsed p =
-      parse(args, {"--results", "--threads", "--min-time"}, {"--quick", "--large", "--no-plots"});
+      parse(args, {"--results", "--threads", "--min-time", "--meshes"}, {"--quick", "--large", "--no-plots"});
   if (!p.positional.empty())
     throw UsageError("bench takes no positional argument (got '" + p.positional[0] + "')");
 #ifndef TMLAB_HAVE_BENCH
@@ -42,6 +42,11 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
   opt.min_time = parse_double("--min-time", p.get("--min-time", opt.quick ? "0.002" : "0.2"));
   if (!(opt.min_time > 0.0 && opt.min_time <= 60.0))
     throw UsageError("--min-time must be in (0, 60] seconds");
+  if (p.has("--meshes")) {
+    opt.meshes = split_list(p.get("--meshes"));
+    if (opt.meshes.empty()) throw UsageError("--meshes needs at least one mesh name");
+  }
+  if (const std::string bad = tm::check_bench_meshes(opt); !bad.empty()) throw UsageError(bad);
   opt.tmlab_root = tmlab_root();
   opt.log = &std::cerr;
   const fs::path dir = fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "bench";
@@ -49,6 +54,7 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
   try {
     const nlohmann::json config = {{"quick", opt.quick},
                                    {"large", opt.large},
+                                   {"meshes", opt.meshes},
                                    {"max_threads", opt.max_threads},
                                    {"min_time", opt.min_time}};
     out.write_json("manifest.json", make_manifest({split_words(command_line),

@@ -3,12 +3,15 @@
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
+#include <utility>
+#include <vector>
 
 namespace tmlab::tm {
 
@@ -49,6 +52,84 @@ std::string fmt(double v, int prec = 3) {
   std::ostringstream s;
   s << std::setprecision(prec) << v;
   return s.str();
+}
+
+/// The largest mesh with a 1 ms explicit contact step of the fast objective model on `threads`
+/// threads: the contact ladder's (tets, us per step) points, the last one at or below 1000 us and
+/// its larger neighbour, interpolated linearly in tets; beyond the ladder, extrapolated with the
+/// per-tet cost of the end point (cost proportional to tets). NaN without records.
+std::pair<double, std::string> one_ms_tets(const json& b, int threads) {
+  std::vector<std::pair<double, double>> pts;
+  for (const json& r : b.at("records"))
+    if (r.at("kind") == "step" && r.at("step") == "explicit_contact" && r.at("kernel") == "fast" &&
+        r.at("history") == "objective" && r.at("threads") == threads)
+      pts.emplace_back(r.at("tets").get<double>(), r.at("us_per_step").get<double>());
+  if (pts.empty()) return {NAN, "no explicit_contact records"};
+  std::sort(pts.begin(), pts.end());
+  std::size_t below = pts.size();
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    if (pts[i].second <= 1000.0) below = i;
+  if (below == pts.size())
+    return {pts.front().first * 1000.0 / pts.front().second,
+            "extrapolated below the smallest contact mesh (" + fmt(pts.front().first, 6) + " tets)"};
+  if (below + 1 == pts.size())
+    return {pts.back().first * 1000.0 / pts.back().second,
+            "extrapolated beyond the largest contact mesh (" + fmt(pts.back().first, 6) + " tets)"};
+  const auto [n0, t0] = pts[below];
+  const auto [n1, t1] = pts[below + 1];
+  return {n0 + (1000.0 - t0) * (n1 - n0) / (t1 - t0), "interpolated linearly in tets between " + fmt(n0, 6) +
+                                                          " tets (" + fmt(t0) + " us) and " + fmt(n1, 6) +
+                                                          " tets (" + fmt(t1) + " us)"};
+}
+
+/// The contact ladder's records as a table: us per step, one column per contact mesh.
+std::string contact_markdown(const json& b) {
+  std::vector<std::pair<long, std::string>> meshes;
+  std::set<std::string> seen_mesh;
+  for (const json& r : b.at("records"))
+    if (r.contains("contact") && seen_mesh.insert(r.at("mesh").get<std::string>()).second)
+      meshes.emplace_back(r.at("tets").get<long>(), r.at("mesh").get<std::string>());
+  if (meshes.empty()) return "";
+  std::sort(meshes.begin(), meshes.end());
+  std::ostringstream md;
+  md << "\n## Whole steps with a rigid sphere in contact, us per step (CPU time for 1 thread, wall time "
+        "for more)\n\n| step | kernel | history | linear | threads |";
+  for (const auto& m : meshes) md << " " << m.first << " tets |";
+  md << "\n|---|---|---|---|---|";
+  for (std::size_t i = 0; i < meshes.size(); ++i) md << "---|";
+  md << "\n";
+  std::set<std::string> seen;
+  for (const json& r : b.at("records")) {
+    if (!r.contains("contact")) continue;
+    const std::string step =
+        r.at("step").get<std::string>() + (r.at("contact") == "none" ? " (no body)" : "");
+    const std::string key =
+        step + "|" + r.at("linear").get<std::string>() + "|" + std::to_string(r.at("threads").get<int>());
+    if (!seen.insert(key).second) continue;
+    md << "| " << step << " | " << r.at("kernel").get<std::string>() << " | "
+       << r.at("history").get<std::string>() << " | " << r.at("linear").get<std::string>() << " | "
+       << r.at("threads").get<int>() << " |";
+    for (const auto& m : meshes) {
+      const json* s = find(b, {{"kind", "step"},
+                               {"step", r.at("step")},
+                               {"contact", r.at("contact")},
+                               {"linear", r.at("linear")},
+                               {"threads", r.at("threads")},
+                               {"mesh", m.second}});
+      md << " " << (s ? fmt(s->at("us_per_step").get<double>()) : "-") << " |";
+    }
+    md << "\n";
+  }
+  md << "\nTime steps and nodes in contact (explicit, 1 thread):";
+  for (const auto& m : meshes) {
+    const json* s =
+        find(b, {{"kind", "step"}, {"step", "explicit_contact"}, {"threads", 1}, {"mesh", m.second}});
+    if (s)
+      md << " " << m.first << " tets: dt " << fmt(s->at("dt").get<double>()) << " s, "
+         << s->at("active_nodes").get<int>() << " nodes;";
+  }
+  md << " implicit: dt 1e-3 s.\n";
+  return md.str();
 }
 
 }  // namespace
@@ -135,9 +216,44 @@ json bench_targets(const json& b) {
   t.push_back(
       target("implicit step, CHOLMOD / Eigen LDL^T (" + chol_mesh + ")", chol_ratio, 1.0, true, "x",
              "Newmark step of the tensor-mass model, us per step with solver.linear cholmod over ldlt"));
+  for (int threads : {2, 1}) {
+    const auto [tets, how] = one_ms_tets(b, threads);
+    t.push_back(target("largest mesh with a 1 ms viscoelastic step with contact (explicit, fast objective, " +
+                           std::to_string(threads) +
+                           (threads == 1 ? " thread, CPU time)" : " threads, wall time)"),
+                       tets, 40000.0, false, "tets", "us per explicit_contact step against tets, " + how));
+  }
+  // Implicit steps with contact (dt = 1 ms): the cheapest on the smallest contact mesh (if that
+  // exceeds 1 ms, no larger mesh holds a 1 ms implicit step), and CHOLMOD over LDL^T on the largest.
+  double implicit_us = NAN, implicit_ratio = NAN;
+  long implicit_small = 0, implicit_large = 0;
+  for (const json& r : b.at("records")) {
+    if (r.at("kind") != "step" || r.at("step") != "implicit_contact") continue;
+    const long n = r.at("tets").get<long>();
+    const double us = r.at("us_per_step").get<double>();
+    if (implicit_small == 0 || n < implicit_small || (n == implicit_small && us < implicit_us)) {
+      implicit_small = n;
+      implicit_us = us;
+    }
+    const json* d =
+        find(b, {{"kind", "step"}, {"step", "implicit_contact"}, {"linear", "ldlt"}, {"mesh", r.at("mesh")}});
+    if (r.at("linear") == "cholmod" && d && n > implicit_large) {
+      implicit_large = n;
+      implicit_ratio = us / d->at("us_per_step").get<double>();
+    }
+  }
+  t.push_back(target("implicit step with contact, dt 1 ms (" + std::to_string(implicit_small) + " tets)",
+                     implicit_us, 1000.0, true, "us",
+                     "cheapest implicit_contact record on the smallest contact mesh, 1 thread"));
+  t.push_back(target(
+      "implicit step with contact, CHOLMOD / Eigen LDL^T (" + std::to_string(implicit_large) + " tets)",
+      implicit_ratio, 1.0, true, "x", "us per implicit_contact step, cholmod over ldlt"));
   t.push_back(target("cost linear in tets (fast, ns/tet cube_240k / cube_2k)",
                      F("fast", "none", "cube_240k") / F("fast", "none", "cube_2k"), 1.5, true, "x",
                      "1 = perfectly linear"));
+  t.push_back(target("cost linear in tets (fast, ns/tet cube_2m / cube_2k)",
+                     F("fast", "none", "cube_2m") / F("fast", "none", "cube_2k"), 1.5, true, "x",
+                     "1 = perfectly linear; needs --large"));
   return t;
 }
 
@@ -190,7 +306,7 @@ std::string bench_markdown(const json& b) {
   md << "\n";
   seen.clear();
   for (const json& r : b.at("records")) {
-    if (r.at("kind") != "step") continue;
+    if (r.at("kind") != "step" || r.contains("contact")) continue;  // contact_markdown's table
     const bool book = r.value("energy_bookkeeping", false);
     const std::string linear = r.value("linear", std::string("none"));
     const std::string step = r.at("step").get<std::string>() + (linear == "none" ? "" : " (" + linear + ")");
@@ -215,6 +331,7 @@ std::string bench_markdown(const json& b) {
     }
     md << "\n";
   }
+  md << contact_markdown(b);
   md << "\n## Targets (issue 16; ratios from this run)\n\n| target | measured | limit | met "
         "|\n|---|---|---|---|\n";
   for (const json& t : bench_targets(b)) {

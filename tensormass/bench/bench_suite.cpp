@@ -6,6 +6,8 @@
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/bench/machine_limits.hpp"
+#include "tensormass/contact/contact_implicit.hpp"
+#include "tensormass/contact/kinematic_contact.hpp"
 #include "tensormass/kernels/fast_force.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
@@ -19,6 +21,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -376,10 +380,165 @@ void step_records(const MeshCase& m, const BenchOptions& o, bool solvers, json& 
   }
 }
 
+// ---- Whole steps with rigid contact (issue 16: the 1 ms target with viscoelasticity and contact) ----
+
+/// The contact ladder: cubes of 2.4k to 132k tets, close enough in size for the 1 ms crossing to be
+/// interpolated between neighbours (quick: the 2.4k cube only).
+std::vector<std::array<int, 3>> contact_cells(bool quick) {
+  if (quick) return {{7, 7, 8}};
+  return {{7, 7, 8}, {12, 12, 12}, {16, 16, 16}, {20, 20, 20}, {24, 24, 24}, {28, 28, 28}};
+}
+
+/// A rigid frictionless sphere of radius 0.3 x the top face's width, centred over the top face and
+/// touching its plane at t = 0, pushed down by 5 % of the height over [0, t_ramp], then held.
+RigidBody contact_sphere(const Mesh& mesh, double t_ramp) {
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& p : mesh.points) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  const double R = 0.3 * std::min(hi.x() - lo.x(), hi.y() - lo.y());
+  RigidBody s =
+      RigidBody::sphere("indenter", Vec3(0.5 * (lo.x() + hi.x()), 0.5 * (lo.y() + hi.y()), hi.z() + R), R);
+  s.displacement = Vec3(0.0, 0.0, -0.05 * (hi.z() - lo.z()));
+  s.function = TimeFunction::ramp(0.0, t_ramp);
+  return s;
+}
+
+json contact_record(const MeshCase& m, const std::string& step, int threads, Timing ns,
+                    const std::string& linear, double dt, int active_nodes) {
+  json r = step_record(m, step, "fast", "objective", threads, ns, false, linear);
+  r["contact"] = "sphere";
+  r["dt"] = dt;
+  r["active_nodes"] = active_nodes;
+  return r;
+}
+
+/// Explicit central differences of the fast objective viscoelastic model (fast_threads = threads,
+/// energy bookkeeping off) with kinematic contact (KinematicContact, as the case runner steps it),
+/// the sphere pressed in over `ramp` steps before the measurement, then held in contact while measured.
+void explicit_contact_records(const MeshCase& m, const BenchOptions& o,
+                              const std::function<void(json)>& log) {
+  const double cp = std::sqrt((kStepMaterial.lambda + 2 * kStepMaterial.mu) / 1000.0);
+  const double dt = 0.3 * m.h_min / cp;
+  const int ramp = o.quick ? 20 : 200;
+  {
+    // The same step without the body (1 thread), measured in the same run: what contact adds.
+    StepProblem p(m, step_model(m, "fast", "objective", 1, false));
+    CentralDifference integ(*p.system, dt, false);
+    integ.initialize(0.0, VecX::Zero(p.system->num_dofs()), VecX::Zero(p.system->num_dofs()));
+    double t = 0.0;
+    const Timing ns = measure_ns(
+        [&] {
+          integ.step(t, dt);
+          t = integ.time();
+        },
+        o.min_time);
+    json r = contact_record(m, "explicit", 1, ns, "none", dt, 0);
+    r["contact"] = "none";
+    log(r);
+  }
+  for (int threads = 1; threads <= o.max_threads; ++threads) {
+    StepProblem p(m, step_model(m, "fast", "objective", threads, false));
+    CentralDifference integ(*p.system, dt, false);
+    const VecX zero = VecX::Zero(p.system->num_dofs());
+    integ.initialize(0.0, zero, zero);
+    KinematicContact contact(*p.system, m.mesh, {contact_sphere(m.mesh, ramp * dt)}, ContactOptions{}, 0.0,
+                             zero);
+    double t = 0.0;
+    const auto step = [&] {
+      integ.step(t, dt);
+      t = integ.time();
+      integ.correct(contact.correct(t, dt, integ.displacement()));
+    };
+    for (int k = 0; k < ramp; ++k) step();
+    const Timing ns = measure_ns(step, o.min_time);
+    json r =
+        contact_record(m, "explicit_contact", threads, ns, "none", dt, contact.state().at(0).active_nodes);
+    r["dt_critical"] = integ.stability().dt_critical;
+    log(r);
+  }
+}
+
+/// Implicit Newmark steps of dt = 1 ms (a haptic-rate step) of the same model with the
+/// augmented-Lagrangian contact (ContactImplicitDynamics), with each sparse direct solver.
+void implicit_contact_records(const MeshCase& m, const BenchOptions& o,
+                              const std::function<void(json)>& log) {
+  const double dt = 1e-3;
+  const int ramp = o.quick ? 2 : 5;
+  for (const auto& [linear, kind] : {std::pair{std::string("ldlt"), NewtonLinearSolver::Direct},
+                                     std::pair{std::string("cholmod"), NewtonLinearSolver::Cholmod}}) {
+    NewtonOptions no;
+    no.linear_solver = kind;
+    StepProblem p(m, step_model(m, "fast", "objective", 1, false));
+    ContactImplicitDynamics integ(*p.system, m.mesh, {contact_sphere(m.mesh, ramp * dt)}, ContactOptions{},
+                                  ImplicitScheme::Newmark, no, dt);
+    const VecX zero = VecX::Zero(p.system->num_dofs());
+    integ.initialize(0.0, zero, zero);
+    int active = 0;
+    const auto step = [&] { active = integ.step(integ.time(), dt).bodies.at(0).active_nodes; };
+    Timing ns;
+    try {
+      for (int k = 0; k < ramp; ++k) step();
+      ns = measure_ns(step, o.min_time);
+    } catch (const Error& e) {  // a step that does not converge: no record, the rest of the suite runs
+      if (o.log)
+        *o.log << "  " << m.name << " implicit_contact " << linear << ": not measured (" << e.what() << ")\n";
+      continue;
+    }
+    json r = contact_record(m, "implicit_contact", 1, ns, linear, dt, active);
+    r["linear_fallbacks_to_ldlt"] = integ.contact().linear_solver().fallbacks();
+    log(r);
+  }
+}
+
+/// The contact ladder's records ("step": explicit_contact | implicit_contact, "contact": "sphere",
+/// "dt", "active_nodes"; and "step": explicit, "contact": "none", the same explicit step without the
+/// body, 1 thread); the implicit ones on the smallest cube only: one implicit contact step
+/// (Newton inside the Uzawa loop, a factorisation per Newton iteration) costs hundreds of ms there
+/// already, so no larger mesh can hold a 1 ms implicit step.
+void contact_step_records(const BenchOptions& o, json& records) {
+  const auto log = [&](const json& r) {
+    if (o.log)
+      *o.log << "  " << r["mesh"].get<std::string>() << " " << r["step"].get<std::string>() << " "
+             << r["linear"].get<std::string>() << " " << r["threads"].get<int>()
+             << "t: " << r["us_per_step"].get<double>() << " us/step, " << r["active_nodes"].get<int>()
+             << " nodes in contact\n";
+    records.push_back(r);
+  };
+  for (const auto& c : contact_cells(o.quick)) {
+    const int tets = 6 * c[0] * c[1] * c[2];
+    const MeshCase m = cube("contact_" + std::to_string(tets), c[0], c[1], c[2]);
+    if (o.log) *o.log << "tmlab bench: " << m.name << " (contact steps)\n";
+    explicit_contact_records(m, o, log);
+    if (tets <= 3000) implicit_contact_records(m, o, log);
+  }
+}
+
 }  // namespace
+
+std::vector<std::string> bench_mesh_names() {
+  return {"liver", "cube_2k", "cube_24k", "cube_240k", "cube_2m", "contact"};
+}
+
+std::string check_bench_meshes(const BenchOptions& o) {
+  const std::vector<std::string> known = bench_mesh_names();
+  for (const std::string& name : o.meshes) {
+    if (std::find(known.begin(), known.end(), name) == known.end()) {
+      std::string list;
+      for (const std::string& k : known) list += (list.empty() ? "" : ", ") + k;
+      return "--meshes: unknown mesh '" + name + "' (known: " + list + ")";
+    }
+    if (name == "cube_2m" && !o.large) return "--meshes: 'cube_2m' needs --large";
+    if (o.quick && (name == "cube_24k" || name == "cube_240k"))
+      return "--meshes: '" + name + "' is not measured with --quick";
+  }
+  return "";
+}
 
 json run_bench(const BenchOptions& o) {
   if (o.max_threads < 1) throw Error("bench: --threads must be >= 1");
+  if (const std::string bad = check_bench_meshes(o); !bad.empty()) throw Error("bench: " + bad);
   int argc = 1;
   char name[] = "tmlab";
   char* argv[] = {name, nullptr};
@@ -394,16 +553,20 @@ json run_bench(const BenchOptions& o) {
                    {"triad_gbs_1t", lim.triad_gbs_1t},
                    {"triad_gbs_2t", lim.triad_gbs_2t}};
   json records = json::array(), meshes = json::array();
-  std::vector<std::function<MeshCase()>> cases;
+  std::vector<std::pair<std::string, std::function<MeshCase()>>> cases;
   const std::filesystem::path liver = std::filesystem::path(o.tmlab_root) / "meshes" / "liver.msh";
-  cases.push_back([liver] { return make_case("liver", read_mesh(liver.string())); });
-  cases.push_back([] { return cube("cube_2k", 7, 7, 8); });
+  cases.emplace_back("liver", [liver] { return make_case("liver", read_mesh(liver.string())); });
+  cases.emplace_back("cube_2k", [] { return cube("cube_2k", 7, 7, 8); });
   if (!o.quick) {
-    cases.push_back([] { return cube("cube_24k", 16, 16, 16); });
-    cases.push_back([] { return cube("cube_240k", 34, 34, 34); });
-    if (o.large) cases.push_back([] { return cube("cube_2m", 74, 74, 74); });
+    cases.emplace_back("cube_24k", [] { return cube("cube_24k", 16, 16, 16); });
+    cases.emplace_back("cube_240k", [] { return cube("cube_240k", 34, 34, 34); });
+    if (o.large) cases.emplace_back("cube_2m", [] { return cube("cube_2m", 74, 74, 74); });
   }
-  for (const auto& make : cases) {
+  const auto selected = [&o](const std::string& mesh) {
+    return o.meshes.empty() || std::find(o.meshes.begin(), o.meshes.end(), mesh) != o.meshes.end();
+  };
+  for (const auto& [mesh_name, make] : cases) {
+    if (!selected(mesh_name)) continue;
     const MeshCase m = make();
     if (o.log) *o.log << "tmlab bench: " << m.name << " (" << m.mesh.num_tets() << " tets)\n";
     meshes.push_back({{"name", m.name}, {"tets", m.mesh.num_tets()}, {"nodes", m.mesh.num_points()}});
@@ -411,10 +574,14 @@ json run_bench(const BenchOptions& o) {
     const bool small = m.mesh.num_tets() <= 30000;
     if (m.mesh.num_tets() <= 300000) step_records(m, o, small, records);
   }
+  if (selected("contact")) contact_step_records(o, records);
   out["records"] = records;
   out["meshes"] = meshes;
-  out["options"] = {
-      {"quick", o.quick}, {"large", o.large}, {"max_threads", o.max_threads}, {"min_time", o.min_time}};
+  out["options"] = {{"quick", o.quick},
+                    {"large", o.large},
+                    {"max_threads", o.max_threads},
+                    {"min_time", o.min_time},
+                    {"meshes", o.meshes}};
   return out;
 }
 

@@ -80,7 +80,8 @@ ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const M
       bodies_(std::move(bodies)),
       options_(options),
       newton_(newton),
-      max_cutbacks_(max_cutbacks) {
+      max_cutbacks_(max_cutbacks),
+      linear_(std::make_unique<ConstrainedLinearSolver>(newton.linear_solver)) {
   if (mesh_.num_points() != system_.model().num_nodes())
     throw Error("contact: the mesh and the mechanical system have different node counts");
   if (u0.size() != system_.num_dofs()) throw Error("contact: initial displacement has the wrong size");

@@ -126,10 +126,13 @@ class ContactStaticSolver {
   /// (no effect when contact.stiffness is given).
   void add_mass_scale(double c_a);
 
-  /// The linear solver of the Newton iterations (direct LDL^T by default).
+  /// The linear solver of the Newton iterations: NewtonOptions::linear_solver at construction (a
+  /// case's solver.linear: Eigen's LDL^T by default, or CHOLMOD with its LDL^T fallback), replaced here.
   void set_linear_solver(ConstrainedLinearSolver::Kind kind, double cg_rtol = 1e-12) {
     linear_ = std::make_unique<ConstrainedLinearSolver>(kind, cg_rtol);
   }
+  /// Its kind and, for CHOLMOD, how many solves fell back to LDL^T (not positive definite).
+  const ConstrainedLinearSolver& linear_solver() const { return *linear_; }
   double stiffness() const { return eps_; }  ///< eps, N/m
   double gap_tol() const { return gap_tol_; }
   const ContactOptions& options() const { return options_; }
@@ -176,7 +179,7 @@ class ContactStaticSolver {
   double gap_tol_ = 0.0;
   std::vector<BodyData> committed_, trial_;
   std::vector<ContactBodyState> state_;
-  std::unique_ptr<ConstrainedLinearSolver> linear_ = std::make_unique<ConstrainedLinearSolver>();
+  std::unique_ptr<ConstrainedLinearSolver> linear_;
 };
 
 }  // namespace tmlab::tm

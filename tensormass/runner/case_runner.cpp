@@ -994,7 +994,7 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver)},
+          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())},
           {"contact", contact_log.json("augmented_lagrangian_static", solver.stiffness(), solver.gap_tol(),
                                        solver.state())}};
 }
@@ -1075,7 +1075,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver)},
+          {"newton", newton_log.json(cfg.solver, integ.contact().linear_solver().fallbacks())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
           {"contact", contact_log.json("augmented_lagrangian_implicit", integ.contact().stiffness(),
                                        integ.contact().gap_tol(), integ.contact().state())}};

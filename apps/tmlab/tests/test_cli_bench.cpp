@@ -1,5 +1,6 @@
 // `tmlab bench --quick` (issue 16): a complete result (summary.json, bench.json, bench.md) whose
-// bench.json has the documented schema: the limits, and records with every field. Timings are never
+// bench.json has the documented schema: the limits, and records with every field (the contact
+// ladder's step records with the sphere in contact). Timings are never
 // asserted (the machine is shared); only that they are positive and finite.
 #include "cli_test_support.hpp"
 
@@ -34,6 +35,7 @@ TEST(CliBench, QuickWritesTheDocumentedSchema) {
     EXPECT_GT(b["limits"][k].get<double>(), 0.0) << k;
   }
   std::set<std::string> kernels, histories, laws, steps;
+  int implicit_contact = 0;
   for (const auto& rec : b.at("records")) {
     for (const char* k : {"kind", "kernel", "history", "law", "mesh", "tets", "threads"})
       ASSERT_TRUE(rec.contains(k)) << k << " in " << rec.dump();
@@ -51,13 +53,53 @@ TEST(CliBench, QuickWritesTheDocumentedSchema) {
       ASSERT_TRUE(rec.contains("step") && rec.contains("us_per_step")) << rec.dump();
       EXPECT_GT(rec["us_per_step"].get<double>(), 0.0);
       steps.insert(rec["step"].get<std::string>());
+      if (rec.contains("contact")) {
+        // The contact ladder: the sphere is in contact during the measured steps.
+        for (const char* k : {"dt", "active_nodes", "linear"})
+          ASSERT_TRUE(rec.contains(k)) << k << " in " << rec.dump();
+        EXPECT_GT(rec["dt"].get<double>(), 0.0);
+        if (rec["contact"] == "none") {  // the same explicit step without the body
+          EXPECT_EQ(rec["step"], "explicit") << rec.dump();
+          continue;
+        }
+        EXPECT_EQ(rec["contact"], "sphere");
+        EXPECT_GT(rec["active_nodes"].get<int>(), 0) << rec.dump();
+        if (rec["step"] == "explicit_contact") {
+          EXPECT_GT(rec["dt_critical"].get<double>(), 0.0);
+        }
+        if (rec["step"] == "implicit_contact") {
+          ++implicit_contact;
+          EXPECT_TRUE(rec["linear"] == "ldlt" || rec["linear"] == "cholmod") << rec.dump();
+        }
+      }
     }
   }
+  EXPECT_EQ(implicit_contact, 2);  // ldlt and cholmod
   EXPECT_EQ(kernels, (std::set<std::string>{"baseline", "fast", "tensor_mass"}));
   EXPECT_EQ(histories, (std::set<std::string>{"none", "seed", "objective"}));
   EXPECT_EQ(laws, (std::set<std::string>{"stvk", "neo_hookean"}));
-  EXPECT_EQ(steps, (std::set<std::string>{"explicit", "implicit", "static_newton"}));
+  EXPECT_EQ(steps, (std::set<std::string>{"explicit", "implicit", "static_newton", "explicit_contact",
+                                          "implicit_contact"}));
   ASSERT_TRUE(b.contains("targets"));
+  bool contact_target = false;
+  for (const auto& t : b["targets"])
+    if (t["name"].get<std::string>().find("with contact (explicit") != std::string::npos) {
+      contact_target = true;
+      EXPECT_GT(t["value"].get<double>(), 0.0) << t.dump();  // a number of tets, never asserted against 40k
+    }
+  EXPECT_TRUE(contact_target);
+  fs::remove_all(dir);
+}
+
+TEST(CliBench, MeshesSelectsTheMeasuredMeshes) {
+  const fs::path dir = fs::temp_directory_path() / ("tmlab_cli_bench_sel_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const Result r = run("bench --quick --no-plots --meshes cube_2k --results '" + dir.string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json b = nlohmann::json::parse(std::ifstream(dir / "bench" / "bench.json"));
+  ASSERT_FALSE(b.at("records").empty());
+  for (const auto& rec : b["records"]) EXPECT_EQ(rec["mesh"], "cube_2k") << rec.dump();
+  EXPECT_EQ(b["options"]["meshes"], nlohmann::json::array({"cube_2k"}));
   fs::remove_all(dir);
 }
 
@@ -65,6 +107,9 @@ TEST(CliBench, UsageErrors) {
   EXPECT_EQ(run("bench --threads 0").status, 2);
   EXPECT_EQ(run("bench --quick --large").status, 2);
   EXPECT_EQ(run("bench extra").status, 2);
+  EXPECT_EQ(run("bench --meshes cube_9k").status, 2);
+  EXPECT_EQ(run("bench --meshes cube_2m").status, 2);  // needs --large
+  EXPECT_EQ(run("bench --quick --meshes cube_24k").status, 2);
 }
 
 }  // namespace

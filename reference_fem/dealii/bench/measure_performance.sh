@@ -1,12 +1,12 @@
 #!/bin/sh
 # Measures the reference solver's assembly, linear-solve and Newton times per load step
-# (docs/performance.md). Usage: reference_fem/bench/measure_performance.sh BUILD_DIR [OUT_DIR]
+# (docs/performance.md). Usage: reference_fem/dealii/bench/measure_performance.sh BUILD_DIR [OUT_DIR]
 # Runs each case serially and with `mpirun -np 2`, then prints one table row per run from the
 # per-step statistics in summary.json (solver.steps[*]).
 set -eu
 build=${1:?build directory}
 out=${2:-/tmp/tmlab-ref-perf}
-root=$(cd "$(dirname "$0")/../.." && pwd)
+root=$(cd "$(dirname "$0")/../../.." && pwd)
 ref="$build/apps/tmlab_reference/tmlab_reference"
 mkdir -p "$root/build/perf" "$out"
 [ -f "$root/build/perf/cube32.msh" ] || "$build/apps/meshtool/meshtool" box "$root/build/perf/cube32.msh" 32 32 32 --hi 0.1 0.1 0.1
@@ -17,8 +17,8 @@ run() {  # name np args...
   echo "$name $np $*" >> "$out/runs.txt"
 }
 touch "$out/runs.txt"
-L="$root/reference_fem/bench/perf-liver-probe-10mm.json"
-C="$root/reference_fem/bench/perf-cube-200k.json"
+L="$root/reference_fem/dealii/bench/perf-liver-probe-10mm.json"
+C="$root/reference_fem/dealii/bench/perf-cube-200k.json"
 for np in ${NPS:-1 2}; do
   run liver-p1-direct-np$np $np "$L"
   run liver-p2-direct-np$np $np "$L" --degree 2

@@ -6,13 +6,15 @@
 //      band of Hertz (the strict Hertz convergence study is separate: docs/contact.md);
 //  (d) the active set settles (no cycling) in every increment of the sphere case;
 //  (e) a body penetrating the sample at t = 0 is refused;
-//  plus the penalty option (penetration and stiffness reported) and the contact tangent against
-//  finite differences of the contact residual.
+//  plus the penalty option (penetration and stiffness reported), the contact tangent against
+//  finite differences of the contact residual, and CHOLMOD inside the contact Newton solves (static
+//  and implicit) against the default LDL^T.
 #include "tensormass/contact/contact_solver.hpp"
 
 #include "core/base/error.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "tensormass/contact/contact_implicit.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/system/lumped_mass.hpp"
 
@@ -345,6 +347,96 @@ TEST(ContactSolver, ContactTermsMatchFiniteDifferences) {
         ++columns;
       }
   EXPECT_EQ(columns, 3 * (rep.bodies[0].active_nodes + rep.bodies[1].active_nodes + 16));
+}
+
+/// A contact solve with the given linear solver of its Newton iterations (NewtonOptions::linear_solver):
+/// its displacement, the contact force and how many CHOLMOD solves fell back to LDL^T.
+struct ContactRun {
+  VecX u;
+  Vec3 force = Vec3::Zero();
+  NewtonLinearSolver kind = NewtonLinearSolver::Direct;
+  int fallbacks = 0;
+};
+
+/// A rigid plane compressing the roller block by 10 % (3 increments): the contact tangent adds
+/// eps n n^T only, so every tangent is positive definite.
+ContactRun platen_run(NewtonLinearSolver linear) {
+  const double L = 0.01;
+  Sample s = roller_block(L, 6);
+  RigidBody platen = RigidBody::plane("platen", Vec3(0, 0, L), -Vec3::UnitZ());
+  platen.displacement = Vec3(0, 0, -0.1 * L);
+  platen.function = TimeFunction::ramp(0.0, 1.0);
+  NewtonOptions no;
+  no.linear_solver = linear;
+  ContactRun out;
+  out.u = VecX::Zero(s.system->num_dofs());
+  ContactStaticSolver solver(*s.system, s.mesh, {platen}, ContactOptions{}, no, 0.0, out.u);
+  ContactStepReport rep;
+  for (int k = 1; k <= 3; ++k) rep = solver.advance((k - 1) / 3.0, k / 3.0, out.u);
+  out.force = rep.bodies.at(0).force;
+  out.kind = solver.linear_solver().kind();
+  out.fallbacks = solver.linear_solver().fallbacks();
+  return out;
+}
+
+/// The sphere indenting the quarter block, static (3 increments) or implicit Newmark (4 steps of
+/// 0.1 ms). The sphere's contact tangent -p H (H = (I - n n^T) / |x - c|, the convex surface's
+/// curvature) makes some tangents of these fine graded cells indefinite: CHOLMOD falls back there.
+ContactRun sphere_run(NewtonLinearSolver linear, bool implicit) {
+  const double R = 0.01, d = 0.05 * R;
+  Sample s = quarter_block(R, 6);
+  RigidBody sphere = RigidBody::sphere("indenter", Vec3(0, 0, R), R);
+  sphere.displacement = Vec3(0, 0, -d);
+  NewtonOptions no;
+  no.linear_solver = linear;
+  ContactRun out;
+  ContactStepReport rep;
+  if (!implicit) {
+    sphere.function = TimeFunction::ramp(0.0, 1.0);
+    out.u = VecX::Zero(s.system->num_dofs());
+    ContactStaticSolver solver(*s.system, s.mesh, {sphere}, ContactOptions{}, no, 0.0, out.u);
+    for (int k = 1; k <= 3; ++k) rep = solver.advance((k - 1) / 3.0, k / 3.0, out.u);
+    out.kind = solver.linear_solver().kind();
+    out.fallbacks = solver.linear_solver().fallbacks();
+  } else {
+    const double dt = 1e-4;
+    sphere.function = TimeFunction::ramp(0.0, 4 * dt);
+    ContactImplicitDynamics integ(*s.system, s.mesh, {sphere}, ContactOptions{}, ImplicitScheme::Newmark, no,
+                                  dt);
+    const VecX zero = VecX::Zero(s.system->num_dofs());
+    integ.initialize(0.0, zero, zero);
+    for (int k = 0; k < 4; ++k) rep = integ.step(integ.time(), dt);
+    out.u = integ.displacement();
+    out.kind = integ.contact().linear_solver().kind();
+    out.fallbacks = integ.contact().linear_solver().fallbacks();
+  }
+  out.force = rep.bodies.at(0).force;
+  return out;
+}
+
+void expect_same_answer(const ContactRun& chol, const ContactRun& ldlt, const std::string& what) {
+  EXPECT_EQ(ldlt.kind, NewtonLinearSolver::Direct) << what;
+  EXPECT_EQ(chol.kind, NewtonLinearSolver::Cholmod) << what;  // taken from NewtonOptions
+  ASSERT_GT(std::abs(ldlt.force.z()), 0.0) << what;
+  EXPECT_LT((chol.u - ldlt.u).lpNorm<Eigen::Infinity>(), 1e-10 * ldlt.u.lpNorm<Eigen::Infinity>()) << what;
+  EXPECT_LT((chol.force - ldlt.force).norm(), 1e-10 * ldlt.force.norm()) << what;
+}
+
+TEST(ContactSolver, CholmodInTheContactSolvesGivesTheLdltAnswer) {
+  // Oracle: the same contact solves with CHOLMOD's LL^T and with Eigen's LDL^T (the default) agree
+  // to 1e-10 (relative to the largest displacement and to the contact force). The platen's
+  // tangents are positive definite: every solve is CHOLMOD's own. The sphere's are not always:
+  // those solves fall back to LDL^T (counted), static and implicit, with the same answer.
+  const ContactRun platen = platen_run(NewtonLinearSolver::Cholmod);
+  expect_same_answer(platen, platen_run(NewtonLinearSolver::Direct), "platen");
+  EXPECT_EQ(platen.fallbacks, 0);
+  for (const bool implicit : {false, true}) {
+    const ContactRun chol = sphere_run(NewtonLinearSolver::Cholmod, implicit);
+    expect_same_answer(chol, sphere_run(NewtonLinearSolver::Direct, implicit),
+                       implicit ? "implicit" : "static");
+    std::cout << (implicit ? "implicit" : "static") << " sphere: " << chol.fallbacks
+              << " CHOLMOD solves fell back to LDL^T\n";
+  }
 }
 
 TEST(ContactSolver, BodyPenetratingAtTheStartIsRefused) {
