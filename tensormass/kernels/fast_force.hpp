@@ -72,10 +72,19 @@ class FastTetForce {
   /// The fused explicit viscoelastic step (ViscoelasticStVK::force_and_commit, history pk2) in one
   /// pass: per tet E, the driver x (S_e = lambda tr(E) I + 2 mu E with this kernel's Lame pair, or
   /// S_dev), the history h_j <- a_j h_j + c_j (x - X), X <- x, and the force of
-  /// S = S_e + sum_j alpha_j h_j (the trial force at u, equal to (1 + g) S_e + S_hist). hist
-  /// [t][j][6] and driver [t][6] (Voigt) in mesh order, updated in place. St VK; terms <= 4.
+  /// S = S_e + sum_j alpha_j h_j (the trial force at u, equal to (1 + g) S_e + S_hist). hist and
+  /// driver (Voigt) are in this kernel's LANE ORDER (tet_slots()), updated in place: hist
+  /// [g][6 j + k][l] (num_slots() x 6 terms values), driver [g][k][l] (num_slots() x 6), so the pass
+  /// streams them with vector loads and stores; padding slots must hold zeros (they stay zero).
+  /// St VK; terms <= 4.
   void force_and_commit_pk2(const VecX& u, const PronyStep& step, double* hist, double* driver,
                             VecX& f) const;
+
+  /// The lane order of the per-tet arrays: slot s = kLanes g + l (group g, lane l), groups in part
+  /// order; num_slots() >= num_tets(), the extra (padding) slots hold no tet.
+  std::size_t num_slots() const { return tet_.size(); }
+  /// The slot of each mesh tet (num_tets() values, a permutation into [0, num_slots())).
+  std::vector<std::int32_t> tet_slots() const;
 
  private:
   struct Args {
@@ -85,10 +94,14 @@ class FastTetForce {
     double* hist = nullptr;
     double* driver = nullptr;
   };
-  template <int Mode>
+  // Terms and Dev (deviatoric driver) of the fused pk2 step are compile-time constants so that its
+  // lane loop has no control flow (and vectorises).
+  template <int Mode, int Terms = 0, bool Dev = false>
   void evaluate(const VecX& u, const Args& args, VecX& f) const;
-  template <int Mode>
+  template <int Mode, int Terms, bool Dev>
   void run_part(int part, const double* u, const Args& args, double* f) const;
+  template <bool Dev>
+  void fused_pk2(int terms, const VecX& u, const Args& args, VecX& f) const;
 
   Index num_nodes_ = 0, num_tets_ = 0;
   FastLaw law_;

@@ -40,6 +40,8 @@ ViscoelasticStVK::ViscoelasticStVK(const Mesh& mesh, const StVenantKirchhoff& lo
                                                  options.fast_threads);
   const std::size_t nt = static_cast<std::size_t>(num_tets());
   allocate_history(nt, pk2() ? 6 : 12);
+  // The fused pass streams the pk2 history in the fast kernel's lane order (docs/performance.md).
+  if (fast_ && pk2()) use_lane_order(FastTetForce::kLanes, fast_->tet_slots(), fast_->num_slots());
   if (pk2()) {
     rest_ = compute_tet_rest(mesh);
     s_hist_.assign(6 * nt, 0.0);
