@@ -264,8 +264,7 @@ void BM_LiverFastKernel(benchmark::State& state) {
     step.a[j] = rf.a;
     step.c[j] = rf.c;
   }
-  const std::size_t slots = static_cast<std::size_t>(fast.num_tets()) + 64;  // >= the lane slots
-  std::vector<double> hist(12 * slots, 0.0), driver(6 * slots, 0.0);
+  std::vector<double> hist(12 * fast.num_slots(), 0.0), driver(6 * fast.num_slots(), 0.0);  // lane order
   for (auto _ : state) {
     if (state.range(0) == 0)
       fast.internal_force(u, f);

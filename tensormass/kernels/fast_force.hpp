@@ -41,7 +41,14 @@ enum class FastLaw { StVK, NeoHookean };
 
 class FastTetForce {
  public:
+  /// Tets per group: one SIMD register of doubles per value (8 with AVX-512, else 4: with AVX2's 16
+  /// registers, 8 lanes take two registers per value and the lane loop spills; measured,
+  /// docs/performance.md).
+#ifdef __AVX512F__
   static constexpr int kLanes = 8;
+#else
+  static constexpr int kLanes = 4;
+#endif
   static constexpr int kParts = 8;
 
   /// Rest geometry (throws tmlab::Error on bad tets), the Morton order, the parts and the pool of
@@ -58,7 +65,8 @@ class FastTetForce {
   /// f = dW/du (overwrites f, resized to 3 num_nodes()).
   void internal_force(const VecX& u, VecX& f) const;
   /// Objective viscoelastic trial force with S = lambda_eff tr(E) I + 2 mu_eff E + S_hist(t),
-  /// s_hist: 6 Voigt values (xx, yy, zz, xy, xz, yz) per tet in mesh order. St VK only (throws
+  /// s_hist: 6 Voigt values (xx, yy, zz, xy, xz, yz) per tet in this kernel's LANE ORDER (as the
+  /// fused step's driver: [g][k][l], num_slots() x 6 values, zeros in padding slots). St VK only (throws
   /// tmlab::Error for neo-Hookean).
   void trial_force_pk2(const VecX& u, double lambda_eff, double mu_eff, const double* s_hist, VecX& f) const;
 

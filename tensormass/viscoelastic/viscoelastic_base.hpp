@@ -176,6 +176,10 @@ class ViscoelasticBase : public ElasticModel {
   /// (FastTetForce's fused pass, after use_lane_order with the kernel's slots).
   double* history_data() { return hist_.data(); }
   double* driver_data() { return driver_.data(); }
+  /// Where component k of tet t's driver is in the driver's storage order (of driver_size()
+  /// values): per-tet arrays of the driver's width in the same order use it too.
+  std::size_t driver_index(std::size_t t, std::size_t k) const { return driver_at(t) + k * lanes_; }
+  std::size_t driver_size() const { return driver_.size(); }
 
  private:
   /// Where tet t's values start in hist_ and driver_ (component c at + c lanes_).
