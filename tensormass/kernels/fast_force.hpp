@@ -11,10 +11,14 @@
 // kernel with S = lambda_eff tr(E) I + 2 mu_eff E + S_hist(t) (fused: no second pass).
 //
 // How it is fast (docs/performance.md):
-//  * Structure of arrays in groups of kLanes = 8 tets: the 9 shape gradients, the volume, the 4
-//    node indices and 4 scatter offsets of lane l are stored at [group][k][l], so the arithmetic of
-//    a group is one vectorised loop over the lanes (AVX-512: 8 doubles per instruction); only the
-//    gather of U and the scatter of f are scalar.
+//  * Structure of arrays in groups of kLanes tets (8 with AVX-512, 4 with AVX2): the 9 shape
+//    gradients, the volume, the 4 node indices and 4 scatter offsets of lane l are stored at
+//    [group][k][l], so the arithmetic of a group is one vectorised loop over the lanes (one SIMD
+//    register per value); only the gather of U and the scatter of f are scalar.
+//  * The fused viscoelastic step's history and driver, and the trial force's S_hist, are kept by
+//    the caller in the same lane order (tet_slots()): each group's block is contiguous and streams
+//    with vector loads and stores; the lane loop has no control flow (the number of Prony terms and
+//    the deviatoric switch are template parameters).
 //  * Tets sorted by the Morton code of their centroid: neighbours in memory share nodes, so the
 //    gathers and scatters hit cache.
 //  * Race-free, deterministic parallel scatter: the sorted tets are cut into kParts contiguous parts
