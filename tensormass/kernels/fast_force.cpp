@@ -345,8 +345,8 @@ inline void group_forces(const double* a, const double* V, double lam, double mu
 }
 
 /// Row-wise copies of a group's lane-order blocks (R1 and R2 rows of kL doubles) into and out of the
-/// scratch: one 64-byte row at a time, inlined as vector moves (a single copy of the whole block
-/// compiles to a call of memmove, measured at 17 % of the fused pass).
+/// scratch: one row (one SIMD register) at a time, inlined as vector moves (a single copy of the
+/// whole block compiles to a call of memmove, measured at 17 % of the fused pass).
 template <int R1, int R2>
 inline void copy_rows(const double* __restrict a, const double* __restrict b, double (&ra)[6 * kT][kL],
                       double (&rb)[6][kL]) {
