@@ -3,15 +3,22 @@
 // cubes of 3,072 / 24,576 / 196,608 tets. Counter "time/tet" = seconds per tet (ns shown as "n").
 // Contact surface detection (docs/contact.md): the boundary extraction, the grid's build and its
 // per-iteration refit on cubes of 24,576 / 105,456 / 196,608 tets.
+#include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/contact/surface_grid.hpp"
+#include "tensormass/kernels/fast_force.hpp"
 #include "tensormass/kernels/picinbono_storage.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/solvers/explicit_dynamics.hpp"
+#include "tensormass/system/lumped_mass.hpp"
+#include "tensormass/system/mechanical_system.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
+#include <memory>
 #include <random>
 
 namespace {
@@ -184,6 +191,93 @@ void BM_SurfaceGridRefit(benchmark::State& state) {
 // cubes of 16^3, 26^3, 32^3 hexes x 6 = 24,576 / 105,456 / 196,608 tets
 #define CONTACT_SIZES ->Arg(16)->Arg(26)->Arg(32)->Unit(benchmark::kMicrosecond)
 
+// ---- the liver's explicit step on the fast kernel (issue 16 target: viscoelastic <= 50 us) ----
+// The step of `tmlab bench` (bench_suite.cpp): bottom 10 % of the liver clamped, gravity, E 300 kPa,
+// nu 0.45, the two-term Prony series, dt = 0.3 h_min / c_p, energy bookkeeping off, 1 thread.
+
+Mesh liver_mesh() { return read_mesh(std::string(TMLAB_SOURCE_DIR) + "/meshes/liver.msh"); }
+StVenantKirchhoff step_material() { return StVenantKirchhoff::from_young_poisson(300e3, 0.45); }
+PronySeries step_prony() { return PronySeries::from_long_term({0.8, 0.4}, {0.5, 5.0}); }
+
+/// The liver's explicit step with `model` (range 0: elastic FastHyperelastic, 1: objective
+/// ViscoelasticStVK on the fast kernel).
+void BM_LiverExplicitStep(benchmark::State& state) {
+  const Mesh mesh = liver_mesh();
+  const StVenantKirchhoff mat = step_material();
+  std::unique_ptr<ElasticModel> model;
+  if (state.range(0) == 0) {
+    model = std::make_unique<FastHyperelastic>(mesh, FastLaw::StVK, mat.lambda, mat.mu, 1);
+  } else {
+    ViscoelasticOptions vo;
+    vo.energy_bookkeeping = false;
+    vo.fast_threads = 1;
+    model = std::make_unique<ViscoelasticStVK>(mesh, mat, step_prony(), vo);
+  }
+  double zlo = 1e300, zhi = -1e300, h_min = 1e300;
+  for (const Vec3& p : mesh.points) {
+    zlo = std::min(zlo, p.z());
+    zhi = std::max(zhi, p.z());
+  }
+  for (const Tet& t : mesh.tets)
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b)
+        h_min = std::min(
+            h_min, (mesh.points[static_cast<std::size_t>(t[a])] - mesh.points[static_cast<std::size_t>(t[b])])
+                       .norm());
+  DirichletCondition clamp;
+  clamp.name = "base";
+  for (Index i = 0; i < mesh.num_points(); ++i)
+    if (mesh.points[static_cast<std::size_t>(i)].z() <= zlo + 0.1 * (zhi - zlo)) clamp.nodes.push_back(i);
+  const VecX node_mass = lumped_node_mass(mesh, 1000.0);
+  ExternalLoads loads(mesh, node_mass);
+  Gravity g;
+  g.acceleration = Vec3(0, 0, -9.81);
+  loads.add(g);
+  MechanicalSystem system(*model, lumped_dof_mass(node_mass), DirichletSet(mesh.num_points(), {clamp}),
+                          loads);
+  const double dt = 0.3 * h_min / std::sqrt((mat.lambda + 2 * mat.mu) / 1000.0);
+  CentralDifference integ(system, dt, false);
+  integ.initialize(0.0, VecX::Zero(system.num_dofs()), VecX::Zero(system.num_dofs()));
+  for (auto _ : state) {
+    integ.step(integ.time(), dt);
+    benchmark::ClobberMemory();
+  }
+  set_counters(state, mesh.num_tets());
+}
+
+/// The fast kernel alone on the liver at a random u: range 0 the elastic force, 1 the fused
+/// objective step (force_and_commit_pk2, two terms).
+void BM_LiverFastKernel(benchmark::State& state) {
+  const Mesh mesh = liver_mesh();
+  const StVenantKirchhoff mat = step_material();
+  const FastTetForce fast(mesh, FastLaw::StVK, mat.lambda, mat.mu, 1);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> d(-1e-4, 1e-4);
+  VecX u(3 * mesh.num_points()), f;
+  for (Eigen::Index i = 0; i < u.size(); ++i) u[i] = d(rng);
+  FastTetForce::PronyStep step;
+  step.terms = 2;
+  const PronySeries prony = step_prony();
+  for (int j = 0; j < 2; ++j) {
+    const RecursionFactors rf = recursion_factors(PronyIntegration::Midpoint, 1e-5, prony.tau(j));
+    step.alpha[j] = prony.alpha(j);
+    step.a[j] = rf.a;
+    step.c[j] = rf.c;
+  }
+  std::vector<double> hist(12 * fast.num_slots(), 0.0), driver(6 * fast.num_slots(), 0.0);  // lane order
+  for (auto _ : state) {
+    if (state.range(0) == 0)
+      fast.internal_force(u, f);
+    else
+      fast.force_and_commit_pk2(u, step, hist.data(), driver.data(), f);
+    benchmark::DoNotOptimize(f.data());
+    benchmark::ClobberMemory();
+  }
+  set_counters(state, mesh.num_tets());
+}
+
+BENCHMARK(BM_LiverExplicitStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
+BENCHMARK(BM_LiverFastKernel)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_OracleForce) TM_SIZES;
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
 BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;

@@ -11,10 +11,14 @@
 // kernel with S = lambda_eff tr(E) I + 2 mu_eff E + S_hist(t) (fused: no second pass).
 //
 // How it is fast (docs/performance.md):
-//  * Structure of arrays in groups of kLanes = 8 tets: the 9 shape gradients, the volume, the 4
-//    node indices and 4 scatter offsets of lane l are stored at [group][k][l], so the arithmetic of
-//    a group is one vectorised loop over the lanes (AVX-512: 8 doubles per instruction); only the
-//    gather of U and the scatter of f are scalar.
+//  * Structure of arrays in groups of kLanes tets (8 with AVX-512, 4 with AVX2): the 9 shape
+//    gradients, the volume, the 4 node indices and 4 scatter offsets of lane l are stored at
+//    [group][k][l], so the arithmetic of a group is one vectorised loop over the lanes (one SIMD
+//    register per value); only the gather of U and the scatter of f are scalar.
+//  * The fused viscoelastic step's history and driver, and the trial force's S_hist, are kept by
+//    the caller in the same lane order (tet_slots()): each group's block is contiguous and streams
+//    with vector loads and stores; the lane loop has no control flow (the number of Prony terms and
+//    the deviatoric switch are template parameters).
 //  * Tets sorted by the Morton code of their centroid: neighbours in memory share nodes, so the
 //    gathers and scatters hit cache.
 //  * Race-free, deterministic parallel scatter: the sorted tets are cut into kParts contiguous parts
@@ -41,7 +45,14 @@ enum class FastLaw { StVK, NeoHookean };
 
 class FastTetForce {
  public:
+  /// Tets per group: one SIMD register of doubles per value (8 with AVX-512, else 4: with AVX2's 16
+  /// registers, 8 lanes take two registers per value and the lane loop spills; measured,
+  /// docs/performance.md).
+#ifdef __AVX512F__
   static constexpr int kLanes = 8;
+#else
+  static constexpr int kLanes = 4;
+#endif
   static constexpr int kParts = 8;
 
   /// Rest geometry (throws tmlab::Error on bad tets), the Morton order, the parts and the pool of
@@ -58,7 +69,8 @@ class FastTetForce {
   /// f = dW/du (overwrites f, resized to 3 num_nodes()).
   void internal_force(const VecX& u, VecX& f) const;
   /// Objective viscoelastic trial force with S = lambda_eff tr(E) I + 2 mu_eff E + S_hist(t),
-  /// s_hist: 6 Voigt values (xx, yy, zz, xy, xz, yz) per tet in mesh order. St VK only (throws
+  /// s_hist: 6 Voigt values (xx, yy, zz, xy, xz, yz) per tet in this kernel's LANE ORDER (as the
+  /// fused step's driver: [g][k][l], num_slots() x 6 values, zeros in padding slots). St VK only (throws
   /// tmlab::Error for neo-Hookean).
   void trial_force_pk2(const VecX& u, double lambda_eff, double mu_eff, const double* s_hist, VecX& f) const;
 
@@ -72,10 +84,19 @@ class FastTetForce {
   /// The fused explicit viscoelastic step (ViscoelasticStVK::force_and_commit, history pk2) in one
   /// pass: per tet E, the driver x (S_e = lambda tr(E) I + 2 mu E with this kernel's Lame pair, or
   /// S_dev), the history h_j <- a_j h_j + c_j (x - X), X <- x, and the force of
-  /// S = S_e + sum_j alpha_j h_j (the trial force at u, equal to (1 + g) S_e + S_hist). hist
-  /// [t][j][6] and driver [t][6] (Voigt) in mesh order, updated in place. St VK; terms <= 4.
+  /// S = S_e + sum_j alpha_j h_j (the trial force at u, equal to (1 + g) S_e + S_hist). hist and
+  /// driver (Voigt) are in this kernel's LANE ORDER (tet_slots()), updated in place: hist
+  /// [g][6 j + k][l] (num_slots() x 6 terms values), driver [g][k][l] (num_slots() x 6), so the pass
+  /// streams them with vector loads and stores; padding slots must hold zeros (they stay zero).
+  /// St VK; terms <= 4.
   void force_and_commit_pk2(const VecX& u, const PronyStep& step, double* hist, double* driver,
                             VecX& f) const;
+
+  /// The lane order of the per-tet arrays: slot s = kLanes g + l (group g, lane l), groups in part
+  /// order; num_slots() >= num_tets(), the extra (padding) slots hold no tet.
+  std::size_t num_slots() const { return tet_.size(); }
+  /// The slot of each mesh tet (num_tets() values, a permutation into [0, num_slots())).
+  std::vector<std::int32_t> tet_slots() const;
 
  private:
   struct Args {
@@ -85,10 +106,14 @@ class FastTetForce {
     double* hist = nullptr;
     double* driver = nullptr;
   };
-  template <int Mode>
+  // Terms and Dev (deviatoric driver) of the fused pk2 step are compile-time constants so that its
+  // lane loop has no control flow (and vectorises).
+  template <int Mode, int Terms = 0, bool Dev = false>
   void evaluate(const VecX& u, const Args& args, VecX& f) const;
-  template <int Mode>
+  template <int Mode, int Terms, bool Dev>
   void run_part(int part, const double* u, const Args& args, double* f) const;
+  template <bool Dev>
+  void fused_pk2(int terms, const VecX& u, const Args& args, VecX& f) const;
 
   Index num_nodes_ = 0, num_tets_ = 0;
   FastLaw law_;

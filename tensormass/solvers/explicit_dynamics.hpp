@@ -61,6 +61,7 @@ class CentralDifference {
   double t_ = 0.0;
   long n_ = 0;
   VecX u_, v_half_, v_, fint_, fext_, fdamp_;
+  VecX v_new_, g_;  ///< step() scratch, kept to avoid an allocation per step
   double displacement_limit_ = std::numeric_limits<double>::infinity();
 };
 

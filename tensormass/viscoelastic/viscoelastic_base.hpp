@@ -19,6 +19,11 @@
 //                      identical bit for bit).
 //   checkpoints        committed_state() / restore_committed_state() in the layout of
 //                      committed_state.hpp.
+//   storage order      mesh order [t][j][k] by default; a model whose fused pass runs on
+//                      FastTetForce keeps it in the kernel's lane order instead (use_lane_order:
+//                      [group][j width + k][lane], so the pass streams it with vector loads). Every
+//                      value is the same in either order; what leaves the model (committed_history(),
+//                      committed_driver(), committed_state()) is always in mesh order.
 //
 // A derived model gives the long-term spring energy, the per-tet driver and branch quadratic form,
 // and what its constant trial parts do when the step changes (trial_changed()); a fused pass of its
@@ -30,6 +35,7 @@
 #include "tensormass/viscoelastic/prony_series.hpp"
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -104,9 +110,9 @@ class ViscoelasticBase : public ElasticModel {
   double total_dissipation() const { return total_dissipation_; }        ///< sum over commits
   double committed_dissipation_rate() const { return committed_rate_; }  ///< D at the last commit, W
   /// Raw committed history h_j^c per tet [t][j][k], k < history_width(), and the committed driver
-  /// X_e^c per tet [t][k].
-  const std::vector<double>& committed_history() const { return hist_; }
-  const std::vector<double>& committed_driver() const { return driver_; }
+  /// X_e^c per tet [t][k], in mesh order (copies, whatever the storage order).
+  std::vector<double> committed_history() const;
+  std::vector<double> committed_driver() const;
   /// Number of history components per tet and term (12: nodal forces, 6: a Voigt stress).
   int history_width() const { return static_cast<int>(width_); }
 
@@ -162,19 +168,41 @@ class ViscoelasticBase : public ElasticModel {
   /// The end of a commit: the dissipation bookkeeping from psi and rate (`book`), then the trial
   /// step reset to dt = 0.
   void finish_commit(bool book, double psi, double rate);
-  /// The committed storage, for a kernel that updates it in place (FastTetForce's fused pass).
+  /// Store the committed history and drivers in a kernel's lane order from now on (values kept):
+  /// tet t at slot slots[t] < num_slots, slot s = lanes g + l, the history at
+  /// [g][j width + k][l] and the driver at [g][k][l]; slots without a tet hold zeros.
+  void use_lane_order(int lanes, std::vector<std::int32_t> slots, std::size_t num_slots);
+  /// The committed storage in its storage order, for a kernel that updates it in place
+  /// (FastTetForce's fused pass, after use_lane_order with the kernel's slots).
   double* history_data() { return hist_.data(); }
   double* driver_data() { return driver_.data(); }
+  /// Where component k of tet t's driver is in the driver's storage order (of driver_size()
+  /// values): per-tet arrays of the driver's width in the same order use it too.
+  std::size_t driver_index(std::size_t t, std::size_t k) const { return driver_at(t) + k * lanes_; }
+  std::size_t driver_size() const { return driver_.size(); }
 
  private:
+  /// Where tet t's values start in hist_ and driver_ (component c at + c lanes_).
+  std::size_t hist_at(std::size_t t) const;
+  std::size_t driver_at(std::size_t t) const;
+  /// Mesh order [t][c] (per tet `per_tet` values) from the storage order, and back.
+  std::vector<double> to_mesh_order(const std::vector<double>& stored, std::size_t per_tet, bool hist) const;
+  void from_mesh_order(const std::vector<double>& mesh, std::size_t per_tet, bool hist,
+                       std::vector<double>& stored) const;
+
   PronySeries prony_;
   ViscoelasticOptions options_;
   bool elastic_only_ = false;
   std::size_t num_tets_ = 0, width_ = 0;
 
+  // storage order: lanes_ = 1 and no slots_: mesh order; else the lane order of use_lane_order
+  std::size_t lanes_ = 1;
+  std::vector<std::int32_t> slots_;  ///< slot of each tet (empty: slot t)
+
   // committed
-  std::vector<double> hist_;                ///< [t][j][k]
-  std::vector<double> driver_;              ///< [t][k]
+  std::vector<double> hist_;                ///< [t][j][k] in storage order
+  std::vector<double> driver_;              ///< [t][k] in storage order
+  std::vector<double> tet_hist_;            ///< commit_tet's scratch: one tet's new h_j [j][k]
   mutable double committed_elastic_ = 0.0;  ///< valid unless spring_stale_
   double committed_branch_ = 0.0, committed_rate_ = 0.0;
   double step_dissipation_ = 0.0, total_dissipation_ = 0.0;

@@ -40,9 +40,12 @@ ViscoelasticStVK::ViscoelasticStVK(const Mesh& mesh, const StVenantKirchhoff& lo
                                                  options.fast_threads);
   const std::size_t nt = static_cast<std::size_t>(num_tets());
   allocate_history(nt, pk2() ? 6 : 12);
+  // The fused pass streams the pk2 history in the fast kernel's lane order (docs/performance.md).
+  if (fast_ && pk2()) use_lane_order(FastTetForce::kLanes, fast_->tet_slots(), fast_->num_slots());
   if (pk2()) {
     rest_ = compute_tet_rest(mesh);
     s_hist_.assign(6 * nt, 0.0);
+    if (fast_) s_hist_lanes_.assign(driver_size(), 0.0);  // the driver's lane order, zero padding
   } else {
     f_hist_ = VecX::Zero(num_dofs());
     // Pseudo-inverse of each tet's rest stiffness K_0 (rank 6: the 6 rigid modes removed), the
@@ -135,6 +138,8 @@ void ViscoelasticStVK::update_trial() const {
   for (std::size_t t = 0; t < nt; ++t) {
     if (pk2()) {
       history_part(t, &s_hist_[6 * t]);
+      if (fast_)
+        for (std::size_t k = 0; k < 6; ++k) s_hist_lanes_[driver_index(t, k)] = s_hist_[6 * t + k];
     } else {
       history_part(t, loc);
       const Tet& tet = elastic_.tets()[t];
@@ -253,7 +258,7 @@ void ViscoelasticStVK::internal_force(const VecX& u, VecX& f) const {
   }
   if (fast_) {  // S_total = lambda_eff tr(E) I + 2 mu_eff E + S_hist in the fast kernel
     const StVenantKirchhoff eff = trial_elasticity();
-    fast_->trial_force_pk2(u, eff.lambda, eff.mu, s_hist_.data(), f);
+    fast_->trial_force_pk2(u, eff.lambda, eff.mu, s_hist_lanes_.data(), f);
     return;
   }
   assert(u.size() == num_dofs());

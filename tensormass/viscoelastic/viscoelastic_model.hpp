@@ -112,8 +112,9 @@ class ViscoelasticStVK : public ViscoelasticBase {
 
   // The constant trial parts, mutable: recomputed lazily after a commit (ensure_trial). A model is
   // therefore not safe for concurrent const calls (no solver makes them).
-  mutable VecX f_hist_;                 ///< nodal_force: assembled constant force
-  mutable std::vector<double> s_hist_;  ///< pk2: per tet 6 (Voigt)
+  mutable VecX f_hist_;                       ///< nodal_force: assembled constant force
+  mutable std::vector<double> s_hist_;        ///< pk2: per tet 6 (Voigt)
+  mutable std::vector<double> s_hist_lanes_;  ///< pk2 on the fast kernel: s_hist_ in its lane order
   mutable bool trial_stale_ = false;
   std::shared_ptr<const FastTetForce> fast_;  ///< options().fast_threads >= 1
 };

@@ -980,14 +980,18 @@ TEST(ViscoelasticStVK, FastKernelEqualsTheReferenceKernelAndIgnoresTheThreadCoun
       ViscoelasticStVK one(mesh, kMat, prony, o);
       o.fast_threads = 2;
       ViscoelasticStVK two(mesh, kMat, prony, o);
+      o.fast_threads = 3;
+      ViscoelasticStVK three(mesh, kMat, prony, o);
       for (const VecX& u : us) {
-        VecX fr, f1, f2;
-        for (ViscoelasticStVK* m : {&ref, &one, &two}) m->begin_step(0.01);
+        VecX fr, f1, f2, f3;
+        for (ViscoelasticStVK* m : {&ref, &one, &two, &three}) m->begin_step(0.01);
         ref.force_and_commit(u, fr);
         one.force_and_commit(u, f1);
         two.force_and_commit(u, f2);
+        three.force_and_commit(u, f3);
         EXPECT_LE((f1 - fr).norm(), 1e-12 * fr.norm()) << label(o) << " book " << book;
         EXPECT_TRUE(same_bits(f1, f2)) << label(o);
+        EXPECT_TRUE(same_bits(f1, f3)) << label(o);
         const auto& hr = ref.committed_history();
         const auto& h1 = one.committed_history();
         double dh = 0.0, nh = 0.0;
@@ -997,6 +1001,7 @@ TEST(ViscoelasticStVK, FastKernelEqualsTheReferenceKernelAndIgnoresTheThreadCoun
         }
         EXPECT_LE(dh, 1e-12 * nh) << label(o) << " book " << book;
         EXPECT_EQ(one.committed_history(), two.committed_history()) << label(o);
+        EXPECT_EQ(one.committed_history(), three.committed_history()) << label(o);
         // after the commit the dt = 0 trial force (reactions) agrees as well
         ref.internal_force(u, fr);
         one.internal_force(u, f1);
