@@ -96,6 +96,8 @@ class FeRigModel final : public ForwardModel {
   FeRigModel(const ms::DataSet& d, ModelSpec spec, FeRigOptions o) : spec_(std::move(spec)), opt_(o) {
     if (opt_.substeps < 1) throw Error("fe_rig: substeps must be >= 1");
     if (opt_.newton_max_iterations < 1) throw Error("fe_rig: newton_max_iterations must be >= 1");
+    if (!(opt_.jacobian_step > 0.0 && opt_.jacobian_step < 0.1))
+      throw Error("fe_rig: jacobian_step must lie in (0, 0.1)");
     for (std::size_t k = 0; k < d.tests.size(); ++k) {
       auto r = std::make_unique<TestRig>();
       r->spec = rigs::rig_from_data(d, k, opt_.mesh);
@@ -130,7 +132,7 @@ class FeRigModel final : public ForwardModel {
            " load step(s) per sample" +
            (indentation_ ? ", augmented-Lagrangian frictionless contact" : ", prescribed platen face");
   }
-  double jacobian_step() const override { return 1e-6; }
+  double jacobian_step() const override { return opt_.jacobian_step; }
 
   std::vector<double> predict(const std::vector<double>& x) const override {
     return predict_warm(x, nullptr, nullptr);

@@ -56,6 +56,13 @@ struct FeRigOptions {
   /// contact nodes' stiffness by orders of magnitude and Newton stalls at the contact edge. The
   /// solution does not depend on eps beyond the contact tolerance (the same stopping test).
   double contact_stiffness_factor = 0.0;
+  /// The relative step of the fitter's forward-difference Jacobian (ForwardModel::jacobian_step).
+  /// The forces carry the contact solver's tolerance (the Uzawa loop stops when no multiplier
+  /// moves by more than eps x gap_tol; measured on the Section IV-A rig: warm and cold solves of one
+  /// point differ by ~5e-8 of the peak force), so a step of 1e-6 leaves ~5 % noise in a Jacobian
+  /// column. The balance of that noise against the forward difference's truncation error is near
+  /// sqrt(5e-8) ~ 2e-4 (docs/identification.md, "Jacobian step of the FE rig").
+  double jacobian_step = 1e-6;
   /// Builds each test's mesh instead of rigs::rig_mesh(spec) (e.g. a mesh graded for one study,
   /// verification/studies/paper_fit.cpp). It must cover the rig's sample (the same extent) and name
   /// the faces as rig_mesh does ("bottom", "top"), since the rig's boundary conditions select them.

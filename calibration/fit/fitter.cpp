@@ -247,7 +247,7 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
   for (std::size_t j = 0; j < ev.p(); ++j) gsl_vector_set(x, j, t0[j]);
   gsl_multifit_nlinear_init(x, &fdf, w);
   int info = 0;
-  const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), 1e-9, 1e-9, 1e-12,
+  const int status = gsl_multifit_nlinear_driver(std::size_t(opt.max_iterations), opt.xtol, 1e-9, 1e-12,
                                                  gsl_callback, &g, &info, w);
   if (pending_interrupt() != 0) {
     const std::string at = std::to_string(gsl_multifit_nlinear_niter(w));

@@ -80,6 +80,11 @@ struct FitOptions {
   double siman_step = 0.2;  ///< step, as a fraction of each parameter's start range (internal)
   double siman_t_initial = 1.0, siman_t_min = 1e-3;
   int max_iterations = 200;
+  /// Levenberg-Marquardt's step test: stop when every internal coordinate moves by less than
+  /// xtol (|t| + xtol) (GSL's xtol). A model whose forces carry a solver tolerance cannot resolve
+  /// steps much below that tolerance over its sensitivity; a smaller xtol then only spends
+  /// iterations on noise (docs/identification.md).
+  double xtol = 1e-9;
   bool profile = true;  ///< profile likelihood of the worst-determined parameter
   /// Levenberg-Marquardt's forward solves (trial points, Jacobian columns, the covariance's
   /// columns) start from the solver state at the current point (ForwardModel::predict_warm): the

@@ -4,6 +4,7 @@
 #include "calibration/closed_forms/indentation.hpp"
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
+#include "calibration/fit/relaxation_bands.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -163,6 +164,24 @@ fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s) {
   return fe;
 }
 
+std::string paper_fit_spec(const PaperFitSettings& s, const std::string& law, bool visco) {
+  return law + (visco ? "+prony:" + std::to_string(s.prony_moduli.size()) : "") +
+         ",poisson=" + significant(s.poisson, 6);
+}
+
+fit::Problem paper_fit_problem(const PaperFitSettings& s, const std::string& kind, const std::string& law,
+                               bool visco, const ms::DataSet& data) {
+  const fit::ModelSpec spec = fit::parse_model_spec(paper_fit_spec(s, law, visco));
+  fit::FeRigOptions fe = paper_fe_rig_options(s);
+  if (visco) fe.jacobian_step = s.relaxation.jacobian_step;
+  fit::Problem pr = kind == "closed_form" ? fit::make_surrogate_problem(data, spec)
+                                          : fit::make_fe_rig_problem(data, spec, {}, {}, fe);
+  if (visco && s.relaxation.time_floor > 0.0)
+    fit::band_relaxation_times(
+        pr.parameters, spec, fit::relaxation_range(data, s.relaxation.time_floor, s.relaxation.time_ceiling));
+  return pr;
+}
+
 namespace {
 
 /// One identification: a kind ("closed_form" or "tensor_mass"), a law, a depth.
@@ -185,21 +204,21 @@ double truth_of(const PaperFitSettings& s, const std::string& name) {
 
 json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostream* log) {
   const ms::DataSet data = paper_reference_data(s, visco, job.depth_index);
-  const std::string spec_text = job.law + (visco ? "+prony:" + std::to_string(s.prony_moduli.size()) : "") +
-                                ",poisson=" + significant(s.poisson, 6);
-  const fit::ModelSpec spec = fit::parse_model_spec(spec_text);
+  const std::string spec_text = paper_fit_spec(s, job.law, visco);
+  fit::Problem pr = paper_fit_problem(s, job.kind, job.law, visco, data);
   fit::FitOptions fo;
   fo.threads = s.threads;
   fo.profile = false;  // each profile point is a full re-fit: too dear for FE indentation
   fo.max_iterations = s.max_iterations;
+  if (visco) {
+    if (s.relaxation.max_iterations > 0) fo.max_iterations = s.relaxation.max_iterations;
+    fo.xtol = s.relaxation.xtol;
+  }
   fo.seed = s.seed;
-  fit::Problem pr;
   if (job.kind == "closed_form") {
-    pr = fit::make_surrogate_problem(data, spec);
     fo.starts = std::max(12, s.starts);
     fo.local_runs = 3;
   } else {
-    pr = fit::make_fe_rig_problem(data, spec, {}, {}, paper_fe_rig_options(s));
     fo.starts = s.starts;
     fo.local_runs = s.local_runs;
   }
@@ -221,8 +240,10 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     const fit::FitResult r = fit::fit(pr, fo);
     j["status"] = "ok";
     j["parameters"] = json::array();
-    for (const auto& p : r.parameters) {
+    for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+      const fit::ParameterResult& p = r.parameters[i];
       const double truth = truth_of(s, p.name);
+      const fit::Parameter& bounds = pr.parameters.at(i);
       j["parameters"].push_back({{"name", p.name},
                                  {"unit", p.unit},
                                  {"value", p.value},
@@ -230,6 +251,8 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
                                  {"standard_error", num(p.standard_error)},
                                  {"interval95", {num(p.lower95), num(p.upper95)}},
                                  {"identifiable", p.identifiable},
+                                 {"bounds", {num(bounds.lower), num(bounds.upper)}},
+                                 {"at_bound", fit::bound_reached(bounds, p.value)},
                                  {"truth", num(truth)},
                                  {"truth_inside_interval", !p.fixed && std::isfinite(truth) &&
                                                                truth >= p.lower95 && truth <= p.upper95}});
@@ -284,7 +307,9 @@ std::string value_se(const json& fitj, const std::string& name, double scale) {
   std::string v = significant((*p)["value"].get<double>() * scale, 4);
   if ((*p)["fixed"].get<bool>()) return v + " (fixed)";
   const json& se = (*p)["standard_error"];
-  return v + " ± " + (se.is_null() ? std::string("inf") : significant(se.get<double>() * scale, 2));
+  const std::string edge = p->value("at_bound", std::string());
+  return v + " ± " + (se.is_null() ? std::string("inf") : significant(se.get<double>() * scale, 2)) +
+         (edge.empty() ? "" : " (at " + edge + " bound)");
 }
 
 /// The CPU seconds of a fit ("-" for a fit file written before they were recorded).

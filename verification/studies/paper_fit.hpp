@@ -56,6 +56,16 @@ Mesh paper_fit_mesh(const rigs::RigSpec& spec, double patch_factor, int patch_ce
 /// their load steps and contact stiffness.
 fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s);
 
+/// The SPEC of the study's fits of `law`: with the reference's number of Prony terms when `viscoelastic`,
+/// poisson fixed at the reference value.
+std::string paper_fit_spec(const PaperFitSettings& s, const std::string& law, bool viscoelastic);
+
+/// The problem of one identification of `data` (kind "closed_form": the Hertz / Lee-Radok surrogate;
+/// otherwise the FE rig of paper_fe_rig_options): with relaxation-time bands
+/// (fit/relaxation_bands.hpp) when viscoelastic and the settings set them.
+fit::Problem paper_fit_problem(const PaperFitSettings& s, const std::string& kind, const std::string& law,
+                               bool viscoelastic, const measured::DataSet& data);
+
 /// Coordinates on [lo, hi]: uniform cells of size w / np within w of `focus` (clipped to the
 /// interval), then no cells per side growing geometrically to the ends. tmlab::Error when the patch
 /// does not fit.

@@ -4,6 +4,8 @@
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
 
+#include <cmath>
+
 namespace tmlab::tm {
 
 using nlohmann::json;
@@ -89,6 +91,29 @@ PaperFitSettings paper_fit_settings(const json& params_in, const std::string& wh
     s.local_runs = f.require<int>("local_runs");
     s.max_iterations = f.require<int>("max_iterations");
     s.threads = f.get<int>("threads", 2);
+    if (f.has("relaxation")) {
+      ConfigReader v = f.child("relaxation");
+      PaperFitSettings::Relaxation& x = s.relaxation;
+      x.time_floor = v.get<double>("time_floor", 0.0);
+      x.time_ceiling = v.get<double>("time_ceiling", 0.0);
+      x.jacobian_step = v.get<double>("jacobian_step", 1e-6);
+      x.xtol = v.get<double>("xtol", 1e-9);
+      x.max_iterations = v.get<int>("max_iterations", 0);
+      if (!(x.time_floor >= 0.0) || !std::isfinite(x.time_floor))
+        throw v.error("time_floor",
+                      "must be >= 0 (a fraction of the shortest sampling interval; 0: no bands)");
+      if (!(x.time_ceiling >= 0.0) || !std::isfinite(x.time_ceiling))
+        throw v.error("time_ceiling", "must be >= 0 (a multiple of the test's duration; 0: no bands)");
+      if ((x.time_floor > 0.0) != (x.time_ceiling > 0.0))
+        throw v.error(x.time_floor > 0.0 ? "time_ceiling" : "time_floor",
+                      "time_floor and time_ceiling are set together (both 0: no bands)");
+      if (!(x.jacobian_step > 0.0 && x.jacobian_step < 0.1))
+        throw v.error("jacobian_step", "must lie in (0, 0.1) (a relative finite-difference step)");
+      if (!(x.xtol > 0.0 && x.xtol < 0.1)) throw v.error("xtol", "must lie in (0, 0.1)");
+      if (x.max_iterations < 0)
+        throw v.error("max_iterations", "must be >= 0 (0: identification.max_iterations)");
+      v.finish();
+    }
     if (s.starts < 1 || s.local_runs < 1 || s.max_iterations < 1 || s.threads < 1)
       throw f.error("starts", "starts, local_runs, max_iterations and threads must be >= 1");
     f.finish();

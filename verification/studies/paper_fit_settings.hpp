@@ -33,6 +33,17 @@ struct PaperFitSettings {
   // Identification.
   std::vector<std::string> laws = {"stvk", "neo_hookean"};
   int starts = 12, local_runs = 1, max_iterations = 20, threads = 2;
+  /// The relaxation fits (fig3, table2: five free parameters; identification.relaxation in the
+  /// parameter file). The elastic fits (one free parameter) use the engine's defaults.
+  struct Relaxation {
+    /// Relaxation-time bands (fit/relaxation_bands.hpp): tau >= time_floor x the shortest sampling
+    /// interval, tau <= time_ceiling x the test's duration, one ordered band per term. 0: no bands
+    /// (tau > 0 only, the terms unordered).
+    double time_floor = 0.0, time_ceiling = 0.0;
+    double jacobian_step = 1e-6;  ///< the FE rig's relative finite-difference step (fit::FeRigOptions)
+    double xtol = 1e-9;           ///< Levenberg-Marquardt's step test (fit::FitOptions::xtol)
+    int max_iterations = 0;       ///< Levenberg-Marquardt iterations; 0: identification.max_iterations
+  } relaxation;
   // When St VK counts as usable at a depth (all must hold).
   double max_rms_percent = 3.0;              ///< residual RMS, % of peak
   double max_drift_percent = 10.0;           ///< |E(d) / E(shallowest) - 1|, same law

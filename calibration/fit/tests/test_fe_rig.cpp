@@ -208,6 +208,23 @@ TEST(FeRig, WarmJacobianColumnsGiveTheColdFit) {
   EXPECT_NE(r[1].model_effort.find("warm-started"), std::string::npos);
 }
 
+TEST(FeRig, JacobianStepIsTheOptionsAndBadStepsAreRefused) {
+  const ms::DataSet d = block_compression(0.1, 1.0);
+  EXPECT_EQ(make_fe_rig_model(d, parse_model_spec("stvk"))->jacobian_step(), 1e-6);  // the default
+  FeRigOptions o;
+  o.jacobian_step = 1e-3;
+  EXPECT_EQ(make_fe_rig_model(d, parse_model_spec("stvk"), o)->jacobian_step(), 1e-3);
+  for (const double bad : {0.0, -1e-4, 0.5}) {
+    o.jacobian_step = bad;
+    try {
+      make_fe_rig_model(d, parse_model_spec("stvk"), o);
+      ADD_FAILURE() << "jacobian_step " << bad << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("jacobian_step"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(FeRig, DataWithoutARigIsRefusedNamingTheKey) {
   ms::DataSet d = block_compression(0.1, 1.0);
   d.meta.sample.platens.reset();
