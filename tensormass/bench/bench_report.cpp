@@ -197,8 +197,8 @@ json bench_targets(const json& b) {
   t.push_back(
       target("largest mesh with a 1 ms viscoelastic step (2 cores, contact excluded)",
              per_tet_visco > 0 ? 1000.0 / per_tet_visco : NAN, 40000.0, false, "tets",
-             "1 ms over the per-tet cost of the cheapest viscoelastic explicit step on the largest mesh "
-             "measured (1 thread: the viscoelastic models are serial)"));
+             "1 ms over the per-tet cost of the cheapest viscoelastic explicit step (1 or 2 threads) on the "
+             "largest mesh measured: conservative, the largest mesh's per-tet cost is out of cache"));
   // Implicit steps: CHOLMOD's LL^T against Eigen's LDL^T on the largest mesh that has both.
   double chol_ratio = NAN;
   long chol_tets = 0;
