@@ -49,15 +49,10 @@ DataSet protocol(const std::string& name, BenchmarkRig rig) {
     d.meta.sample.shape = SampleShape::block;
     d.meta.sample.size_m = {kStripW, kStripT, kGauge};
     d.meta.sample.bottom = Interface::bonded;
-  } else if (rig == BenchmarkRig::confined) {
-    d.meta.test = TestType::confined_compression;
-    d.meta.sample.shape = SampleShape::cylinder;
-    d.meta.sample.radius_m = kRadius;
-    d.meta.sample.height_m = kHeight;
-    d.meta.sample.bottom = Interface::frictionless;
-    d.meta.sample.platens = Interface::frictionless;
   } else {
-    d.meta.test = TestType::unconfined_compression;
+    // The same cylinder between frictionless platens, in a chamber (confined) or free (unconfined).
+    d.meta.test =
+        rig == BenchmarkRig::confined ? TestType::confined_compression : TestType::unconfined_compression;
     d.meta.sample.shape = SampleShape::cylinder;
     d.meta.sample.radius_m = kRadius;
     d.meta.sample.height_m = kHeight;
