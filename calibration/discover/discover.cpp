@@ -207,10 +207,16 @@ std::string stride_text(std::size_t stride) {
   return "every " + std::to_string(stride) + suffix + " sample kept";
 }
 
-Fitted refit_from(const Prepared& p, const Fitted& cur, const Fitted& c, const Options& o) {
-  return fit_structure(p, cur.structure,
-                       structure_parameters(cur.structure, p, o.poisson, o.fix_poisson, &c.structure, &c.x),
+namespace {
+/// Structure `s` fitted from the optimum `start` (the parameters they share start there).
+Fitted fit_from(const Prepared& p, const Structure& s, const Fitted& start, const Options& o) {
+  return fit_structure(p, s, structure_parameters(s, p, o.poisson, o.fix_poisson, &start.structure, &start.x),
                        o, o.starts);
+}
+}  // namespace
+
+Fitted refit_from(const Prepared& p, const Fitted& cur, const Fitted& c, const Options& o) {
+  return fit_from(p, cur.structure, c, o);
 }
 
 Structure without_effect(const Structure& s, const std::string& effect, const Structure& baseline) {
@@ -247,9 +253,7 @@ std::vector<std::string> backward_step(const Prepared& p, const Structure& basel
       const Structure s2 = without_effect(cur.structure, e, baseline);
       st.model = s2.label();
       try {
-        Fitted red = fit_structure(
-            p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o,
-            o.starts);
+        Fitted red = fit_from(p, s2, cur, o);
         st.free_parameters = red.fit.k;
         st.rms = red.fit.rms;
         st.bic = red.fit.bic;
@@ -315,8 +319,7 @@ std::vector<Fitted> fit_candidates(const Prepared& p, const Fitted& cur, int rou
     st.effect = e.name;
     st.model = s2.label();
     try {
-      Fitted f = fit_structure(
-          p, s2, structure_parameters(s2, p, o.poisson, o.fix_poisson, &cur.structure, &cur.x), o, o.starts);
+      Fitted f = fit_from(p, s2, cur, o);
       st.free_parameters = f.fit.k;
       st.rms = f.fit.rms;
       st.bic = f.fit.bic;
