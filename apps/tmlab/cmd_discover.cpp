@@ -122,6 +122,17 @@ std::string report_html(const nlohmann::json& j, bool plots) {
     << cell(j["unexplained_signature"]) << "</p>\n";
   h << "<p>Stopped: " << cell(j["stop_reason"]) << ". Selection rule: " << cell(j["selection_rule"])
     << "; held-out: " << cell(j["held_out"]) << ".</p>\n";
+  if (const auto& c = j["test_consistency_control"]; c["applicable"].get<bool>()) {
+    h << "<p><b>Test-consistency control</b> (the current model with one force factor per test, round "
+      << c["round"].get<int>() << "): factors";
+    for (const auto& x : c["scale_per_test"])
+      h << " " << (x.is_null() ? "-" : significant(x.get<double>(), 4));
+    h << ", RMS " << (c["rms_N"].is_null() ? "-" : significant(c["rms_N"].get<double>(), 4)) << " N, BIC "
+      << (c["bic"].is_null() ? "-" : significant(c["bic"].get<double>(), 7))
+      << (c["decided"].get<bool>() ? "; it explained more than every candidate that passed BIC"
+                                   : "; no candidate was refused by it")
+      << ".</p>\n";
+  }
   for (const auto& n : j["notes"]) h << "<p><b>Note:</b> " << cell(n) << "</p>\n";
   h << "<p>Forward model <code>" << cell(j["forward_model"]["name"])
     << "</code>: " << cell(j["forward_model"]["exact_where"]) << ".</p>\n";
@@ -487,12 +498,12 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
 }  // namespace
 
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(
-      args,
-      {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads", "--seed", "--effects",
-       "--baseline-prony", "--rig", "--only", "--forward", "--mesh", "--substeps", "--fe-iterations",
-       "--fe-max-samples", "--checkpoint-every"},
-      {"--benchmark", "--quick", "--write-sets", "--free-poisson", "--no-plots", "--quiet", "--resume"});
+  const Parsed p = parse(args,
+                         {"--out", "--poisson", "--max-samples", "--rounds", "--starts", "--threads",
+                          "--seed", "--effects", "--baseline-prony", "--rig", "--only", "--forward", "--mesh",
+                          "--substeps", "--fe-iterations", "--fe-max-samples", "--checkpoint-every"},
+                         {"--benchmark", "--quick", "--write-sets", "--free-poisson", "--no-plots", "--quiet",
+                          "--resume", "--no-test-control"});
   discover::Options o;
   auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
     if (!p.has(key)) return fallback;
@@ -512,6 +523,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
     if (!(o.poisson > 0.0 && o.poisson < 0.4999)) throw UsageError("--poisson must lie in (0, 0.4999)");
   }
   o.fix_poisson = !p.has("--free-poisson");
+  o.test_control = !p.has("--no-test-control");
   if (p.has("--effects")) {
     std::string s = p.get("--effects");
     std::size_t a = 0;

@@ -9,6 +9,7 @@
 #include "calibration/data/measured_data.hpp"
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
+#include "calibration/fit/relaxation_bands.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -47,7 +48,15 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                 {"forward_model", r.model_name},
                 {"description", r.model_description}};
   j["parameters"] = json::array();
-  for (const auto& p : r.parameters)
+  for (const auto& p : r.parameters) {
+    // Which bound the value sits on ("lower", "upper" or ""): a constrained optimum, not a free one.
+    std::string at_bound;
+    json bounds = {nullptr, nullptr};
+    for (const auto& q : pr.parameters)
+      if (q.name == p.name) {
+        at_bound = fit::bound_reached(q, p.value);
+        bounds = {finite_or_null(q.lower), finite_or_null(q.upper)};
+      }
     j["parameters"].push_back({{"name", p.name},
                                {"value", p.value},
                                {"unit", p.unit},
@@ -55,7 +64,10 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                                {"transform", p.transform},
                                {"standard_error", finite_or_null(p.standard_error)},
                                {"interval95", {finite_or_null(p.lower95), finite_or_null(p.upper95)}},
-                               {"identifiable", p.identifiable}});
+                               {"identifiable", p.identifiable},
+                               {"bounds", bounds},
+                               {"at_bound", at_bound}});
+  }
   j["correlation"] = {{"parameters", r.free_names}, {"matrix", r.correlation}};
   j["cost"] = {{"kind", r.cost_name}, {"value", r.cost}};
   j["residual_rms_N"] = r.rms;
@@ -170,6 +182,7 @@ struct FitRequest {
   fit::FitOptions options;
   std::vector<fit::Prior> priors;
   fit::FeRigOptions fe;
+  double band_floor = 0.0, band_ceiling = 0.0;  ///< --relaxation-bands (0: off)
 };
 
 FitRequest parse_fit_request(const Parsed& p) {
@@ -203,6 +216,18 @@ FitRequest parse_fit_request(const Parsed& p) {
   q.forward = p.get("--forward", "closed_form");
   if (q.forward != "auto" && q.forward != "closed_form" && q.forward != "fe_rig")
     throw UsageError("--forward must be auto, closed_form or fe_rig (got '" + q.forward + "')");
+  if (p.has("--relaxation-bands")) {
+    const std::string v = p.get("--relaxation-bands");
+    const auto comma = v.find(',');
+    if (comma == std::string::npos)
+      throw UsageError("--relaxation-bands needs FLOOR,CEILING (e.g. 0.5,1), got '" + v + "'");
+    q.band_floor = parse_double("--relaxation-bands", v.substr(0, comma));
+    q.band_ceiling = parse_double("--relaxation-bands", v.substr(comma + 1));
+    if (!(q.band_floor > 0.0 && q.band_ceiling > 0.0))
+      throw UsageError("--relaxation-bands: FLOOR and CEILING must be positive, got '" + v + "'");
+    if (q.spec.prony_terms == 0)
+      throw UsageError("--relaxation-bands needs Prony terms in --model (e.g. " + q.spec.law + ",prony:2)");
+  }
   return q;
 }
 
@@ -226,6 +251,9 @@ fit::Problem build_problem(const Parsed& p, const measured::DataSet& data, const
     }
   }
   problem.priors = q.priors;
+  if (q.band_floor > 0.0)  // tau_j in ordered bands of [floor x sampling interval, ceiling x duration]
+    fit::band_relaxation_times(problem.parameters, q.spec,
+                               fit::relaxation_range(data, q.band_floor, q.band_ceiling));
   if (p.has("--noise")) {
     problem.noise_sigma = parse_double("--noise", p.get("--noise"));
     if (!(problem.noise_sigma > 0.0)) throw UsageError("--noise must be positive (N)");
@@ -275,7 +303,8 @@ nlohmann::json manifest_config(const Parsed& p, const FitRequest& q) {
           {"global", q.global},
           {"prior", p.all("--prior")},
           {"mesh", {q.fe.mesh.cells, q.fe.mesh.layers}},
-          {"substeps", q.fe.substeps}};
+          {"substeps", q.fe.substeps},
+          {"relaxation_bands", p.get("--relaxation-bands", "")}};
 }
 
 /// What --resume must match: everything that changes the result (the data files' contents, the
@@ -393,7 +422,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   const Parsed p = parse(args,
                          {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads",
                           "--seed", "--forward", "--global", "--prior", "--noise", "--mesh", "--substeps",
-                          "--local-runs", "--siman-evaluations", "--checkpoint-every"},
+                          "--local-runs", "--siman-evaluations", "--checkpoint-every", "--relaxation-bands"},
                          {"--geodesic", "--no-plots", "--no-profile", "--quiet", "--resume"});
   if (p.positional.size() != 1) throw UsageError("fit needs exactly one DATA.csv");
   if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");

@@ -101,7 +101,9 @@ void set(std::vector<fit::Parameter>& ps, std::vector<double>& x, const std::str
 
 }  // namespace
 
-std::vector<std::string> outside_effects() { return {"actuator_resonance", "preconditioning"}; }
+std::vector<std::string> outside_effects() {
+  return {"actuator_resonance", "preconditioning", "mullins_first_loading"};
+}
 
 std::string to_string(BenchmarkRig r) {
   return r == BenchmarkRig::sphere     ? "sphere_indentation"
@@ -206,10 +208,16 @@ SyntheticSet make_set(const std::string& truth, unsigned seed, BenchmarkRig rig)
   std::normal_distribution<double> noise(0.0, 0.003 * peak);
   for (std::size_t k = 0; k < s.data.tests.size(); ++k) {
     Test& t = s.data.tests[k];
+    double dpk = 0.0;
+    for (const double d : t.displacement_m) dpk = std::max(dpk, std::abs(d));
     for (std::size_t i = 0; i < t.size(); ++i) {
       double y = f[k][i];
       if (truth == "actuator_resonance") y += 0.02 * peak * std::sin(2.0 * kPi * 0.7 * t.time_s[i]);
       if (truth == "preconditioning" && k == 0) y *= 1.15;
+      // The virgin first loading stiffer in proportion to the strain it reaches (Mullins-type
+      // stress softening that the later tests show): not a factor per test.
+      if (truth == "mullins_first_loading" && k == 0 && dpk > 0.0)
+        y *= 1.0 + 0.15 * std::abs(t.displacement_m[i]) / dpk;
       t.force_N[i] = y + noise(rng);
     }
   }
@@ -234,7 +242,8 @@ std::vector<SyntheticSet> benchmark_sets(bool quick) {
       if (not_applicable(e.name, base, p).empty() || e.name == "separate_bulk_shear_relaxation")
         truths.emplace_back(e.name, U);
     for (int i = 0; i < 3; ++i) truths.emplace_back("noise_only", U);
-    for (const auto& o : outside_effects()) truths.emplace_back(o, U);
+    for (const auto& o : outside_effects())
+      if (o != "mullins_first_loading") truths.emplace_back(o, U);
     // Sphere indentation: the effects only indentation has, and some of every kind.
     for (const char* e : {"extra_prony_term", "poroelastic_relaxation", "finite_layer_thickness",
                           "contact_offset", "instrument_compliance", "force_drift", "noise_only"})
@@ -244,6 +253,8 @@ std::vector<SyntheticSet> benchmark_sets(bool quick) {
       truths.emplace_back(e, T);
     // Confined compression.
     for (const char* e : {"extra_prony_term", "contact_offset", "noise_only"}) truths.emplace_back(e, C);
+    // Added 2026-11-27, last so that the sets before it keep their names and noise seeds.
+    truths.emplace_back("mullins_first_loading", U);
   }
   std::vector<SyntheticSet> sets;
   unsigned seed = 1;

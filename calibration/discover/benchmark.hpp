@@ -38,8 +38,10 @@ struct SyntheticSet {
 };
 
 /// The outside-library effects the benchmark plants: "actuator_resonance" (a 0.7 Hz oscillation
-/// of 2 % of the peak force, always present) and "preconditioning" (the first test 15 % stiffer:
-/// the virgin sample before Mullins softening).
+/// of 2 % of the peak force, always present), "preconditioning" (the first test's force 15 % higher:
+/// the virgin sample before Mullins softening, exactly a factor per test) and
+/// "mullins_first_loading" (the first test's force raised by 15 % x its strain over its peak
+/// strain: a virgin stiffness growing with the strain reached, not a factor per test).
 std::vector<std::string> outside_effects();
 
 /// One set with `truth` present (an effect_library() name, "noise_only" or an outside effect).

@@ -16,8 +16,20 @@ namespace {
 
 nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+nlohmann::json nums(const std::vector<double>& v) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const double x : v) a.push_back(num(x));
+  return a;
+}
+
 void say(const Options& o, const std::string& s) {
   if (o.progress) o.progress(s);
+}
+
+std::string list_text(const std::vector<double>& v) {
+  std::string out;
+  for (const double x : v) out += (out.empty() ? "" : ", ") + significant(x, 4);
+  return "[" + out + "]";
 }
 
 std::vector<SeriesView> views(const Prepared& p, const std::vector<std::vector<double>>& pred) {
@@ -129,9 +141,11 @@ Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Par
   return f;
 }
 
-double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
+double held_out_rms(const Prepared& p, const Fitted& f, const Options& o, std::vector<double>* by_test) {
   double sse = 0.0;
   std::size_t n = 0;
+  std::vector<double> test_sse(p.series.size(), 0.0);
+  std::vector<std::size_t> test_n(p.series.size(), 0);
   for (const auto& mask : held_out_folds(p)) {
     std::vector<fit::Parameter> params = f.parameters;
     for (std::size_t i = 0; i < params.size(); ++i) params[i].value = f.x[i];
@@ -153,12 +167,56 @@ double held_out_rms(const Prepared& p, const Fitted& f, const Options& o) {
     for (std::size_t k = 0; k < p.series.size(); ++k)
       for (std::size_t i = 0; i < p.series[k].f.size(); ++i, ++idx)
         if (!mask[idx]) {
-          sse += std::pow(pred[k][i] - p.series[k].f[i], 2);
+          const double e2 = std::pow(pred[k][i] - p.series[k].f[i], 2);
+          sse += e2;
           ++n;
+          test_sse[k] += e2;
+          ++test_n[k];
         }
+  }
+  if (by_test) {
+    by_test->assign(p.series.size(), kNaN);
+    for (std::size_t k = 0; k < p.series.size(); ++k)
+      if (test_n[k]) (*by_test)[k] = std::sqrt(test_sse[k] / double(test_n[k]));
   }
   return n ? std::sqrt(sse / double(n)) : kNaN;
 }
+
+TestScaleControl test_scale_control(const Prepared& p, const Fitted& cur) {
+  TestScaleControl c;
+  c.applicable = p.series.size() >= 2 && cur.prediction.size() == p.series.size();
+  if (!c.applicable) return c;
+  // Each test's least-squares factor s_k = <f, F> / <F, F> of the forces f on the prediction F.
+  double sse = 0.0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < p.series.size(); ++k) {
+    const auto& f = p.series[k].f;
+    const auto& F = cur.prediction[k];
+    double fF = 0.0, FF = 0.0;
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      fF += f[i] * F[i];
+      FF += F[i] * F[i];
+    }
+    const double sk = FF > 0.0 ? fF / FF : 1.0;
+    c.scale.push_back(sk);
+    for (std::size_t i = 0; i < f.size(); ++i) sse += std::pow(sk * F[i] - f[i], 2);
+    n += f.size();
+  }
+  c.rms = std::sqrt(sse / double(n));
+  c.free_parameters = cur.fit.k + p.series.size();
+  c.bic = double(n) * std::log(std::max(sse, 1e-300) / double(n)) +
+          double(c.free_parameters) * std::log(double(n));
+  const double rms2 = cur.fit.rms * cur.fit.rms, excess = rms2 - std::pow(cur.study.noise_sigma, 2);
+  if (excess > 0.0) c.explained_share = (rms2 - c.rms * c.rms) / excess;
+  return c;
+}
+
+namespace {
+std::string control_text(const TestScaleControl& c) {
+  return "the test-consistency control (the current model with one force factor per test, " +
+         list_text(c.scale) + ": RMS " + significant(c.rms, 4) + " N, BIC " + significant(c.bic, 7) + ")";
+}
+}  // namespace
 
 std::vector<std::string> protocol_notes(const Prepared& p) {
   std::vector<std::string> notes;
@@ -258,10 +316,13 @@ std::vector<std::string> backward_step(const Prepared& p, const Structure& basel
         st.rms = red.fit.rms;
         st.bic = red.fit.bic;
         st.delta_bic = red.fit.bic - cur.fit.bic;  // > 0: the effect still pays for itself
-        if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
-        red.held_out_rms = held_out_rms(p, red, o);
+        if (!std::isfinite(cur.held_out_rms))
+          cur.held_out_rms = held_out_rms(p, cur, o, &cur.held_out_by_test);
+        red.held_out_rms = held_out_rms(p, red, o, &red.held_out_by_test);
         st.held_out_rms = red.held_out_rms;
         st.current_held_out_rms = cur.held_out_rms;
+        st.held_out_by_test = red.held_out_by_test;
+        st.current_held_out_by_test = cur.held_out_by_test;
         const bool bic_earned = -st.delta_bic < -o.bic_threshold;
         const bool held_out_earned = cur.held_out_rms < o.held_out_ratio * red.held_out_rms;
         if (bic_earned && held_out_earned) {
@@ -346,6 +407,8 @@ std::vector<Fitted> fit_candidates(const Prepared& p, const Fitted& cur, int rou
 std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
                    const std::vector<std::size_t>& step_of, int round, const Options& o, Report& r,
                    std::optional<Fitted>& refitted) {
+  r.control = test_scale_control(p, cur);
+  r.control.round = round;
   std::vector<std::size_t> order(cand.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(),
@@ -384,11 +447,28 @@ std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
                     significant(-st.delta_bic, 3) + " (the gain was the optimizer's, not the effect's)";
         continue;
       }
+      r.control = test_scale_control(p, cur);  // of the current model as it now stands
+      r.control.round = round;
     }
-    if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o);
-    cand[i].held_out_rms = held_out_rms(p, cand[i], o);
+    // A shared effect must explain more than a factor per test (TestScaleControl).
+    if (o.test_control && r.control.applicable && r.control.bic < cand[i].fit.bic - o.bic_threshold) {
+      r.control.decided = true;
+      st.reason = "BIC falls by " + significant(-st.delta_bic, 4) + ", but " + control_text(r.control) +
+                  " is lower by " + significant(cand[i].fit.bic - r.control.bic, 4) +
+                  ": the structure is a difference between the tests that this shared effect does not "
+                  "explain";
+      say(o, "round " + std::to_string(round) + " " + st.effect + ": " + st.reason);
+      continue;
+    }
+    if (!std::isfinite(cur.held_out_rms)) cur.held_out_rms = held_out_rms(p, cur, o, &cur.held_out_by_test);
+    cand[i].held_out_rms = held_out_rms(p, cand[i], o, &cand[i].held_out_by_test);
     st.held_out_rms = cand[i].held_out_rms;
     st.current_held_out_rms = cur.held_out_rms;
+    st.held_out_by_test = cand[i].held_out_by_test;
+    st.current_held_out_by_test = cur.held_out_by_test;
+    say(o, "round " + std::to_string(round) + " " + st.effect + ": held-out RMS by test " +
+               list_text(st.held_out_by_test) + " N (current " + list_text(st.current_held_out_by_test) +
+               ")");
     if (cand[i].held_out_rms < o.held_out_ratio * cur.held_out_rms) {
       st.accepted = true;
       st.reason = "BIC falls by " + significant(-st.delta_bic, 4) + " and the held-out RMS from " +
@@ -459,9 +539,13 @@ Report run(const measured::DataSet& data, const Options& o) {
         --round;
         continue;
       }
-      r.stop_reason = !cur.study.structured ? "the residual is noise (every decisive diagnostic passes)"
-                      : cand.empty()        ? "no applicable candidate"
-                                            : "no candidate passes both BIC and held-out prediction";
+      r.stop_reason =
+          !cur.study.structured ? "the residual is noise (every decisive diagnostic passes)"
+          : cand.empty()        ? "no applicable candidate"
+          : r.control.decided
+              ? "the tests differ by more than any candidate explains: " + control_text(r.control) +
+                    " explains more than every candidate that passed BIC"
+              : "no candidate passes both BIC and held-out prediction";
       say(o, "round " + std::to_string(round) + ": " + r.stop_reason);
       break;
     }
@@ -473,7 +557,19 @@ Report run(const measured::DataSet& data, const Options& o) {
   r.final = cur;
   r.final_effects = effects_in(cur.structure, base);
   r.unexplained = cur.study.structured;
+  if (!r.control.decided) {  // the control of the final model (the loop may have stopped before a round)
+    r.control = test_scale_control(p, cur);
+    r.control.round = r.steps.empty() ? 0 : r.steps.back().round;
+  }
   r.signature = describe_signature(cur.study, o.thresholds);
+  if (r.unexplained && r.control.decided)
+    r.signature = "tests inconsistent: one force factor per test (" + list_text(r.control.scale) +
+                  ") explains more than any shared effect; " + r.signature;
+  else if (r.unexplained && r.control.applicable && r.control.explained_share >= 0.5)
+    r.signature = "tests inconsistent: one force factor per test (" + list_text(r.control.scale) +
+                  ") would explain " + significant(100.0 * r.control.explained_share, 3) +
+                  " % of the residual variance above the noise (RMS " + significant(cur.fit.rms, 4) + " -> " +
+                  significant(r.control.rms, 4) + " N); " + r.signature;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   say(o, "final " + cur.structure.label() + ": RMS " + significant(cur.fit.rms, 4) + " N (" +
              significant(cur.fit.rms_percent_peak, 3) + " % of peak)" +
@@ -580,11 +676,13 @@ nlohmann::json to_json(const Report& r) {
                           {"free_parameters", s.free_parameters},
                           {"rms_N", num(s.rms)},
                           {"held_out_rms_N", num(s.held_out_rms)},
+                          {"held_out_rms_by_test_N", nums(s.held_out_by_test)},
                           {"criterion",
                            {{"bic", num(s.bic)},
                             {"delta_bic", num(s.delta_bic)},
                             {"bic_threshold", -r.options.bic_threshold},
                             {"current_held_out_rms_N", num(s.current_held_out_rms)},
+                            {"current_held_out_rms_by_test_N", nums(s.current_held_out_by_test)},
                             {"current_refit_from_candidate_rms_N", num(s.current_refit_rms)},
                             {"held_out_ratio_required", r.options.held_out_ratio}}},
                           {"accepted", s.accepted},
@@ -595,13 +693,25 @@ nlohmann::json to_json(const Report& r) {
   j["unexplained_structure"] = r.unexplained;
   j["unexplained_signature"] = r.signature;
   j["stop_reason"] = r.stop_reason;
+  j["test_consistency_control"] = {{"applicable", r.control.applicable},
+                                   {"round", r.control.round},
+                                   {"scale_per_test", nums(r.control.scale)},
+                                   {"rms_N", num(r.control.rms)},
+                                   {"bic", num(r.control.bic)},
+                                   {"free_parameters", r.control.free_parameters},
+                                   {"explained_share", num(r.control.explained_share)},
+                                   {"decided", r.control.decided}};
   j["selection_rule"] =
       "accept the lowest-BIC candidate when BIC falls by more than " +
       significant(r.options.bic_threshold, 3) + " and the held-out RMS falls below " +
       significant(r.options.held_out_ratio, 3) +
       " x the current model's, both against the current model re-fitted from the candidate's "
-      "optimum; after each acceptance every earlier effect that would not be accepted now is "
-      "removed";
+      "optimum" +
+      std::string(r.options.test_control
+                      ? ", and its BIC is not above the test-consistency control's (one force factor per "
+                        "test) by more than the threshold"
+                      : " (the test-consistency control off)") +
+      "; after each acceptance every earlier effect that would not be accepted now is removed";
   j["held_out"] = r.held_out_scheme;
   j["notes"] = r.notes;
   j["not_applicable"] = json::array();
@@ -617,7 +727,8 @@ nlohmann::json to_json(const Report& r) {
                   {"starts", r.options.starts},
                   {"seed", r.options.seed},
                   {"max_samples", r.options.max_samples},
-                  {"alpha", r.options.thresholds.alpha}};
+                  {"alpha", r.options.thresholds.alpha},
+                  {"test_control", r.options.test_control}};
   j["wall_seconds"] = r.seconds;
   return j;
 }

@@ -57,6 +57,7 @@ struct Options {
   int max_rounds = 4;
   double bic_threshold = 10.0;   ///< accept only when BIC falls by more than this
   double held_out_ratio = 0.98;  ///< ... and the held-out RMS falls below this times the current one
+  bool test_control = true;      ///< ... and the BIC beats the test-consistency control (TestScaleControl)
   int starts = 8;                ///< multi-start candidates per candidate fit (3x for the baseline)
   int threads = 2;
   unsigned long seed = 1;
@@ -74,6 +75,7 @@ struct Fitted {
   std::vector<std::vector<double>> prediction;  ///< per test
   ResidualStudy study;
   double held_out_rms = kNaN;
+  std::vector<double> held_out_by_test;  ///< each test's RMS when it was held out (with held_out_rms)
   double max_abs = 0.0;
 };
 
@@ -84,10 +86,32 @@ struct Step {
   std::size_t free_parameters = 0;
   double rms = kNaN, bic = kNaN, delta_bic = kNaN;
   double held_out_rms = kNaN, current_held_out_rms = kNaN;
+  std::vector<double> held_out_by_test, current_held_out_by_test;  ///< per test, when held out
   double current_refit_rms = kNaN;  ///< the current model re-fitted from this candidate's optimum
   bool accepted = false;            ///< added (or, for a removal, removed)
   std::string reason;
 };
+
+/// The test-consistency control: the current model's forces with one free scale factor per test
+/// (each the least-squares factor of its test, the model's parameters held at their optimum). Not
+/// a library effect: a factor per test is no physics shared by the tests, it is what sample history
+/// (preconditioning, damage), a different sample or a recalibrated load cell leave in the data. A
+/// candidate is accepted only when it explains more than this control (lower BIC); when the control
+/// explains more, the structure is a test-to-test difference that no shared effect explains.
+struct TestScaleControl {
+  bool applicable = false;    ///< two or more tests
+  std::vector<double> scale;  ///< per test
+  double rms = kNaN, bic = kNaN;
+  std::size_t free_parameters = 0;  ///< the current model's plus one per test (conservative)
+  bool decided = false;             ///< it explained more than the best candidate that passed both checks
+  int round = 0;                    ///< the round it was last computed in (0: the baseline)
+  /// (RMS^2 - control RMS^2) / (RMS^2 - noise^2) of the model it controls: the share of the
+  /// residual variance above the noise level that a factor per test explains (NaN: no excess)
+  double explained_share = kNaN;
+};
+
+/// The control for `cur` on `p` (see TestScaleControl).
+TestScaleControl test_scale_control(const Prepared& p, const Fitted& cur);
 
 struct Report {
   Prepared data;
@@ -98,6 +122,7 @@ struct Report {
   std::vector<std::string> removed;        ///< effects the backward step took out again, in order
   std::vector<std::string> final_effects;  ///< what the final model has beyond the baseline
   std::vector<std::pair<std::string, std::string>> not_applicable;  ///< effect, why (first round)
+  TestScaleControl control;                                         ///< as computed in the last round
   bool unexplained = false;
   std::string signature;
   std::string stop_reason;
@@ -121,8 +146,10 @@ Fitted fit_structure(const Prepared& p, const Structure& s, std::vector<fit::Par
                      const Options& o, int starts);
 
 /// The pooled held-out RMS of `f`'s structure: each fold refitted from f's optimum without its
-/// held-out samples, which it then predicts.
-double held_out_rms(const Prepared& p, const Fitted& f, const Options& o);
+/// held-out samples, which it then predicts. `by_test` (when given) receives each test's RMS over
+/// its held-out samples (NaN for a test never held out).
+double held_out_rms(const Prepared& p, const Fitted& f, const Options& o,
+                    std::vector<double>* by_test = nullptr);
 
 /// The current model `cur`'s structure re-fitted from candidate `c`'s optimum (the values they
 /// share by name): what the current structure itself reaches from there. A candidate whose gain

@@ -317,7 +317,13 @@ std::string cpu_of(const json& f) {
   return f.contains("cpu_seconds") ? significant(f["cpu_seconds"].get<double>(), 3) : std::string("-");
 }
 
-/// The St VK usable-depth finding from the tensor-mass fits.
+}  // namespace
+
+bool local_fit_converged(const std::string& stop_reason) {
+  return stop_reason == "small step (xtol)" || stop_reason == "small gradient (gtol)" ||
+         stop_reason == "converged";
+}
+
 json usable_depth(const PaperFitSettings& s, const std::vector<json>& fits) {
   auto find = [&](const std::string& law, std::size_t k) -> const json* {
     for (const auto& f : fits)
@@ -337,6 +343,9 @@ json usable_depth(const PaperFitSettings& s, const std::vector<json>& fits) {
     if ((*st)["status"] != "ok") {
       why.push_back("no converged fit: " + (*st)["reason"].get<std::string>());
     } else {
+      const std::string stop = st->value("stop_reason", std::string());
+      row["converged"] = local_fit_converged(stop);
+      if (!local_fit_converged(stop)) why.push_back("the fit did not converge (stop: " + stop + ")");
       const double e = value_of(*st, "young"), rms = (*st)["residual_rms_percent_of_peak"].get<double>();
       if (std::isnan(e0)) e0 = e;
       const double drift = 100.0 * (e / e0 - 1.0);
@@ -377,6 +386,8 @@ json usable_depth(const PaperFitSettings& s, const std::vector<json>& fits) {
             {"max_law_difference_percent", s.max_law_difference_percent}}},
           {"depths", rows}};
 }
+
+namespace {
 
 std::string table_markdown(const std::string& table, const PaperFitSettings& s, bool visco,
                            const std::vector<json>& fits, const json& usable) {

@@ -87,6 +87,16 @@ struct PaperFitOptions {
 nlohmann::json run_paper_fit(const std::string& target, const PaperFitSettings& s, const PaperFitOptions& o,
                              const std::filesystem::path& dir);
 
+/// True when a local stage's stop reason (FitResult::stop_reason) is a convergence test (xtol, gtol),
+/// false for the iteration limit or a GSL error.
+bool local_fit_converged(const std::string& stop_reason);
+
+/// The St VK usable-depth finding from the tensor-mass fits (the fit JSONs of run_paper_fit): per
+/// depth, usable when the fit finished and converged (local_fit_converged), its residual RMS is at
+/// most s.max_rms_percent of the peak, its E drifts at most s.max_drift_percent from the shallowest
+/// depth's and differs at most s.max_law_difference_percent from the neo-Hookean E on the same rig.
+nlohmann::json usable_depth(const PaperFitSettings& s, const std::vector<nlohmann::json>& fits);
+
 /// True for the targets run_paper_fit handles.
 bool is_paper_fit_target(const std::string& target);
 

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -114,6 +115,70 @@ TEST_F(CliFit, AnInterruptedFitLeavesInterruptedAndNoResult) {
   EXPECT_FALSE(fs::exists(out / "summary.json"));
   EXPECT_FALSE(fs::exists(out / "fit.json"));
   EXPECT_FALSE(fs::exists(out / "RUNNING"));
+}
+
+TEST_F(CliFit, RelaxationBandsOrderThePronyTimes) {
+  // A ramp-and-hold set (the discover benchmark's sphere-indentation noise-only set, Prony times
+  // 0.5 and 15 s, whose closed form, Lee-Radok, carries Prony terms) fitted with
+  // --relaxation-bands 0.5,1: tau1 and tau2 in ordered, disjoint bands, tau2's ceiling the longest
+  // test's duration, each parameter's bounds and edge in fit.json, the option in the manifest.
+  const fs::path bench = dir_ / "bench";
+  const Result w = tmlab({"discover", "--benchmark", "--rig", "sphere_indentation", "--only", "noise_only",
+                          "--write-sets", "--out", bench.string()});
+  ASSERT_EQ(w.status, 0) << w.output;
+  fs::path full;
+  for (const auto& e : fs::directory_iterator(bench / "sets"))
+    if (e.path().extension() == ".csv") full = e.path();
+  ASSERT_FALSE(full.empty());
+  // Lee-Radok covers loading and hold: each test's samples up to the start of its unloading.
+  const fs::path csv = dir_ / "hold.csv";
+  {
+    std::ifstream in(full);
+    std::ofstream o(csv);
+    std::string line, test;
+    std::getline(in, line);
+    o << line << "\n";
+    double peak = -1.0;
+    bool unloading = false;
+    while (std::getline(in, line)) {
+      const auto c1 = line.find(','), c2 = line.find(',', c1 + 1), c3 = line.find(',', c2 + 1);
+      const std::string id = line.substr(0, c1);
+      const double d = std::stod(line.substr(c2 + 1, c3 - c2 - 1));
+      if (id != test) test = id, peak = -1.0, unloading = false;
+      unloading = unloading || d < peak;
+      peak = std::max(peak, d);
+      if (!unloading) o << line << "\n";
+    }
+  }
+  std::ofstream(fs::path(csv).replace_extension(".json"))
+      << read_file(fs::path(full).replace_extension(".json"));
+  const fs::path out = dir_ / "banded";
+  const Result r = tmlab({"fit", csv.string(), "--model", "stvk+prony:2,poisson=0.49", "--relaxation-bands",
+                          "0.5,1", "--no-plots", "--no-profile", "--quiet", "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "fit.json"));
+  nlohmann::json tau1, tau2;
+  for (const auto& p : j["parameters"]) {
+    EXPECT_TRUE(p.contains("bounds") && p.contains("at_bound")) << p;
+    if (p["name"] == "tau1") tau1 = p;
+    if (p["name"] == "tau2") tau2 = p;
+  }
+  ASSERT_TRUE(tau1.is_object() && tau2.is_object()) << j["parameters"];
+  EXPECT_LE(tau1["bounds"][1].get<double>(), tau2["bounds"][0].get<double>() * (1 + 1e-12));
+  EXPECT_GT(tau1["bounds"][0].get<double>(), 0.0);
+  EXPECT_GE(tau1["value"].get<double>(), tau1["bounds"][0].get<double>());
+  EXPECT_LE(tau2["value"].get<double>(), tau2["bounds"][1].get<double>());
+  const nlohmann::json m = nlohmann::json::parse(read_file(out / "manifest.json"));
+  EXPECT_NE(m.dump().find("\"relaxation_bands\":\"0.5,1\""), std::string::npos) << m.dump();
+  // Refused: one number, a non-positive factor, a model without Prony terms.
+  Result bad = tmlab({"fit", csv.string(), "--model", "stvk+prony:2", "--relaxation-bands", "0.5"});
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("FLOOR,CEILING"), std::string::npos) << bad.output;
+  bad = tmlab({"fit", csv.string(), "--model", "stvk+prony:2", "--relaxation-bands", "0,1"});
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  bad = tmlab({"fit", csv.string(), "--model", "stvk", "--relaxation-bands", "0.5,1"});
+  EXPECT_EQ(bad.status, 2) << bad.output;
+  EXPECT_NE(bad.output.find("needs Prony terms"), std::string::npos) << bad.output;
 }
 
 TEST_F(CliFit, BadSpecsAndDataAreRefused) {

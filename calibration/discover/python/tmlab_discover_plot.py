@@ -6,6 +6,7 @@ displacement). Usage: tmlab_discover_plot.py DIR"""
 import json
 import os
 import sys
+import textwrap
 
 import matplotlib
 
@@ -65,8 +66,9 @@ def main():
         ax[1].plot(t, d["final_N"] - d["force_N"], "-", color="C0", lw=0.8)
         t0 = t[-1] + 0.02 * (t[-1] - t[0] + 1e-9)
     ax[0].set_title("residual (model - data) " + lb, fontsize=9)
-    ax[1].set_title("residual " + lf + ("\nunexplained: " + rep["unexplained_signature"][:110]
-                                        if rep["unexplained_structure"] else "; residual is noise"), fontsize=9)
+    sig = "\n".join(textwrap.wrap("unexplained: " + rep["unexplained_signature"], 120)[:3])
+    ax[1].set_title("residual " + lf + ("\n" + sig if rep["unexplained_structure"] else "; residual is noise"),
+                    fontsize=8)
     for a in ax:
         a.set_ylabel("N")
         a.grid(alpha=0.3)

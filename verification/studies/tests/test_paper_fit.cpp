@@ -167,6 +167,41 @@ TEST(PaperFit, BadSettingsNameTheKey) {
 /// parameter file's setting) against the solver's default, and a warm start (from the solve at parameters
 /// the relaxation fits' Jacobian step away, as their Jacobian columns do) against a cold solve. Neither may
 /// move the forces beyond the solvers' tolerance; both must cut the Newton iterations.
+TEST(PaperFit, UsableDepthNeedsAConvergedFit) {
+  // St VK at 2 mm converged and agreeing with neo-Hookean; at 4 mm within every numeric criterion
+  // but stopped at the iteration limit: 4 mm is where it stops being usable, for that reason.
+  PaperFitSettings s;
+  s.depths = {0.002, 0.004};
+  const auto fit = [](const std::string& law, double depth, double young, const std::string& stop) {
+    return json{{"kind", "tensor_mass"},
+                {"law", law},
+                {"depth_m", depth},
+                {"status", "ok"},
+                {"stop_reason", stop},
+                {"residual_rms_percent_of_peak", 1.0},
+                {"parameters", json::array({{{"name", "young"}, {"value", young}}})}};
+  };
+  std::vector<json> fits = {fit("stvk", 0.002, 4000, "small step (xtol)"),
+                            fit("neo_hookean", 0.002, 3900, "small step (xtol)"),
+                            fit("stvk", 0.004, 4050, "exceeded max number of iterations"),
+                            fit("neo_hookean", 0.004, 3950, "small gradient (gtol)")};
+  const json u = usable_depth(s, fits);
+  ASSERT_EQ(u["depths"].size(), 2u);
+  EXPECT_TRUE(u["depths"][0]["usable"].get<bool>());
+  EXPECT_FALSE(u["depths"][1]["usable"].get<bool>());
+  EXPECT_FALSE(u["depths"][1]["converged"].get<bool>());
+  ASSERT_EQ(u["depths"][1]["reasons"].size(), 1u);
+  EXPECT_NE(u["depths"][1]["reasons"][0].get<std::string>().find("did not converge"), std::string::npos);
+  EXPECT_NE(u["statement"].get<std::string>().find("stops being usable at 4mm"), std::string::npos)
+      << u["statement"];
+  // Converged at both depths: usable at both.
+  fits[2]["stop_reason"] = "small step (xtol)";
+  EXPECT_NE(usable_depth(s, fits)["statement"].get<std::string>().find("usable at every depth"),
+            std::string::npos);
+  EXPECT_TRUE(local_fit_converged("small gradient (gtol)"));
+  EXPECT_FALSE(local_fit_converged("exceeded max number of iterations"));
+}
+
 TEST(PaperFit, PatchContactStiffnessAndWarmStartsKeepTheRigForces) {
   const PaperFitSettings s = quick_settings();
   ASSERT_GT(s.contact_stiffness_factor, 0.0) << "the parameter file sets rig.contact_stiffness_factor";
