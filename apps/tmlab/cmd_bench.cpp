@@ -65,7 +65,9 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
     const std::string md = tm::bench_markdown(bench);
     out.finalize(tm::write_bench_report(std::move(bench), out.staging_dir(), !p.has("--no-plots"),
                                         opt.tmlab_root, &std::cerr));
-    std::cout << md << "\nresults     " << dir.string() << "/ (bench.json, bench.md, *.png)\n";
+    std::cout << md << "\nresults     " << dir.string()
+              << (p.has("--no-plots") ? "/ (bench.json, bench.md; no plots: --no-plots)\n"
+                                      : "/ (bench.json, bench.md, *.png)\n");
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

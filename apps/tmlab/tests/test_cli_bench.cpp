@@ -29,6 +29,9 @@ TEST(CliBench, QuickWritesTheDocumentedSchema) {
   ASSERT_TRUE(fs::exists(out / "summary.json"));
   EXPECT_TRUE(fs::exists(out / "manifest.json"));
   EXPECT_TRUE(fs::exists(out / "bench.md"));
+  // --no-plots: the results line does not promise PNGs.
+  EXPECT_NE(r.output.find("no plots: --no-plots"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("*.png"), std::string::npos) << r.output;
   const nlohmann::json b = nlohmann::json::parse(std::ifstream(out / "bench.json"));
   for (const char* k : {"peak_gflops_1t", "peak_gflops_2t", "triad_gbs_1t", "triad_gbs_2t"}) {
     ASSERT_TRUE(b.at("limits").contains(k)) << k;
