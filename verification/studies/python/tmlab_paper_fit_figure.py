@@ -10,6 +10,7 @@ a message naming the file when an input is missing.
 """
 import json
 import os
+import textwrap
 
 import matplotlib
 
@@ -44,7 +45,8 @@ def main():
             axr.plot(t, res, style, color=c, marker=".", label=f"{f['law']} {depth * 1e3:g} mm")
     kind = "relaxation (Lee-Radok reference)" if spec["viscoelastic"] else "elastic (Hertz reference)"
     label_axes(ax, f"{spec['figure']}: tensor-mass fits, {kind}", "time [s]", "indentation force [N]")
-    label_axes(axr, spec["usable_depth"]["statement"], "time [s]", "residual [% of peak]")
+    label_axes(axr, "\n".join(textwrap.wrap(spec["usable_depth"]["statement"], 55)), "time [s]",
+               "residual [% of peak]")
     save(fig, os.path.join(d, spec["figure"] + ".png"), 120)
 
 
