@@ -562,14 +562,14 @@ Report run(const measured::DataSet& data, const Options& o) {
     r.control.round = r.steps.empty() ? 0 : r.steps.back().round;
   }
   r.signature = describe_signature(cur.study, o.thresholds);
-  if (r.unexplained && r.control.decided)
-    r.signature = "tests inconsistent: one force factor per test (" + list_text(r.control.scale) +
-                  ") explains more than any shared effect; " + r.signature;
-  else if (r.unexplained && r.control.applicable && r.control.explained_share >= 0.5)
-    r.signature = "tests inconsistent: one force factor per test (" + list_text(r.control.scale) +
-                  ") would explain " + significant(100.0 * r.control.explained_share, 3) +
-                  " % of the residual variance above the noise (RMS " + significant(cur.fit.rms, 4) + " -> " +
-                  significant(r.control.rms, 4) + " N); " + r.signature;
+  if (r.unexplained && r.control.applicable && (r.control.decided || r.control.explained_share >= 0.5))
+    r.signature = "tests inconsistent: one force factor per test (" + list_text(r.control.scale) + ") " +
+                  (r.control.decided
+                       ? "explains more than any shared effect"
+                       : "would explain " + significant(100.0 * r.control.explained_share, 3) +
+                             " % of the residual variance above the noise (RMS " +
+                             significant(cur.fit.rms, 4) + " -> " + significant(r.control.rms, 4) + " N)") +
+                  "; " + r.signature;
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   say(o, "final " + cur.structure.label() + ": RMS " + significant(cur.fit.rms, 4) + " N (" +
              significant(cur.fit.rms_percent_peak, 3) + " % of peak)" +

@@ -41,6 +41,11 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// The local stage's stop reasons when GSL reports success (converged_stop).
+const char* const kStopXtol = "small step (xtol)";
+const char* const kStopGtol = "small gradient (gtol)";
+const char* const kStopConverged = "converged";
+
 /// Residuals of a subset of free parameters (internal coordinates) with the others held.
 struct Evaluator {
   const Problem* problem = nullptr;
@@ -259,9 +264,9 @@ Local local_fit(const Evaluator& ev, const std::vector<double>& t0, const FitOpt
   const gsl_vector* xf = gsl_multifit_nlinear_position(w);
   for (std::size_t j = 0; j < ev.p(); ++j) out.t.push_back(gsl_vector_get(xf, j));
   out.iterations = int(gsl_multifit_nlinear_niter(w));
-  out.reason = status == GSL_SUCCESS ? (info == 1   ? "small step (xtol)"
-                                        : info == 2 ? "small gradient (gtol)"
-                                                    : "converged")
+  out.reason = status == GSL_SUCCESS ? (info == 1   ? kStopXtol
+                                        : info == 2 ? kStopGtol
+                                                    : kStopConverged)
                                      : std::string(gsl_strerror(status));
   gsl_vector_free(x);
   gsl_multifit_nlinear_free(w);
@@ -842,6 +847,10 @@ std::vector<std::vector<double>> global_units(const Problem& pr, const FitOption
 }
 
 }  // namespace
+
+bool converged_stop(const std::string& stop_reason) {
+  return stop_reason == kStopXtol || stop_reason == kStopGtol || stop_reason == kStopConverged;
+}
 
 FitResult fit(const Problem& pr, const FitOptions& opt) {
   gsl_set_error_handler_off();  // GSL reports through status codes; its default handler aborts

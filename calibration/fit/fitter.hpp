@@ -157,6 +157,10 @@ struct FitResult {
   std::vector<std::string> notes;  ///< what was fixed, what is not identifiable
 };
 
+/// True when `stop_reason` (FitResult::stop_reason) is one of the local stage's convergence tests
+/// (the step, xtol, or the gradient, gtol), false for the iteration limit or a GSL error.
+bool converged_stop(const std::string& stop_reason);
+
 /// Fits `problem`. Deterministic for a given seed, independent of options.threads.
 /// Throws tmlab::Error when no candidate start can be evaluated.
 FitResult fit(const Problem& problem, const FitOptions& options);

@@ -182,17 +182,7 @@ fit::Problem paper_fit_problem(const PaperFitSettings& s, const std::string& kin
   return pr;
 }
 
-namespace {
-
-/// One identification: a kind ("closed_form" or "tensor_mass"), a law, a depth.
-struct FitJob {
-  std::string kind, law;
-  std::size_t depth_index = 0;
-  std::string id() const { return kind + "_" + law; }
-};
-
-/// The truth of each parameter the fit reports (the generating values), by name.
-double truth_of(const PaperFitSettings& s, const std::string& name) {
+double paper_truth(const PaperFitSettings& s, const std::string& name) {
   if (name == "young") return s.young;
   if (name == "poisson") return s.poisson;
   for (std::size_t j = 0; j < s.prony_moduli.size(); ++j) {
@@ -201,6 +191,15 @@ double truth_of(const PaperFitSettings& s, const std::string& name) {
   }
   return std::nan("");
 }
+
+namespace {
+
+/// One identification: a kind ("closed_form" or "tensor_mass"), a law, a depth.
+struct FitJob {
+  std::string kind, law;
+  std::size_t depth_index = 0;
+  std::string id() const { return kind + "_" + law; }
+};
 
 json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostream* log) {
   const ms::DataSet data = paper_reference_data(s, visco, job.depth_index);
@@ -242,7 +241,7 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     j["parameters"] = json::array();
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       const fit::ParameterResult& p = r.parameters[i];
-      const double truth = truth_of(s, p.name);
+      const double truth = paper_truth(s, p.name);
       const fit::Parameter& bounds = pr.parameters.at(i);
       j["parameters"].push_back({{"name", p.name},
                                  {"unit", p.unit},
@@ -319,11 +318,6 @@ std::string cpu_of(const json& f) {
 
 }  // namespace
 
-bool local_fit_converged(const std::string& stop_reason) {
-  return stop_reason == "small step (xtol)" || stop_reason == "small gradient (gtol)" ||
-         stop_reason == "converged";
-}
-
 json usable_depth(const PaperFitSettings& s, const std::vector<json>& fits) {
   auto find = [&](const std::string& law, std::size_t k) -> const json* {
     for (const auto& f : fits)
@@ -344,8 +338,8 @@ json usable_depth(const PaperFitSettings& s, const std::vector<json>& fits) {
       why.push_back("no converged fit: " + (*st)["reason"].get<std::string>());
     } else {
       const std::string stop = st->value("stop_reason", std::string());
-      row["converged"] = local_fit_converged(stop);
-      if (!local_fit_converged(stop)) why.push_back("the fit did not converge (stop: " + stop + ")");
+      row["converged"] = fit::converged_stop(stop);
+      if (!fit::converged_stop(stop)) why.push_back("the fit did not converge (stop: " + stop + ")");
       const double e = value_of(*st, "young"), rms = (*st)["residual_rms_percent_of_peak"].get<double>();
       if (std::isnan(e0)) e0 = e;
       const double drift = 100.0 * (e / e0 - 1.0);
@@ -422,7 +416,7 @@ std::string table_markdown(const std::string& table, const PaperFitSettings& s, 
   for (std::size_t i = 0; i < names.size(); ++i) md << "---|";
   md << "---|---|---|---|---|\n";
   md << "| (truth) | generating values | |";
-  for (const auto& n : names) md << " " << significant(truth_of(s, n), 5) << " |";
+  for (const auto& n : names) md << " " << significant(paper_truth(s, n), 5) << " |";
   md << " | | | | |\n";
   for (const auto& f : fits) {
     md << "| " << significant(f["depth_m"].get<double>() * 1e3, 3) << " mm | "

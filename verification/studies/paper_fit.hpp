@@ -66,6 +66,9 @@ std::string paper_fit_spec(const PaperFitSettings& s, const std::string& law, bo
 fit::Problem paper_fit_problem(const PaperFitSettings& s, const std::string& kind, const std::string& law,
                                bool viscoelastic, const measured::DataSet& data);
 
+/// The generating value of a fit parameter by name (young, poisson, e<j>, tau<j>); NaN for another.
+double paper_truth(const PaperFitSettings& s, const std::string& name);
+
 /// Coordinates on [lo, hi]: uniform cells of size w / np within w of `focus` (clipped to the
 /// interval), then no cells per side growing geometrically to the ends. tmlab::Error when the patch
 /// does not fit.
@@ -87,12 +90,8 @@ struct PaperFitOptions {
 nlohmann::json run_paper_fit(const std::string& target, const PaperFitSettings& s, const PaperFitOptions& o,
                              const std::filesystem::path& dir);
 
-/// True when a local stage's stop reason (FitResult::stop_reason) is a convergence test (xtol, gtol),
-/// false for the iteration limit or a GSL error.
-bool local_fit_converged(const std::string& stop_reason);
-
 /// The St VK usable-depth finding from the tensor-mass fits (the fit JSONs of run_paper_fit): per
-/// depth, usable when the fit finished and converged (local_fit_converged), its residual RMS is at
+/// depth, usable when the fit finished and converged (fit::converged_stop), its residual RMS is at
 /// most s.max_rms_percent of the peak, its E drifts at most s.max_drift_percent from the shallowest
 /// depth's and differs at most s.max_law_difference_percent from the neo-Hookean E on the same rig.
 nlohmann::json usable_depth(const PaperFitSettings& s, const std::vector<nlohmann::json>& fits);

@@ -4,6 +4,7 @@
 // and the closed-form checks recover the generating parameters within their reported 95 % intervals
 // (the tensor-mass rows cannot: the FE rig's mesh error is a bias, reported, not tested away).
 #include "calibration/closed_forms/indentation.hpp"
+#include "calibration/fit/fitter.hpp"
 #include "calibration/fit/model_spec.hpp"
 #include "calibration/fit/relaxation_bands.hpp"
 #include "core/base/error.hpp"
@@ -40,14 +41,6 @@ PaperFitSettings unit_settings(int max_iterations) {
   s.outer_cells = 1;
   s.max_iterations = max_iterations;
   return s;
-}
-
-/// The generating value of a fit parameter (law_parameters' names).
-double truth_value(const PaperFitSettings& s, const std::string& name) {
-  if (name == "young") return s.young;
-  if (name == "poisson") return s.poisson;
-  const std::size_t j = std::size_t(name.back() - '1');
-  return name.rfind("tau", 0) == 0 ? s.prony_taus.at(j) : s.prony_moduli.at(j);
 }
 
 json read_json(const fs::path& p) {
@@ -107,28 +100,27 @@ TEST(PaperFit, ReferenceCurvesAreHertzAndLeeRadokWithTheStatedNoise) {
 TEST(PaperFit, BadSettingsNameTheKey) {
   json p = ConfigReader::parse_file(kParams);
   json q = p;
+  // The settings `q` are refused with an error that names `key`.
+  const auto refused_naming = [&q](const std::string& key, const std::string& what) {
+    try {
+      paper_fit_settings(q, "f.json", false);
+      ADD_FAILURE() << what << " accepted";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
+    }
+  };
   q["reference"]["depths"] = {0.002, 0.02};
   EXPECT_THROW(paper_fit_settings(q, "f.json", false), Error);
   q = p;
   q["identification"]["laws"] = {"ogden"};
-  try {
-    paper_fit_settings(q, "f.json", false);
-    ADD_FAILURE() << "ogden accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("laws"), std::string::npos) << e.what();
-  }
+  refused_naming("laws", "ogden");
   q = p;
   q["rig"]["cellz"] = 3;
   EXPECT_THROW(paper_fit_settings(q, "f.json", false), Error);
   for (const char* key : {"contact_stiffness_factor", "newton_max_iterations"}) {
     q = p;
     q["rig"][key] = -1;
-    try {
-      paper_fit_settings(q, "f.json", false);
-      ADD_FAILURE() << key << " = -1 accepted";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
+    refused_naming(key, std::string(key) + " = -1");
   }
   // The relaxation fits' settings: each bad value is refused naming its key; the bands' two ends
   // are set together.
@@ -138,21 +130,11 @@ TEST(PaperFit, BadSettingsNameTheKey) {
   for (const auto& [key, v] : bad) {
     q = p;
     q["identification"]["relaxation"][key] = v;
-    try {
-      paper_fit_settings(q, "f.json", false);
-      ADD_FAILURE() << key << " = " << v << " accepted";
-    } catch (const Error& e) {
-      EXPECT_NE(std::string(e.what()).find(key), std::string::npos) << e.what();
-    }
+    refused_naming(key, std::string(key) + " = " + std::to_string(v));
   }
   q = p;
   q["identification"]["relaxation"]["time_ceiling"] = 0.0;
-  try {
-    paper_fit_settings(q, "f.json", false);
-    ADD_FAILURE() << "a floor without a ceiling accepted";
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("time_ceiling"), std::string::npos) << e.what();
-  }
+  refused_naming("time_ceiling", "a floor without a ceiling");
   q = p;
   q["identification"]["relaxation"]["tau3"] = 1.0;
   EXPECT_THROW(paper_fit_settings(q, "f.json", false), Error);
@@ -162,11 +144,6 @@ TEST(PaperFit, BadSettingsNameTheKey) {
   EXPECT_THROW(run_paper_fit("fig9", quick_settings(), {}, fs::temp_directory_path()), Error);
 }
 
-/// The forces of the study's viscoelastic St VK rig (quick mesh, 2 mm: the default eps's solve
-/// costs 20 s of CPU there and more at 8 mm; the truth parameters): the contact stiffness from the patch (the
-/// parameter file's setting) against the solver's default, and a warm start (from the solve at parameters
-/// the relaxation fits' Jacobian step away, as their Jacobian columns do) against a cold solve. Neither may
-/// move the forces beyond the solvers' tolerance; both must cut the Newton iterations.
 TEST(PaperFit, UsableDepthNeedsAConvergedFit) {
   // St VK at 2 mm converged and agreeing with neo-Hookean; at 4 mm within every numeric criterion
   // but stopped at the iteration limit: 4 mm is where it stops being usable, for that reason.
@@ -198,10 +175,15 @@ TEST(PaperFit, UsableDepthNeedsAConvergedFit) {
   fits[2]["stop_reason"] = "small step (xtol)";
   EXPECT_NE(usable_depth(s, fits)["statement"].get<std::string>().find("usable at every depth"),
             std::string::npos);
-  EXPECT_TRUE(local_fit_converged("small gradient (gtol)"));
-  EXPECT_FALSE(local_fit_converged("exceeded max number of iterations"));
+  EXPECT_TRUE(fit::converged_stop("small gradient (gtol)"));
+  EXPECT_FALSE(fit::converged_stop("exceeded max number of iterations"));
 }
 
+/// The forces of the study's viscoelastic St VK rig (quick mesh, 2 mm: the default eps's solve
+/// costs 20 s of CPU there and more at 8 mm; the truth parameters): the contact stiffness from the patch (the
+/// parameter file's setting) against the solver's default, and a warm start (from the solve at parameters
+/// the relaxation fits' Jacobian step away, as their Jacobian columns do) against a cold solve. Neither may
+/// move the forces beyond the solvers' tolerance; both must cut the Newton iterations.
 TEST(PaperFit, PatchContactStiffnessAndWarmStartsKeepTheRigForces) {
   const PaperFitSettings s = quick_settings();
   ASSERT_GT(s.contact_stiffness_factor, 0.0) << "the parameter file sets rig.contact_stiffness_factor";
@@ -294,7 +276,7 @@ TEST(PaperFit, JacobianStepStandsAboveTheContactTolerance) {
   const measured::DataSet d = paper_reference_data(s, true, 0);
   const fit::Problem pr = paper_fit_problem(s, "tensor_mass", "stvk", true, d);
   std::vector<double> x;
-  for (const auto& p : pr.parameters) x.push_back(truth_value(s, p.name));
+  for (const auto& p : pr.parameters) x.push_back(paper_truth(s, p.name));
   const std::size_t j = fit::index_of(pr.parameters, "tau1");
   const fit::Parameter& q = pr.parameters[j];
   const double t = q.to_internal(x[j]);
