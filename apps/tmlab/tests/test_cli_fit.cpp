@@ -179,6 +179,7 @@ TEST_F(CliFit, RelaxationBandsOrderThePronyTimes) {
   bad = tmlab({"fit", csv.string(), "--model", "stvk", "--relaxation-bands", "0.5,1"});
   EXPECT_EQ(bad.status, 2) << bad.output;
   EXPECT_NE(bad.output.find("needs Prony terms"), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("e.g. stvk+prony:2"), std::string::npos) << bad.output;  // the SPEC syntax
 }
 
 TEST_F(CliFit, BadSpecsAndDataAreRefused) {
