@@ -2,7 +2,10 @@
 
 #include "commands.hpp"
 
+#include "core/base/number.hpp"
+
 #include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <sstream>
@@ -49,14 +52,17 @@ Parsed parse(const std::vector<std::string>& args, const std::vector<std::string
 }
 
 double parse_double(const std::string& key, const std::string& s) {
-  try {
-    std::size_t pos = 0;
-    const double v = std::stod(s, &pos);
-    if (pos != s.size()) throw std::invalid_argument(s);
-    return v;
-  } catch (const std::exception&) {
-    throw UsageError(key + " needs a number (got '" + s + "')");
-  }
+  double v = 0.0;
+  std::string why;
+  if (!tmlab::parse_decimal(s, v, why)) throw UsageError(key + " needs a number: " + why);
+  return v;
+}
+
+long long parse_whole(const std::string& key, const std::string& s, long long min, long long max) {
+  std::int64_t v = 0;
+  std::string why;
+  if (!tmlab::parse_whole(s, min, max, v, why)) throw UsageError(key + " needs a whole number: " + why);
+  return static_cast<long long>(v);
 }
 
 std::vector<std::string> split_list(const std::string& s) {

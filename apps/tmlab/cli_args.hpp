@@ -21,8 +21,11 @@ struct Parsed {
 Parsed parse(const std::vector<std::string>& args, const std::vector<std::string>& with_value,
              const std::vector<std::string>& flags);
 
-/// A number for option `key`; UsageError naming the key otherwise.
+/// A number for option `key` under tmlab's one number grammar (core/base/number.hpp: decimal,
+/// finite; no hex, no blanks, no ".5"); UsageError naming the key otherwise.
 double parse_double(const std::string& key, const std::string& s);
+/// A whole number for option `key` within [min, max]; UsageError naming the key and the range.
+long long parse_whole(const std::string& key, const std::string& s, long long min, long long max);
 
 /// The non-empty items of a comma-separated option value ("a,b,,c" -> a, b, c).
 std::vector<std::string> split_list(const std::string& s);

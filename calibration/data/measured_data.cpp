@@ -2,6 +2,7 @@
 #include "calibration/data/measured_data.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/number.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/io/xml_text.hpp"  // format_double: the shortest text that reads back to the same double
@@ -543,14 +544,16 @@ std::vector<Field> split_fields(std::string_view line) {
 }  // namespace
 
 bool parse_decimal(std::string_view s, double& out, std::string& why) {
+  // The grammar is tmlab's one number grammar (core/base/number); only the words for a missing or
+  // non-finite sample are the measurement's own.
   if (s.empty()) {
     why = "empty field (every sample needs a value)";
     return false;
   }
   std::string lower;
-  for (char c : s) lower += char(std::tolower(static_cast<unsigned char>(c)));
+  for (char c : s.substr(0, 4)) lower += char(std::tolower(static_cast<unsigned char>(c)));
   const std::string_view body =
-      (lower[0] == '+' || lower[0] == '-') ? std::string_view(lower).substr(1) : lower;
+      (lower[0] == '+' || lower[0] == '-') ? std::string_view(lower).substr(1) : std::string_view(lower);
   if (body.rfind("nan", 0) == 0) {
     why = "NaN is not a measurement (remove the sample or the test)";
     return false;
@@ -559,38 +562,7 @@ bool parse_decimal(std::string_view s, double& out, std::string& why) {
     why = "an infinite value is not a measurement";
     return false;
   }
-  std::size_t i = (s[0] == '+' || s[0] == '-') ? 1 : 0;
-  const std::size_t first = i;
-  std::size_t digits = 0;
-  while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++digits;
-  if (i < s.size() && s[i] == '.') {
-    ++i;
-    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++digits;
-  }
-  bool ok = digits > 0;
-  if (ok && i < s.size() && (s[i] == 'e' || s[i] == 'E')) {
-    ++i;
-    if (i < s.size() && (s[i] == '+' || s[i] == '-')) ++i;
-    std::size_t exp_digits = 0;
-    while (i < s.size() && std::isdigit(static_cast<unsigned char>(s[i]))) ++i, ++exp_digits;
-    ok = exp_digits > 0;
-  }
-  if (!ok || i != s.size()) {
-    why = "'" + std::string(s.substr(0, 40)) + "' is not a number";
-    return false;
-  }
-  // from_chars takes no leading '+'.
-  const std::size_t from = s[0] == '+' ? first : 0;
-  const auto r = std::from_chars(s.data() + from, s.data() + s.size(), out);
-  if (r.ec == std::errc::result_out_of_range || !std::isfinite(out)) {
-    why = "'" + std::string(s.substr(0, 40)) + "' is out of the range of a double";
-    return false;
-  }
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size()) {
-    why = "'" + std::string(s.substr(0, 40)) + "' is not a number";
-    return false;
-  }
-  return true;
+  return tmlab::parse_decimal(s, out, why);
 }
 
 namespace {

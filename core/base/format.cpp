@@ -25,4 +25,21 @@ std::string choice_list(const std::vector<std::string>& names, const std::string
   return out;
 }
 
+std::string printable(std::string_view s, std::size_t max_chars) {
+  std::string out;
+  const std::size_t n = s.size() < max_chars ? s.size() : max_chars;
+  for (std::size_t i = 0; i < n; ++i) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x20 || c == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", static_cast<unsigned>(c));
+      out += buf;
+    } else {
+      out += static_cast<char>(c);
+    }
+  }
+  if (n < s.size()) out += "...";
+  return out;
+}
+
 }  // namespace tmlab

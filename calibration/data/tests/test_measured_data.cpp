@@ -355,11 +355,11 @@ TEST(MeasuredDataNumbers, Decimals) {
   std::string why;
   EXPECT_TRUE(parse_decimal("-1.5e-3", v, why));
   EXPECT_EQ(v, -1.5e-3);
-  EXPECT_TRUE(parse_decimal("+.25", v, why));
+  EXPECT_TRUE(parse_decimal("+0.25", v, why));
   EXPECT_EQ(v, 0.25);
-  EXPECT_TRUE(parse_decimal("7.", v, why));
-  EXPECT_EQ(v, 7.0);
-  for (const char* bad : {"", ".", "e5", "1e", "1.2.3", "0x10", "1,5", "nan", "-Infinity", "1e400", " 1"})
+  // The documented grammar [+-]digits[.digits][e[+-]digits]: digits on both sides of the point.
+  for (const char* bad :
+       {"", ".", "+.25", "7.", ".5", "e5", "1e", "1.2.3", "0x10", "1,5", "nan", "-Infinity", "1e400", " 1"})
     EXPECT_FALSE(parse_decimal(bad, v, why)) << bad;
 }
 
