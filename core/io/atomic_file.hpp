@@ -8,8 +8,9 @@
 
 namespace tmlab {
 
-/// Writes `content` to `path` via "<path>.tmp" and a rename. Throws tmlab::Error naming the file
-/// (the temporary is removed on failure).
+/// Writes `content` to `path` via a fresh temporary "<path>.tmpXXXXXX" (created exclusively, so no
+/// file that was there is ever written into) and a rename; mode 0644. Throws tmlab::Error naming the
+/// file (the temporary is removed on failure).
 void write_file_atomically(const std::filesystem::path& path, const std::string& content);
 
 }  // namespace tmlab

@@ -4,6 +4,7 @@
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/results/result_dir.hpp"
 #include "tmlab/build_info.hpp"
 
 #include <algorithm>
@@ -122,14 +123,6 @@ std::string result_name_problem(const std::string& name) {
 
 namespace {
 
-bool looks_like_result_dir(const fs::path& dir) {
-  for (const char* marker : {RunOutput::kStaging, RunOutput::kRunning, RunOutput::kFailed,
-                             RunOutput::kInterrupted, RunOutput::kSummary, "manifest.json"}) {
-    if (fs::exists(dir / marker)) return true;
-  }
-  return false;
-}
-
 std::string read_small_file(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -175,26 +168,36 @@ void sync_tree(const fs::path& root) {
   sync_directory(root);
 }
 
+/// Room reserved in the RUNNING marker: on a full disk it becomes FAILED or INTERRUPTED by a rename
+/// and is rewritten in place, in blocks it already owns.
+constexpr std::size_t kMarkerRoom = 4096;
+
+/// Rewrites the existing file `p` in place with `text` (cut to kMarkerRoom) and truncates it: needs no
+/// new disk blocks when the file already held kMarkerRoom bytes. False when that did not work.
+bool rewrite_in_place(const fs::path& p, std::string text) {
+  if (text.size() > kMarkerRoom) text = text.substr(0, kMarkerRoom - 4) + "...\n";
+  const int fd = ::open(p.c_str(), O_WRONLY | O_CLOEXEC);
+  if (fd < 0) return false;
+  bool ok = ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size());
+  ok = ok && ::ftruncate(fd, static_cast<off_t>(text.size())) == 0;
+  ok = ::fsync(fd) == 0 && ok;
+  ok = ::close(fd) == 0 && ok;
+  return ok;
+}
+
 }  // namespace
 
 RunOutput::RunOutput(fs::path dir, std::ostream* log) : RunOutput(std::move(dir), log, Previous::Discard) {}
 
 RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
-    : dir_(std::move(dir)),
+    : dir_(result_dir::resolve(dir)),
       started_(std::chrono::system_clock::now()),
       started_steady_(std::chrono::steady_clock::now()),
       uncaught_at_start_(std::uncaught_exceptions()) {
-  std::error_code ec;
-  if (dir_.filename().empty()) dir_ = dir_.parent_path();  // "results/x/" -> "results/x"
-  if (fs::exists(dir_, ec)) {
-    if (!fs::is_directory(dir_)) throw Error(dir_.string() + ": result path exists and is not a directory");
-    if (!fs::is_empty(dir_) && !looks_like_result_dir(dir_)) {
-      throw Error(dir_.string() + ": refusing to reuse a non-empty directory that is not a tmlab result " +
-                  "directory (no summary.json, manifest.json, RUNNING, FAILED or .incomplete)");
-    }
-  }
+  // ---- May tmlab write here? Checked before anything is created (and again under the lock). ----
+  result_dir::check_may_take(dir_, result_dir::inspect(dir_));
   // ---- One writer per directory: an exclusive, non-blocking flock on the directory itself. ----
-  const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
+  std::error_code ec;
   fs::create_directories(dir_, ec);
   if (ec) throw Error(dir_.string() + ": cannot create result directory: " + ec.message());
   lock_fd_ = ::open(dir_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -202,8 +205,7 @@ RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
     throw Error(dir_.string() + ": cannot open the result directory (" + std::strerror(errno) + ")");
   if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
     const int err = errno;
-    ::close(lock_fd_);
-    lock_fd_ = -1;
+    release_lock();
     if (err != EWOULDBLOCK)
       throw Error(dir_.string() + ": cannot lock the result directory (" + std::strerror(err) + ")");
     const std::string who = describe_writer(dir_ / kRunning);
@@ -211,45 +213,55 @@ RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
                 (who.empty() ? std::string() : " (" + who + ")") +
                 "; wait for it to finish, or write elsewhere with --results DIR");
   }
-  const nlohmann::json me = {{"pid", static_cast<long>(::getpid())},
-                             {"hostname", host_name()},
-                             {"started_utc", utc_iso8601(started_)}};
-
-  // ---- Clear the previous result (we hold the lock: any RUNNING marker is stale). ----
-  {
-    const bool keep_staging = previous == Previous::ResumeInterrupted;
-    const bool stale = fs::exists(dir_ / kRunning);
-    if (stale) {
-      if (log) {
-        const std::string who = describe_writer(dir_ / kRunning);
-        *log << "tmlab: " << dir_.string() << ": a stale RUNNING marker"
-             << (who.empty() ? std::string() : " (" + who + ")")
-             << " was left by a run whose process is gone; "
-             << (keep_staging ? "resuming from its staged files" : "its partial output is discarded") << "\n";
-      }
-    }
-    // Resumable: a run stopped by a signal (INTERRUPTED), or one whose process died (a stale
-    // RUNNING: SIGKILL, a crash), with its staged files; the command then finds its checkpoint there.
-    if (keep_staging && (!(fs::exists(dir_ / kInterrupted) || stale) || !fs::is_directory(staging_dir()))) {
-      ::close(lock_fd_);
-      lock_fd_ = -1;
-      throw Error(dir_.string() +
-                  ": --resume: nothing to resume (no INTERRUPTED marker with staged files: the " +
-                  "last run finished, failed, or never started); run without --resume");
-    }
-    // The previous run no longer describes this directory: drop its completeness mark first.
-    fs::remove(dir_ / kSummary, ec);
-    if (ec) throw Error(dir_.string() + ": cannot remove old " + kSummary + ": " + ec.message());
-    for (const auto& entry : fs::directory_iterator(dir_)) {
-      if (keep_staging && entry.path().filename() == kStaging) continue;
-      fs::remove_all(entry.path(), ec);
-      if (ec) throw Error(entry.path().string() + ": cannot remove previous result: " + ec.message());
-    }
+  try {
+    take(log, previous == Previous::ResumeInterrupted);
+  } catch (...) {
+    release_lock();
+    throw;
   }
-  fs::remove_all(parent / ("." + dir_.filename().string() + ".final"), ec);  // a crash mid-finalize
+}
+
+void RunOutput::take(std::ostream* log, bool keep_staging) {
+  // We hold the lock: any RUNNING marker is stale. Look again: the folder may have changed.
+  const result_dir::Inventory inv = result_dir::inspect(dir_);
+  result_dir::check_may_take(dir_, inv);
+  const bool stale = inv.has_marker && fs::exists(dir_ / kRunning);
+  if (stale && log) {
+    const std::string who = describe_writer(dir_ / kRunning);
+    *log << "tmlab: " << dir_.string() << ": a stale RUNNING marker"
+         << (who.empty() ? std::string() : " (" + who + ")") << " was left by a run whose process is gone; "
+         << (keep_staging ? "resuming from its staged files" : "its partial output is discarded") << "\n";
+  }
+  // Resumable: a run stopped by a signal (INTERRUPTED), or one whose process died (a stale RUNNING:
+  // SIGKILL, a crash), with its staged files; the command then finds its checkpoint there.
+  const bool resumable =
+      inv.has_marker && (fs::exists(dir_ / kInterrupted) || stale) && fs::is_directory(staging_dir());
+  if (keep_staging && !resumable) {
+    if (inv.has_marker && fs::exists(dir_ / kSummary))
+      throw Error(dir_.string() +
+                  ": --resume: nothing to resume: it holds a complete result (summary.json); " +
+                  "run without --resume to compute it again");
+    throw Error(dir_.string() +
+                ": --resume: nothing to resume (no INTERRUPTED marker with staged files: the last run " +
+                "finished, failed, or never started); run without --resume");
+  }
+  result_dir::clear_previous(dir_, inv, keep_staging);
+  run_id_ = result_dir::write_marker(dir_, "", {});
+  std::error_code ec;
   fs::create_directories(staging_dir(), ec);
   if (ec) throw Error(dir_.string() + ": cannot create result directory: " + ec.message());
-  write_file_atomically(dir_ / kRunning, me.dump(2) + "\n");
+  const nlohmann::json me = {{"pid", static_cast<long>(::getpid())},
+                             {"hostname", host_name()},
+                             {"started_utc", utc_iso8601(started_)},
+                             {"run_id", run_id_}};
+  std::string running = me.dump(2) + "\n";
+  if (running.size() < kMarkerRoom) running += std::string(kMarkerRoom - running.size() - 1, ' ') + "\n";
+  write_file_atomically(dir_ / kRunning, running);
+}
+
+void RunOutput::release_lock() noexcept {
+  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+  lock_fd_ = -1;
 }
 
 RunOutput::~RunOutput() {
@@ -257,15 +269,19 @@ RunOutput::~RunOutput() {
     const bool unwinding = std::uncaught_exceptions() > uncaught_at_start_;
     fail(unwinding ? "run aborted by an exception before finalize()" : "run ended without finalize()");
   }
-  if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the flock
+  release_lock();
 }
 
 fs::path RunOutput::file(const std::string& name) const {
   const fs::path rel = fs::path(name).lexically_normal();
-  if (name.empty() || rel.is_absolute() || rel.empty() || *rel.begin() == "..") {
+  if (name.empty() || rel.is_absolute() || rel.empty() || *rel.begin() == ".." || *rel.begin() == ".") {
     throw Error(dir_.string() + ": result file name '" + name +
                 "' must be relative and inside the directory");
   }
+  for (const char* own : {kStaging, kRunning, kFailed, kInterrupted, kSummary, result_dir::kMarker})
+    if (*rel.begin() == own)
+      throw Error(dir_.string() + ": result file name '" + name +
+                  "' is a name of the result protocol itself");
   const fs::path p = staging_dir() / rel;
   std::error_code ec;
   fs::create_directories(p.parent_path(), ec);
@@ -284,19 +300,34 @@ void RunOutput::finalize(const nlohmann::json& summary) {
   }
   if (!summary.is_object()) throw Error(dir_.string() + ": the run summary must be a JSON object");
   try {
-    // 1. The complete tree is built beside the directory: <parent>/.<name>.final = staged files +
-    //    summary.json (written last, with the file list), then synced.
-    const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
-    const fs::path final_tree = parent / ("." + dir_.filename().string() + ".final");
-    std::error_code ec;
-    fs::remove_all(final_tree, ec);
-    fs::rename(staging_dir(), final_tree, ec);
-    if (ec) throw Error(final_tree.string() + ": cannot stage the finished result: " + ec.message());
-    std::vector<std::string> files;
-    for (const auto& entry : fs::directory_iterator(final_tree))
-      files.push_back(entry.path().filename().string());
+    // 1. What the result holds: every staged file, and summary.json. The marker lists them before
+    //    any is moved, so that a crash from here on leaves nothing a later run cannot clear.
+    std::vector<std::string> top;
+    for (const auto& entry : fs::directory_iterator(staging_dir())) {
+      const std::string name = entry.path().filename().string();
+      if (fs::exists(fs::symlink_status(dir_ / name)))
+        throw Error((dir_ / name).string() + ": exists already beside the staged result: nothing was moved");
+      top.push_back(name);
+    }
+    std::sort(top.begin(), top.end());
+    std::vector<std::string> files = result_dir::list_files(staging_dir());
+    files.push_back(kSummary);
     std::sort(files.begin(), files.end());
+    result_dir::write_marker(dir_, run_id_, files);
+    sync_tree(staging_dir());
 
+    // 2. Move them in, each with one rename inside the same folder (so the same file system: a
+    //    result folder reached through a link onto another file system finishes like any other).
+    std::error_code ec;
+    for (const std::string& name : top) {
+      fs::rename(staging_dir() / name, dir_ / name, ec);
+      if (ec)
+        throw Error((dir_ / name).string() + ": cannot move the finished file into place: " + ec.message());
+    }
+    fs::remove(staging_dir(), ec);
+    if (ec) throw Error(staging_dir().string() + ": cannot remove the empty staging area: " + ec.message());
+
+    // 3. summary.json last: from now on the folder is a complete result.
     nlohmann::json s = summary;
     const auto now = std::chrono::system_clock::now();
     s["status"] = "complete";
@@ -304,25 +335,10 @@ void RunOutput::finalize(const nlohmann::json& summary) {
     s["finished_utc"] = utc_iso8601(now);
     s["wall_seconds"] =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started_steady_).count();
-    s["files"] = files;
-    write_file_atomically(final_tree / kSummary, s.dump(2) + "\n");
-    sync_tree(final_tree);
-
-    // 2. One rename makes it the result: exchange it with <dir> (which holds only RUNNING now),
-    //    then remove what was swapped out.
-    if (::renameat2(AT_FDCWD, final_tree.c_str(), AT_FDCWD, dir_.c_str(), RENAME_EXCHANGE) != 0) {
-      // A file system without RENAME_EXCHANGE: move the old directory aside, then rename.
-      const fs::path aside = parent / ("." + dir_.filename().string() + ".old");
-      fs::remove_all(aside, ec);
-      fs::rename(dir_, aside, ec);
-      if (ec) throw Error(dir_.string() + ": cannot move the old directory aside: " + ec.message());
-      fs::rename(final_tree, dir_, ec);
-      if (ec) throw Error(dir_.string() + ": cannot move the result into place: " + ec.message());
-      fs::remove_all(aside, ec);
-    } else {
-      fs::remove_all(final_tree, ec);
-    }
-    sync_directory(parent);
+    s["files"] = top;
+    write_file_atomically(dir_ / kSummary, s.dump(2) + "\n");
+    fs::remove(dir_ / kRunning, ec);
+    sync_directory(dir_);
   } catch (const std::exception& e) {
     fail(std::string("finalize() failed: ") + e.what());
     throw;
@@ -336,17 +352,20 @@ void RunOutput::mark_stopped(State state, const char* marker, const std::string&
   try {
     std::error_code ec;
     fs::remove(dir_ / kSummary, ec);
-    fs::create_directories(dir_, ec);
-    // A crash between the two renames of finalize() could leave the staged tree beside the
-    // directory; bring it back where the user looks for it.
-    const fs::path parent = dir_.has_parent_path() ? dir_.parent_path() : fs::path(".");
-    const fs::path final_tree = parent / ("." + dir_.filename().string() + ".final");
-    if (!fs::exists(staging_dir()) && fs::exists(final_tree)) fs::rename(final_tree, staging_dir(), ec);
     const std::string stamp = state == State::Interrupted ? "interrupted_utc: " : "failed_utc: ";
     const std::string text = stamp + utc_iso8601(std::chrono::system_clock::now()) + "\n" +
                              (state == State::Interrupted ? "reason: " : "error: ") + message + "\n";
-    write_file_atomically(dir_ / marker, text);
-    fs::remove(dir_ / kRunning, ec);
+    // The RUNNING marker becomes this one by a rename and is rewritten in the room it reserved, so
+    // that a full disk still ends in FAILED with the reason, never in a stale RUNNING.
+    bool done = false;
+    if (fs::exists(dir_ / kRunning)) {
+      fs::rename(dir_ / kRunning, dir_ / marker, ec);
+      done = !ec && rewrite_in_place(dir_ / marker, text);
+    }
+    if (!done) {
+      write_file_atomically(dir_ / marker, text);
+      fs::remove(dir_ / kRunning, ec);
+    }
   } catch (...) {
     // Nothing more can be done: the missing summary.json still marks the run incomplete.
   }

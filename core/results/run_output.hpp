@@ -1,17 +1,27 @@
 // The result-directory protocol for results/<case>/, and the run manifest.
 //
+// Which folder: the path is resolved first (core/results/result_dir.hpp): a symbolic link is followed
+// and the result written into its target; "" and a path that is the current directory, one of its
+// parents, the home directory or "/" are refused before anything is computed.
+//
+// Whose folder: tmlab writes into a folder only when it does not exist, is empty, or holds the
+// ownership marker `.tmlab-result` that tmlab wrote there; replacing a previous result removes exactly
+// the files that marker lists, and a folder holding anything else is refused with the names of what
+// tmlab did not write. Nothing tmlab did not write is ever removed or overwritten.
+//
 // One writer: a RunOutput holds an exclusive lock (flock on the result directory itself) for its
 // whole life; a second RunOutput on the same directory, in this or any other process, is refused
 // with a message naming the process that holds it (from its RUNNING marker). A RUNNING marker
 // left by a process that is gone (its lock died with it) is reported as stale and cleared.
 //
 // A run writes every result file into the staging directory <dir>/.incomplete/ while a RUNNING
-// marker sits in <dir>. finalize() writes summary.json into the staged tree, syncs it, and swaps
-// the staged tree into place with one rename (renameat2 RENAME_EXCHANGE), so the complete result
-// appears at once: a directory holding summary.json is a complete run, and nothing else is.
+// marker sits in <dir>. finalize() lists the staged files in the marker, moves them into <dir> (renames
+// inside one folder, so one file system even behind a link) and writes summary.json last: a directory
+// holding summary.json is a complete run, and nothing else is.
 // A run that ends any other way (an exception unwinding past the RunOutput, or an explicit fail())
 // leaves a FAILED marker with the reason, keeps .incomplete/ for inspection, and has no
-// summary.json; a run stopped by SIGINT/SIGTERM (interrupt()) leaves INTERRUPTED instead.
+// summary.json; a run stopped by SIGINT/SIGTERM (interrupt()) leaves INTERRUPTED instead. RUNNING
+// reserves room on disk, so that even a full disk ends in FAILED with the reason.
 // Typical use:
 //
 //   tmlab::RunOutput out("results/" + case_name);
@@ -25,6 +35,8 @@
 //     throw;
 //   }
 #pragma once
+
+#include "core/results/result_dir.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -69,17 +81,18 @@ std::string result_name_problem(const std::string& name);
 /// One run's result directory; see the file comment for the protocol.
 class RunOutput {
  public:
-  static constexpr const char* kStaging = ".incomplete";
-  static constexpr const char* kRunning = "RUNNING";
-  static constexpr const char* kFailed = "FAILED";
-  static constexpr const char* kInterrupted = "INTERRUPTED";
-  static constexpr const char* kSummary = "summary.json";
+  static constexpr const char* kStaging = result_dir::kStaging;
+  static constexpr const char* kRunning = result_dir::kRunning;
+  static constexpr const char* kFailed = result_dir::kFailed;
+  static constexpr const char* kInterrupted = result_dir::kInterrupted;
+  static constexpr const char* kSummary = result_dir::kSummary;
 
-  /// Takes the directory's lock, creates `dir` (and parents) and the staging area, and writes
-  /// RUNNING. A previous run's contents are removed first, summary.json before anything else; a
-  /// non-empty directory that shows no sign of being a result directory is refused (tmlab::Error)
-  /// rather than emptied, and so is a directory another live RunOutput holds (the message names
-  /// its process). A stale RUNNING marker (its process is gone) is reported on `log` when given.
+  /// Resolves `dir` (result_dir::resolve), takes its lock, creates it (and parents) and the staging
+  /// area, and writes the ownership marker and RUNNING. A previous result's files (those its marker
+  /// lists) are removed first, summary.json before anything else; a folder tmlab may not take (see
+  /// the file comment) is refused (tmlab::Error) before anything is changed, and so is a directory
+  /// another live RunOutput holds (the message names its process). A stale RUNNING marker (its
+  /// process is gone) is reported on `log` when given.
   explicit RunOutput(std::filesystem::path dir, std::ostream* log = nullptr);
   /// What to do with the previous contents: discard them (the constructor above), or, to resume
   /// an interrupted command, keep its staged files (.incomplete/) so that the finished parts can
@@ -94,7 +107,7 @@ class RunOutput {
   RunOutput(const RunOutput&) = delete;
   RunOutput& operator=(const RunOutput&) = delete;
 
-  /// The final result directory.
+  /// The final result directory (resolved: absolute, links followed).
   const std::filesystem::path& dir() const { return dir_; }
   /// Where files are written until finalize().
   std::filesystem::path staging_dir() const { return dir_ / kStaging; }
@@ -104,9 +117,10 @@ class RunOutput {
   /// Writes `value` as indented JSON to file(name), atomically.
   void write_json(const std::string& name, const nlohmann::json& value) const;
 
-  /// Moves the staged files into dir(), removes the staging area and RUNNING, and writes
-  /// summary.json last: `summary` plus "status", "started_utc", "finished_utc", "wall_seconds"
-  /// and "files". Throws tmlab::Error (and records FAILED) if anything goes wrong.
+  /// Lists the staged files in the ownership marker, moves them into dir(), removes the staging area,
+  /// writes summary.json last (`summary` plus "status", "started_utc", "finished_utc", "wall_seconds"
+  /// and "files", the top-level names) and removes RUNNING. Throws tmlab::Error (and records FAILED) if
+  /// anything goes wrong.
   void finalize(const nlohmann::json& summary = nlohmann::json::object());
   /// Records that the run failed: writes FAILED with `message` and removes RUNNING; staged files
   /// stay in staging_dir(). The first reason recorded wins. Never throws.
@@ -124,7 +138,10 @@ class RunOutput {
  private:
   enum class State { Running, Finalized, Failed, Interrupted };
   void mark_stopped(State state, const char* marker, const std::string& message) noexcept;
+  void take(std::ostream* log, bool keep_staging);
+  void release_lock() noexcept;
   std::filesystem::path dir_;
+  std::string run_id_;
   int lock_fd_ = -1;
   State state_ = State::Running;
   std::chrono::system_clock::time_point started_;

@@ -1,5 +1,5 @@
 // write_file_atomically: the content arrives whole under the final name, a previous file is replaced
-// whole, and a failure throws tmlab::Error naming the file and leaves no "<path>.tmp" behind.
+// whole, and a failure throws tmlab::Error naming the file and leaves no temporary behind.
 #include "core/base/error.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/testing/temp_dir.hpp"
@@ -42,12 +42,21 @@ TEST_F(AtomicFile, KeepsBinaryBytesAndWritesEmptyFiles) {
   EXPECT_EQ(fs::file_size(dir_ / "empty"), 0u);
 }
 
-TEST_F(AtomicFile, OverwritesAStaleTemporaryOfAnEarlierCrash) {
+TEST_F(AtomicFile, NeverWritesIntoAFileThatWasThere) {
+  // The temporary is a fresh file (mkstemp): a file named like a temporary, the user's or a crashed
+  // run's, is left exactly as it was.
   const fs::path path = dir_ / "r.vtu";
-  write_file(dir_ / "r.vtu.tmp", "half-written garbage from a crashed run, longer than the new content");
+  write_file(dir_ / "r.vtu.tmp", "somebody's file");
   write_file_atomically(path, "new");
   EXPECT_EQ(read_file(path), "new");
-  EXPECT_FALSE(fs::exists(dir_ / "r.vtu.tmp"));
+  EXPECT_EQ(read_file(dir_ / "r.vtu.tmp"), "somebody's file");
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 2);
+}
+
+TEST_F(AtomicFile, ResultFilesAreReadable) {
+  write_file_atomically(dir_ / "a.json", "{}");
+  const auto perms = fs::status(dir_ / "a.json").permissions();
+  EXPECT_NE(perms & fs::perms::others_read, fs::perms::none);
 }
 
 TEST_F(AtomicFile, MissingDirectoryThrowsNamingTheFile) {
@@ -76,7 +85,7 @@ TEST_F(AtomicFile, FailedRenameRemovesTheTemporaryAndKeepsWhatWasThere) {
     const std::string msg = e.what();
     EXPECT_EQ(msg.rfind(path.string() + ": cannot move finished file into place (", 0), 0u) << msg;
   }
-  EXPECT_FALSE(fs::exists(dir_ / "out.tmp"));
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir_), fs::directory_iterator()), 1);  // no temporary
   EXPECT_TRUE(fs::is_directory(path));
   EXPECT_EQ(read_file(path / "keep"), "kept");
 }

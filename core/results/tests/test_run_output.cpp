@@ -1,6 +1,7 @@
 // RunOutput protocol (staging, summary.json last, FAILED on unwinding) and make_manifest.
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
+#include "core/io/atomic_file.hpp"
 #include "core/results/run_output.hpp"
 #include "core/testing/temp_dir.hpp"
 
@@ -10,6 +11,8 @@
 #include <filesystem>
 #include <sstream>
 
+#include <sched.h>
+#include <sys/mount.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -186,6 +189,7 @@ TEST_F(RunOutputTest, StaleRunningMarkerIsReportedAndCleared) {
   // A process killed with SIGKILL leaves RUNNING and .incomplete/ but no lock.
   const fs::path dir = root_ / "stale";
   fs::create_directories(dir / ".incomplete");
+  write_file(dir / ".tmlab-result", R"({"format": "tmlab-result/1", "run_id": "1", "files": []})");
   write_file(dir / "RUNNING",
              R"({"pid": 999999, "hostname": "gone", "started_utc": "2026-01-01T00:00:00Z"})");
   write_file(dir / ".incomplete" / "half.h5", "half");
@@ -255,6 +259,7 @@ TEST_F(RunOutputTest, ResumeContinuesARunWhoseProcessDied) {
   // What SIGKILL leaves: a RUNNING marker of a process that is gone and the staged files.
   const fs::path dir = root_ / "killed";
   fs::create_directories(dir / ".incomplete");
+  write_file(dir / ".tmlab-result", R"({"format": "tmlab-result/1", "run_id": "1", "files": []})");
   write_file(dir / "RUNNING", "{\"pid\": 999999999, \"hostname\": \"h\"}\n");
   write_file(dir / ".incomplete" / "checkpoint.h5", "x");
   std::ostringstream log;
@@ -277,6 +282,71 @@ TEST_F(RunOutputTest, FinalizeLeavesNoStagingBehind) {
   std::sort(names.begin(), names.end());
   EXPECT_EQ(names, (std::vector<std::string>{"swap"}));
   EXPECT_EQ(read_file(dir / "x.txt"), "x");
+}
+
+/// Runs `body` in a child process with a `kib` KiB tmpfs mounted (in a mount namespace of its own) on
+/// `mount_point`; returns the child's exit status, or -1 when no tmpfs can be mounted here.
+template <typename F>
+int with_small_tmpfs(const fs::path& mount_point, int kib, F&& body) {
+  const pid_t pid = ::fork();
+  if (pid == 0) {
+    const bool root = ::geteuid() == 0;
+    if (root ? ::unshare(CLONE_NEWNS) != 0 : ::unshare(CLONE_NEWUSER | CLONE_NEWNS) != 0) ::_exit(77);
+    if (!root) {
+      const std::string uid = "0 " + std::to_string(::getuid()) + " 1\n";
+      const std::string gid = "0 " + std::to_string(::getgid()) + " 1\n";
+      write_file("/proc/self/setgroups", "deny");
+      write_file("/proc/self/uid_map", uid);
+      write_file("/proc/self/gid_map", gid);
+    }
+    ::mount("none", "/", nullptr, MS_REC | MS_PRIVATE, nullptr);
+    const std::string size = "size=" + std::to_string(kib) + "k";
+    if (::mount("tmpfs", mount_point.c_str(), "tmpfs", 0, size.c_str()) != 0) ::_exit(77);
+    ::_exit(body());
+  }
+  int status = 0;
+  ::waitpid(pid, &status, 0);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 77) return -1;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : 100 + WTERMSIG(status);
+}
+
+TEST_F(RunOutputTest, AFullDiskEndsInFailedWithTheReasonNeverInRunning) {
+  // Issue 26: a full disk left RUNNING (the FAILED marker could not be written) and the next run
+  // called it a crash. RUNNING reserves its room; FAILED is made from it.
+  const fs::path mnt = root_ / "small";
+  fs::create_directories(mnt);
+  const int rc = with_small_tmpfs(mnt, 64, [&]() -> int {
+    const fs::path dir = mnt / "r";
+    try {
+      tmlab::RunOutput out(dir);
+      std::string block(4096, 'x');
+      for (int k = 0;; ++k) tmlab::write_file_atomically(mnt / ("filler" + std::to_string(k)), block);
+    } catch (const std::exception&) {
+    }
+    // The filler threw once the disk was full; the run above ended by the exception.
+    if (fs::exists(dir / "RUNNING")) return 1;
+    if (!fs::exists(dir / "FAILED")) return 2;
+    if (read_file(dir / "FAILED").find("exception") == std::string::npos) return 3;
+    for (int k = 0; fs::exists(mnt / ("filler" + std::to_string(k))); ++k)
+      if (k % 2 == 0) fs::remove(mnt / ("filler" + std::to_string(k)));
+    try {  // a run that meets the full disk while writing its own result
+      tmlab::RunOutput out(dir);
+      try {
+        for (int k = 0;; ++k)
+          tmlab::write_file_atomically(out.file("big" + std::to_string(k)), std::string(8192, 'y'));
+      } catch (const std::exception& e) {
+        out.fail(e.what());
+      }
+    } catch (const std::exception&) {
+      return 5;
+    }
+    if (fs::exists(dir / "RUNNING")) return 6;
+    if (!fs::exists(dir / "FAILED")) return 7;
+    if (read_file(dir / "FAILED").find("No space left on device") == std::string::npos) return 8;
+    return 0;
+  });
+  if (rc == -1) GTEST_SKIP() << "no tmpfs can be mounted here (needs root or user namespaces)";
+  EXPECT_EQ(rc, 0) << "step that failed (see the child's checks)";
 }
 
 TEST(ResultNames, SafeCharactersOnly) {
