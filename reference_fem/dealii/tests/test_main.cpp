@@ -1,4 +1,5 @@
 // gtest main for the reference tests: MPI (and deal.II) initialised once per process.
+#include "core/testing/gtest_exit.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
 
 #include <gtest/gtest.h>
@@ -11,5 +12,5 @@ int main(int argc, char** argv) {
     auto& listeners = ::testing::UnitTest::GetInstance()->listeners();
     delete listeners.Release(listeners.default_result_printer());
   }
-  return RUN_ALL_TESTS();
+  return tmlab::testing::gtest_exit_code(RUN_ALL_TESTS());
 }
