@@ -4,6 +4,7 @@
 //   meshtool box OUT.msh NX NY NZ [--lo X Y Z] [--hi X Y Z]
 // Output files are Gmsh 2.2 ASCII. Errors print "meshtool: <message>" and exit with status 1.
 #include "core/base/error.hpp"
+#include "core/io/output_file.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
@@ -70,6 +71,7 @@ int cmd_info(const std::vector<std::string>& args) {
 
 int cmd_convert(const std::vector<std::string>& args) {
   if (args.size() < 2) throw tmlab::Error(kUsage);
+  tmlab::check_output_files({args[1]}, {args[0]}, /*overwrite=*/true);  // never over the input
   tmlab::GmshReadInfo info;
   tmlab::Mesh mesh = tmlab::read_gmsh(args[0], &info);
   std::cout << "read " << args[0] << " (Gmsh format " << info.format_version << "), skipped "

@@ -5,6 +5,7 @@
 
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/io/output_file.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
@@ -44,9 +45,10 @@ int cmd_cases(const std::vector<std::string>& args) {
 int cmd_mesh(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE");
   const std::string sub = args[0];
-  const Parsed p =
-      parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"}, {"--json"});
+  const Parsed p = parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"},
+                         {"--json", "--overwrite"});
   if (p.positional.size() != 1) throw UsageError("mesh " + sub + " needs exactly one mesh file");
+  if (p.has("--repair")) check_output_files({p.get("--repair")}, {p.positional[0]}, p.has("--overwrite"));
   Mesh mesh = read_mesh(p.positional[0]);
   if (p.has("--scale")) scale_mesh(mesh, parse_double("--scale", p.get("--scale")));
   if (sub == "info") {
