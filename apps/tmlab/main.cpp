@@ -5,6 +5,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
+#include "core/io/hdf5_file.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
 #include "reference_fem/dealii/reference_runner.hpp"
@@ -135,6 +136,7 @@ void print_usage(std::ostream& os) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmlab::H5File::skip_library_cleanup_at_exit();  // a failed write (full disk) must not loop at exit
   std::vector<std::string> args(argv + 1, argv + argc);
   if (args.empty() || args[0] == "help" || args[0] == "--help" || args[0] == "-h") {
     print_usage(args.empty() ? std::cerr : std::cout);

@@ -4,6 +4,7 @@
 //                   [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] [--quiet]
 // Works under `mpirun -np N`: every rank runs the case, rank 0 writes the result directory.
 #include "core/config/case_config.hpp"
+#include "core/io/hdf5_file.hpp"
 #include "core/results/run_output.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
 
@@ -27,6 +28,7 @@ int usage(const char* msg) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  tmlab::H5File::skip_library_cleanup_at_exit();  // a failed write (full disk) must not loop at exit
   tmlab::ref::MpiSession mpi(argc, argv);
   std::string case_file;
   tmlab::ref::ReferenceOptions ro;

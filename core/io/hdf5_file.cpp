@@ -138,6 +138,8 @@ std::string dims_text(const H5File::Dims& dims) {
 
 // --- lifetime ------------------------------------------------------------------------------------
 
+bool H5File::skip_library_cleanup_at_exit() { return H5dont_atexit() >= 0; }
+
 H5File H5File::create(const std::string& path) {
   QuietErrors quiet;
   const hid_t id = H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);

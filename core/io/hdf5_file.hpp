@@ -24,6 +24,12 @@ class H5File {
  public:
   using Dims = std::vector<std::size_t>;
 
+  /// Call first thing in main(), before any HDF5 call: HDF5's own clean-up at exit would try again
+  /// to flush a file whose write failed (a full disk) and loop ("infinite loop closing library") or
+  /// crash after the command has reported the error. Every H5File is closed by its owner, so nothing
+  /// needs that clean-up. Returns false when HDF5 was already in use (then it has no effect).
+  static bool skip_library_cleanup_at_exit();
+
   /// Creates (truncating any existing file) `path` for reading and writing.
   static H5File create(const std::string& path);
   /// Opens an existing file read-only.

@@ -168,6 +168,17 @@ void sync_tree(const fs::path& root) {
   sync_directory(root);
 }
 
+/// Removes every folder below `root` that holds no file (deepest first); `root` itself stays.
+void remove_empty_folders(const fs::path& root) {
+  std::vector<fs::path> folders;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(root, ec); !ec && it != fs::recursive_directory_iterator();
+       it.increment(ec))
+    if (it->is_directory(ec) && !it->is_symlink(ec)) folders.push_back(it->path());
+  for (auto f = folders.rbegin(); f != folders.rend(); ++f)
+    if (fs::is_empty(*f, ec)) fs::remove(*f, ec);
+}
+
 /// Room reserved in the RUNNING marker: on a full disk it becomes FAILED or INTERRUPTED by a rename
 /// and is rewritten in place, in blocks it already owns.
 constexpr std::size_t kMarkerRoom = 4096;
@@ -301,7 +312,9 @@ void RunOutput::finalize(const nlohmann::json& summary) {
   if (!summary.is_object()) throw Error(dir_.string() + ": the run summary must be a JSON object");
   try {
     // 1. What the result holds: every staged file, and summary.json. The marker lists them before
-    //    any is moved, so that a crash from here on leaves nothing a later run cannot clear.
+    //    any is moved, so that a crash from here on leaves nothing a later run cannot clear. Empty
+    //    folders are dropped: the marker lists files, and a result needs no empty folder.
+    remove_empty_folders(staging_dir());
     std::vector<std::string> top;
     for (const auto& entry : fs::directory_iterator(staging_dir())) {
       const std::string name = entry.path().filename().string();

@@ -17,6 +17,7 @@ namespace {
 namespace fs = std::filesystem;
 using namespace tmlab::cli_test;  // run_argv, spawn, wait_for, wait_exit, Result
 using tmlab::testing::read_file;
+using tmlab::testing::write_file;
 
 class CliRobustness : public tmlab::testing::TempDirTest {
  protected:
@@ -118,6 +119,32 @@ TEST_F(CliRobustness, KilledRunLeavesAStaleMarkerThatTheNextRunReports) {
   EXPECT_NE(r.output.find("stale RUNNING marker (pid " + std::to_string(pid)), std::string::npos) << r.output;
   EXPECT_TRUE(fs::exists(dir / "summary.json"));
   EXPECT_FALSE(fs::exists(dir / "RUNNING"));
+}
+
+TEST_F(CliRobustness, MeshRepairNeverWritesOverItsInputOrAnExistingFile) {
+  // Issue 26: an output file may not be the input (even through a link) nor replace a file silently.
+  const fs::path mesh = fs::path(TMLAB_SOURCE_DIR) / "meshes" / "cube_n2.msh";
+  const fs::path in = dir_ / "in.msh";
+  fs::copy_file(mesh, in);
+  const std::string original = read_file(in);
+  fs::create_directory_symlink(dir_, dir_ / "same");
+  for (const fs::path& out : {in, dir_ / "same" / "in.msh"}) {
+    const Result r =
+        run_argv({"mesh", "check", in.string(), "--repair", out.string(), "--overwrite"}, dir_ / "a.log");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find("is the input"), std::string::npos) << r.output;
+  }
+  EXPECT_EQ(read_file(in), original);
+  write_file(dir_ / "out.msh", "mine");
+  const Result r =
+      run_argv({"mesh", "check", in.string(), "--repair", (dir_ / "out.msh").string()}, dir_ / "b.log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("exists already"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(dir_ / "out.msh"), "mine");
+  const Result ok = run_argv(
+      {"mesh", "check", in.string(), "--repair", (dir_ / "out.msh").string(), "--overwrite"}, dir_ / "c.log");
+  EXPECT_EQ(ok.status, 0) << ok.output;
+  EXPECT_NE(read_file(dir_ / "out.msh"), "mine");
 }
 
 }  // namespace

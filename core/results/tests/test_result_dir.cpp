@@ -177,6 +177,19 @@ TEST_F(ResultDir, TheCurrentDirectoryItsParentsHomeAndRootAreRefused) {
   EXPECT_TRUE(fs::exists(work / "sub" / "summary.json"));
 }
 
+TEST_F(ResultDir, AnEmptyStagedFolderIsNotLeftToBlockTheNextRun) {
+  // The deal.II reference stages vtu/ and leaves it empty when no fields are written.
+  const fs::path r = dir_ / "r";
+  for (int k = 0; k < 2; ++k) {
+    tmlab::RunOutput out(r);
+    fs::create_directories(out.staging_dir() / "vtu" / "deeper");
+    write_file(out.file("a.txt"), "a");
+    out.finalize();
+  }
+  EXPECT_FALSE(fs::exists(r / "vtu"));
+  EXPECT_TRUE(fs::exists(r / "summary.json"));
+}
+
 TEST_F(ResultDir, InspectTellsMarkedFromForeign) {
   EXPECT_FALSE(rd::inspect(dir_ / "none").exists);
   const fs::path e = dir_ / "empty";
