@@ -300,7 +300,7 @@ class JsonPositions {
   }
 
  private:
-  static constexpr int kMaxDepth = 64;
+  static constexpr int kMaxDepth = kMaxJsonDepth;  // check_json_depth() refuses deeper text first
   bool done() const { return i_ >= s_.size(); }
   char peek() const { return done() ? '\0' : s_[i_]; }
   void advance() {
