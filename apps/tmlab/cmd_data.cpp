@@ -10,16 +10,17 @@
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/output_file.hpp"
 
 #include <nlohmann/json.hpp>
+
+#include <stdlib.h>  // mkdtemp
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
-#include <sstream>
 
 namespace tmlab::cli {
 
@@ -46,6 +47,27 @@ std::string describe(const Metadata& m) {
   return s;
 }
 
+/// A fresh private directory under the system's temporary directory, removed with its contents
+/// when it goes out of scope: where `data show` writes the plot's input, never the user's folder.
+class TempDir {
+ public:
+  TempDir() {
+    std::string t = (fs::temp_directory_path() / "tmlab-data-show-XXXXXX").string();
+    if (::mkdtemp(t.data()) == nullptr) throw Error(t + ": cannot create a temporary directory");
+    path_ = t;
+  }
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  ~TempDir() {
+    std::error_code ignored;
+    fs::remove_all(path_, ignored);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
 int convert(const Parsed& p) {
   if (p.positional.size() != 1) throw UsageError("data convert needs exactly one input file");
   if (!p.has("--out")) throw UsageError("data convert needs --out DIR");
@@ -54,22 +76,18 @@ int convert(const Parsed& p) {
   if (platens == "bonded")
     opt.platens = Interface::bonded;
   else if (platens != "frictionless")
-    throw UsageError("--platens must be frictionless or bonded (got '" + platens + "')");
+    throw UsageError("--platens must be frictionless or bonded (got '" + printable(platens, 60) + "')");
   const fs::path in = p.positional[0];
-  std::error_code ec;
-  if (!fs::is_regular_file(in, ec)) throw Error(in.string() + ": no such file");
-  std::ifstream f(in, std::ios::binary);
-  std::string head(8192, '\0');
-  f.read(head.data(), std::streamsize(head.size()));
-  head.resize(std::size_t(f.gcount()));
-  if (!is_phantom_csv(head))
+  const std::string text = read_input_file(in);  // a directory or a FIFO is named, never read
+  if (!is_phantom_csv(text))
     throw Error(
         in.string() +
         ": not a layout 'tmlab data convert' knows (known: the silicone phantom compression CSVs of "
         "Dawood et al. 2026, a header then 'Time (s),Compression (mm),Load (N),...'); a tmlab-measured/1 "
         "data set needs no conversion (docs/measured-data.md)");
-  const DataSet d = convert_phantom(in, opt);
-  const fs::path csv = write_data_set(d, p.get("--out"));
+  const DataSet d = convert_phantom_text(text, in.string(), opt);
+  // Into a user's folder: never over the input, nothing already there without --overwrite.
+  const fs::path csv = write_data_set(d, p.get("--out"), {in}, p.has("--overwrite"));
   std::cout << "converted " << in.string() << " (silicone phantom CSV, Dawood et al. 2026, CC BY 4.0)\n"
             << "  " << d.meta.name << ": " << describe(d.meta) << ", " << d.tests.front().size()
             << " samples\n"
@@ -81,10 +99,21 @@ int show(const Parsed& p) {
   if (p.positional.size() != 1) throw UsageError("data show needs exactly one NAME.csv");
   const fs::path csv = p.positional[0];
   const DataSet d = read_data_set(csv);
+  // The plot's target is checked before anything is shown or written: in a folder given with --out
+  // a NAME.png already there is the user's (replaced only with --overwrite); in the default
+  // results/data/NAME/ it is the previous plot. Never an input, in either.
+  const bool plot = !p.has("--no-plots");
+  const fs::path out =
+      p.has("--out") ? fs::path(p.get("--out")) : fs::path(tmlab_root()) / "results" / "data" / d.meta.name;
+  const fs::path png = out / (d.meta.name + ".png");
+  const std::vector<fs::path> inputs = {csv, metadata_path(csv)};
+  const bool overwrite = !p.has("--out") || p.has("--overwrite");
+  if (plot) check_output_files({png}, inputs, overwrite);
   std::cout << d.meta.name << ": " << describe(d.meta) << "\n";
   if (d.meta.temperature_C) std::cout << "temperature: " << significant(*d.meta.temperature_C, 4) << " C\n";
-  if (!d.meta.source.empty()) std::cout << "source: " << d.meta.source << "\n";
-  if (!d.meta.license.empty()) std::cout << "licence: " << d.meta.license << "\n";
+  // Free text from the user's file: control characters (an ESC sequence) are shown escaped.
+  if (!d.meta.source.empty()) std::cout << "source: " << printable(d.meta.source, 4000) << "\n";
+  if (!d.meta.license.empty()) std::cout << "licence: " << printable(d.meta.license, 4000) << "\n";
   std::cout << std::left << std::setw(12) << "test" << std::right << std::setw(8) << "samples"
             << std::setw(13) << "duration_s" << std::setw(26) << "displacement_mm" << std::setw(26)
             << "force_N" << std::setw(14) << "peak_force_N" << std::setw(12) << "at_mm"
@@ -108,27 +137,29 @@ int show(const Parsed& p) {
     std::cout << "kept, not used:\n";
     for (const Note& n : d.notes) std::cout << "  " << n.where << ": " << n.text << "\n";
   }
-  if (p.has("--no-plots")) return 0;
+  if (!plot) return 0;
 
-  const fs::path out =
-      p.has("--out") ? fs::path(p.get("--out")) : fs::path(tmlab_root()) / "results" / "data" / d.meta.name;
+  // The plot's input and the script's PNG go to a private temporary directory; only the finished
+  // PNG is placed in `out` (write_file_atomically: a fresh temporary name beside it, then a rename).
+  const TempDir work;
+  nlohmann::json spec_json = {{"name", d.meta.name},
+                              {"title", d.meta.name + ": " + describe(d.meta)},
+                              {"tests", nlohmann::json::array()}};
+  for (const Test& t : d.tests)
+    spec_json["tests"].push_back(
+        {{"id", t.id}, {"time_s", t.time_s}, {"displacement_m", t.displacement_m}, {"force_N", t.force_N}});
+  const fs::path spec = work.path() / (d.meta.name + "_plot.json");
+  const fs::path drawn = work.path() / (d.meta.name + ".png");
+  write_file_atomically(spec, spec_json.dump() + "\n");
+  const ProcessStatus ps =
+      run_python(fs::path(tmlab_root()) / "calibration" / "data" / "python" / "tmlab_data_plot.py",
+                 {spec.string(), drawn.string()});
+  if (!ps.ok()) throw Error(png.string() + ": the plot failed (" + ps.describe() + "); --no-plots skips it");
   std::error_code ec;
   fs::create_directories(out, ec);
   if (ec) throw Error(out.string() + ": cannot create directory (" + ec.message() + ")");
-  nlohmann::json plot = {{"name", d.meta.name},
-                         {"title", d.meta.name + ": " + describe(d.meta)},
-                         {"tests", nlohmann::json::array()}};
-  for (const Test& t : d.tests)
-    plot["tests"].push_back(
-        {{"id", t.id}, {"time_s", t.time_s}, {"displacement_m", t.displacement_m}, {"force_N", t.force_N}});
-  const fs::path spec = out / (d.meta.name + "_plot.json");
-  const fs::path png = out / (d.meta.name + ".png");
-  write_file_atomically(spec, plot.dump() + "\n");
-  const ProcessStatus ps =
-      run_python(fs::path(tmlab_root()) / "calibration" / "data" / "python" / "tmlab_data_plot.py",
-                 {spec.string(), png.string()});
-  fs::remove(spec, ec);
-  if (!ps.ok()) throw Error(png.string() + ": the plot failed (" + ps.describe() + "); --no-plots skips it");
+  check_output_files({png}, inputs, overwrite);  // again: a file made there meanwhile is kept
+  write_file_atomically(png, read_input_file(drawn));
   std::cout << "plot: " << png.string() << "\n";
   return 0;
 }
@@ -139,8 +170,8 @@ int cmd_data(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("data needs a sub-command: convert FILE --out DIR | show NAME.csv");
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (sub == "convert") return convert(parse(rest, {"--out", "--platens"}, {}));
-  if (sub == "show") return show(parse(rest, {"--out"}, {"--no-plots"}));
+  if (sub == "convert") return convert(parse(rest, {"--out", "--platens"}, {"--overwrite"}));
+  if (sub == "show") return show(parse(rest, {"--out"}, {"--no-plots", "--overwrite"}));
   throw UsageError("unknown data sub-command '" + sub + "' (convert or show)");
 }
 

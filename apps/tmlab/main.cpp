@@ -177,17 +177,39 @@ int main(int argc, char** argv) {
     std::cerr << "tmlab: unknown command '" << cmd << "'\n\n";
     print_usage(std::cerr);
     return 2;
-  } catch (const tmlab::cli::UsageError& e) {
-    std::cerr << "tmlab " << cmd << ": " << e.what() << "\n(see 'tmlab help')\n";
-    return 2;
-  } catch (const tmlab::Interrupted& e) {
-    std::cerr << "tmlab: interrupted: " << e.what() << "\n";
-    return 128 + e.signal();
-  } catch (const tmlab::Error& e) {
-    std::cerr << "tmlab: error: " << e.what() << "\n";
-    return 1;
-  } catch (const std::exception& e) {
-    std::cerr << "tmlab: internal error: " << e.what() << "\n";
-    return 3;
+  } catch (...) {
+    // The last defence for a message that quotes user text: ESC and the other C0 control characters
+    // (but newline and tab) and DEL are printed as \xNN, so no message can drive the terminal.
+    const auto safe = [](const std::string& text) {
+      std::string out;
+      for (const char ch : text) {
+        const auto c = static_cast<unsigned char>(ch);
+        if ((c < 0x20 && c != '\n' && c != '\t') || c == 0x7f) {
+          const char* hex = "0123456789abcdef";
+          out += {'\\', 'x', hex[c >> 4], hex[c & 0xf]};
+        } else {
+          out += ch;
+        }
+      }
+      return out;
+    };
+    try {
+      throw;
+    } catch (const tmlab::cli::UsageError& e) {
+      std::cerr << "tmlab " << safe(cmd) << ": " << safe(e.what()) << "\n(see 'tmlab help')\n";
+      return 2;
+    } catch (const tmlab::Interrupted& e) {
+      std::cerr << "tmlab: interrupted: " << safe(e.what()) << "\n";
+      return 128 + e.signal();
+    } catch (const tmlab::Error& e) {
+      std::cerr << "tmlab: error: " << safe(e.what()) << "\n";
+      return 1;
+    } catch (const std::exception& e) {
+      std::cerr << "tmlab: internal error: " << safe(e.what()) << "\n";
+      return 3;
+    } catch (...) {
+      std::cerr << "tmlab: internal error: an exception of unknown type\n";
+      return 3;
+    }
   }
 }

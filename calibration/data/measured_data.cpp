@@ -2,18 +2,25 @@
 #include "calibration/data/measured_data.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/base/number.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/io/atomic_file.hpp"
+#include "core/io/output_file.hpp"
 #include "core/io/xml_text.hpp"  // format_double: the shortest text that reads back to the same double
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <fstream>
+#include <cstdio>
+#include <cstring>
 #include <map>
 #include <set>
-#include <sstream>
 #include <string_view>
 
 namespace tmlab::measured {
@@ -81,28 +88,101 @@ std::string where(const std::string& file, long line, long column) {
   return file + ":" + std::to_string(line) + ":" + std::to_string(column);
 }
 
-std::string read_text(const fs::path& p) {
-  std::error_code ec;
-  if (fs::is_directory(p, ec)) throw Error(p.string() + ": is a directory, not a file");
-  std::ifstream in(p, std::ios::binary);
-  if (!in) throw Error(p.string() + ": cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  if (in.bad()) throw Error(p.string() + ": read error");
-  return ss.str();
+/// What a file that is not a regular file is, for a message ("is a directory, not a file").
+std::string not_a_file(fs::file_type t) {
+  switch (t) {
+    case fs::file_type::not_found:
+      return "no such file";
+    case fs::file_type::directory:
+      return "is a directory, not a file";
+    case fs::file_type::fifo:
+      return "is not a regular file (a FIFO)";
+    case fs::file_type::socket:
+      return "is not a regular file (a socket)";
+    case fs::file_type::block:
+    case fs::file_type::character:
+      return "is not a regular file (a device)";
+    default:
+      return "is not a regular file";
+  }
 }
+fs::file_type type_of_mode(mode_t m) {
+  if (S_ISREG(m)) return fs::file_type::regular;
+  if (S_ISDIR(m)) return fs::file_type::directory;
+  if (S_ISFIFO(m)) return fs::file_type::fifo;
+  if (S_ISSOCK(m)) return fs::file_type::socket;
+  if (S_ISBLK(m)) return fs::file_type::block;
+  if (S_ISCHR(m)) return fs::file_type::character;
+  return fs::file_type::unknown;
+}
+
+/// A file descriptor closed when it goes out of scope.
+class Fd {
+ public:
+  explicit Fd(int fd) : fd_(fd) {}
+  Fd(const Fd&) = delete;
+  Fd& operator=(const Fd&) = delete;
+  ~Fd() {
+    if (fd_ >= 0) ::close(fd_);
+  }
+  int get() const { return fd_; }
+
+ private:
+  int fd_;
+};
 
 /// Columns count characters, not bytes: UTF-8 continuation bytes do not start one.
 bool starts_character(char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }
+}  // namespace
 
-/// Data-set names become file names: a plain, safe stem.
-bool valid_name(const std::string& s) {
-  if (s.empty() || s.size() > 200 || s[0] == '.' || s[0] == '-') return false;
-  return std::all_of(s.begin(), s.end(), [](char c) {
-    return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' ||
-           c == '-' || c == '.';
-  });
+std::string name_problem(const std::string& s) {
+  if (s.empty()) return "is empty";
+  // The length first: a long name of good characters is refused for its length, with the limit.
+  const std::size_t chars = std::size_t(std::count_if(s.begin(), s.end(), starts_character));
+  if (chars > kMaxNameLength)
+    return "is " + std::to_string(chars) + " characters long: at most " + std::to_string(kMaxNameLength) +
+           " (it becomes a file name)";
+  const bool plain = s[0] != '.' && s[0] != '-' && std::all_of(s.begin(), s.end(), [](char c) {
+                       return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+                              c == '_' || c == '-' || c == '.';
+                     });
+  if (plain) return "";
+  return "must be a plain file stem: letters, digits, '_', '-', '.', not starting with '.' or '-' (got \"" +
+         printable(s, 60) + "\")";
 }
+
+std::string read_input_file(const fs::path& p) {
+  std::error_code ec;
+  const fs::file_type type = fs::status(p, ec).type();
+  if (type != fs::file_type::regular) {
+    if (ec && type != fs::file_type::not_found)
+      throw Error(p.string() + ": cannot read (" + ec.message() + ")");
+    throw Error(p.string() + ": " + not_a_file(type));
+  }
+  // Non-blocking: should the path have become a FIFO since, opening it does not wait for a writer;
+  // fstat then refuses it before a read could wait.
+  Fd fd(::open(p.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC));
+  if (fd.get() < 0) throw Error(p.string() + ": cannot open file (" + std::strerror(errno) + ")");
+  struct stat st {};
+  if (::fstat(fd.get(), &st) != 0) throw Error(p.string() + ": cannot read (" + std::strerror(errno) + ")");
+  if (!S_ISREG(st.st_mode)) throw Error(p.string() + ": " + not_a_file(type_of_mode(st.st_mode)));
+  std::string text;
+  text.reserve(std::size_t(st.st_size));
+  char buf[65536];
+  for (;;) {
+    const ssize_t n = ::read(fd.get(), buf, sizeof buf);
+    if (n == 0) break;
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw Error(p.string() + ": read error (" + std::strerror(errno) + ")");
+    }
+    text.append(buf, std::size_t(n));
+  }
+  return text;
+}
+
+namespace {
+
 bool valid_identifier(const std::string& s) {
   return !s.empty() && std::all_of(s.begin(), s.end(), [](char c) {
     return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
@@ -141,6 +221,56 @@ bool has_unit_suffix(const std::string& name) {
   return true;
 }
 
+void check_json_depth(const std::string& text, const std::string& file) {
+  // The JSON parser's duplicate-key guard copies the key path at every level (quadratic in the
+  // depth): 100k levels took half a minute. Counting brackets outside strings and comments, as the
+  // parser would see them, refuses such a file at its 65th level instead.
+  enum class In { code, string, escape, line_comment, block_comment };
+  In in = In::code;
+  bool skip = false;  // the second character of a comment's "/*" or "*/"
+  int depth = 0;
+  long line = 1, column = 1;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    const char next = i + 1 < text.size() ? text[i + 1] : '\0';
+    if (skip) {
+      skip = false;
+    } else if (in == In::code) {
+      if (c == '"') {
+        in = In::string;
+      } else if (c == '/' && next == '/') {
+        in = In::line_comment;
+      } else if (c == '/' && next == '*') {
+        in = In::block_comment;
+        skip = true;
+      } else if (c == '[' || c == '{') {
+        if (++depth > kMaxJsonDepth)
+          throw located(file, line, column,
+                        "nested deeper than " + std::to_string(kMaxJsonDepth) +
+                            " levels (not a tmlab-measured/1 file)");
+      } else if ((c == ']' || c == '}') && depth > 0) {
+        --depth;
+      }
+    } else if (in == In::string) {
+      if (c == '\\') in = In::escape;
+      if (c == '"') in = In::code;
+    } else if (in == In::escape) {
+      in = In::string;
+    } else if (in == In::line_comment) {
+      if (c == '\n') in = In::code;
+    } else if (c == '*' && next == '/') {
+      in = In::code;
+      skip = true;
+    }
+    if (c == '\n') {
+      ++line;
+      column = 1;
+    } else if (starts_character(next)) {
+      ++column;
+    }
+  }
+}
+
 namespace {
 
 // ---------------------------------------------------------------------------------------------
@@ -170,7 +300,7 @@ class JsonPositions {
   }
 
  private:
-  static constexpr int kMaxDepth = 64;
+  static constexpr int kMaxDepth = kMaxJsonDepth;  // check_json_depth() refuses deeper text first
   bool done() const { return i_ >= s_.size(); }
   char peek() const { return done() ? '\0' : s_[i_]; }
   void advance() {
@@ -334,12 +464,11 @@ class MetadataParser {
                                        "temperature_C", "source", "license", "notes"};
     const std::string format = string(doc_, "", "format");
     if (format != kFormat)
-      throw error("format", "must be \"" + std::string(kFormat) + "\" (got \"" + format + "\")");
+      throw error("format",
+                  "must be \"" + std::string(kFormat) + "\" (got \"" + printable(format, 60) + "\")");
     keep_unknown(doc_, "", top, m);
     m.name = string(doc_, "", "name");
-    if (!valid_name(m.name))
-      throw error("name",
-                  "must be a plain file stem: letters, digits, '_', '-', '.' (got \"" + m.name + "\")");
+    if (const std::string why = name_problem(m.name); !why.empty()) throw error("name", why);
     m.test = choice<TestType>(doc_, "", "test",
                               {TestType::indentation, TestType::unconfined_compression,
                                TestType::confined_compression, TestType::uniaxial_tension});
@@ -363,7 +492,8 @@ class MetadataParser {
  private:
   Error error(const std::string& path, const std::string& reason) const {
     const Position p = pos_.at(path);
-    return located(file_, p.line, p.column, path.empty() ? reason : "key '" + path + "' " + reason);
+    return located(file_, p.line, p.column,
+                   path.empty() ? reason : "key '" + printable(path) + "' " + reason);
   }
   static std::string join(const std::string& path, const std::string& key) {
     return path.empty() ? key : path + "." + key;
@@ -378,8 +508,9 @@ class MetadataParser {
       check_units(it.key(), it.value(), join(path, it.key()));
       m.extra.push_back({path, it.key(), it.value()});
       const Position p = pos_.at(join(path, it.key()));
-      notes_.push_back({where(file_, p.line, p.column),
-                        "key '" + join(path, it.key()) + "' is not part of " + kFormat + ": kept, not used"});
+      notes_.push_back(
+          {where(file_, p.line, p.column),
+           "key '" + printable(join(path, it.key())) + "' is not part of " + kFormat + ": kept, not used"});
     }
   }
   void check_units(const std::string& key, const json& v, const std::string& path) const {
@@ -402,7 +533,7 @@ class MetadataParser {
     const std::string quantity = key.substr(0, key.rfind('_') + 1);
     for (auto it = obj.begin(); it != obj.end(); ++it)
       if (!quantity.empty() && it.key().rfind(quantity, 0) == 0)
-        hint = " (found '" + it.key() + "': the format wants SI units, " + key + ")";
+        hint = " (found '" + printable(it.key(), 60) + "': the format wants SI units, " + key + ")";
     const Position p = pos_.at(path);
     return located(
         file_, p.line, p.column,
@@ -439,7 +570,7 @@ class MetadataParser {
       if (to_string(e) == s) return e;
       list += (list.empty() ? "" : ", ") + to_string(e);
     }
-    throw error(join(path, key), "must be one of " + list + " (got \"" + s + "\")");
+    throw error(join(path, key), "must be one of " + list + " (got \"" + printable(s, 60) + "\")");
   }
   /// A key that must not be there for this shape or test.
   void refuse(const json& obj, const std::string& path, const std::string& key,
@@ -489,16 +620,41 @@ class MetadataParser {
     } else {
       for (const char* k : {"size_m", "radius_m", "height_m"}) refuse(o, "sample", k, not_for);
     }
-    const std::vector<Interface> both = {Interface::bonded, Interface::frictionless};
-    if (s.shape != SampleShape::half_space || o.contains("bottom"))
-      s.bottom = choice<Interface>(o, "sample", "bottom", both);
-    if (is_compression(m.test))
-      s.platens = choice<Interface>(o, "sample", "platens", both);
-    else
-      refuse(o, "sample", "platens", "is only for compression tests (test is " + to_string(m.test) + ")");
     if (m.test != TestType::indentation && s.shape == SampleShape::half_space)
       throw error("sample.shape", "half_space is only for indentation tests");
+    interfaces(o, m.test, s);
     return s;
+  }
+
+  /// sample.bottom and sample.platens. Between two platens the bottom platen is the bottom: a
+  /// compression test needs `platens` and takes `bottom` from it when `bottom` is absent. A
+  /// `bottom` given as well is kept as written; when it differs from `platens` a note says that the
+  /// compression rigs use `platens` for both.
+  void interfaces(const json& o, TestType test, Sample& s) const {
+    const std::vector<Interface> both = {Interface::bonded, Interface::frictionless};
+    if (!is_compression(test)) {
+      if (s.shape != SampleShape::half_space || o.contains("bottom"))
+        s.bottom = choice<Interface>(o, "sample", "bottom", both);
+      refuse(o, "sample", "platens", "is only for compression tests (test is " + to_string(test) + ")");
+      return;
+    }
+    if (!o.contains("platens") && o.contains("bottom"))
+      throw located(
+          file_, pos_.at("sample").line, pos_.at("sample").column,
+          "missing key 'sample.platens' in 'sample' (a sample compressed between two platens needs "
+          "their interface, bonded or frictionless: 'bottom' alone does not say what the top platen "
+          "is; 'platens' alone says both)");
+    s.platens = choice<Interface>(o, "sample", "platens", both);
+    s.bottom = s.platens;
+    if (!o.contains("bottom")) return;
+    s.bottom = choice<Interface>(o, "sample", "bottom", both);
+    if (*s.bottom == *s.platens) return;
+    const Position p = pos_.at("sample.bottom");
+    notes_.push_back({where(file_, p.line, p.column),
+                      "key 'sample.bottom' is \"" + to_string(*s.bottom) + "\" but 'sample.platens' is \"" +
+                          to_string(*s.platens) +
+                          "\": between two platens the bottom platen is the bottom, "
+                          "and the compression rigs (tmlab rig, fit, discover) use 'platens' for both"});
   }
 
   const json& doc_;
@@ -602,7 +758,7 @@ std::vector<Test> parse_samples(const std::string& text, const std::string& file
         if (n.empty()) throw located(file, line_no, f.column, "empty column name in the header");
         if (!valid_identifier(n))
           throw located(file, line_no, f.column,
-                        "column name '" + n.substr(0, 60) +
+                        "column name '" + printable(n, 60) +
                             "' is not a tmlab-measured/1 name (letters, digits and '_', the unit last: "
                             "time_s, displacement_m, force_N; 'tmlab data convert' reads other layouts)");
         if (!seen.insert(n).second)
@@ -656,10 +812,8 @@ std::vector<Test> parse_samples(const std::string& text, const std::string& file
       if (roles[c] != kId) continue;
       id = std::string(fields[c].text);
       if (id.empty()) throw located(file, line_no, fields[c].column, "column 'test_id': empty test_id");
-      if (!valid_name(id))
-        throw located(file, line_no, fields[c].column,
-                      "column 'test_id': '" + id.substr(0, 40) +
-                          "' is not a plain id (letters, digits, '_', '-', '.')");
+      if (const std::string why = name_problem(id); !why.empty())
+        throw located(file, line_no, fields[c].column, "column 'test_id': test_id " + why);
     }
     if (tests.empty() || tests.back().id != id) {
       if (!ids_seen.insert(id).second) {
@@ -687,7 +841,7 @@ std::vector<Test> parse_samples(const std::string& text, const std::string& file
         case kTime:
           if (!t.time_s.empty() && !(v > t.time_s.back()))
             throw located(file, line_no, fields[c].column,
-                          "column 'time_s': time " + std::string(fields[c].text) +
+                          "column 'time_s': time " + printable(fields[c].text, 40) +
                               " does not increase (the sample before has " + format_double(t.time_s.back()) +
                               ")" + (t.id.empty() ? "" : " in test '" + t.id + "'"));
           t.time_s.push_back(v);
@@ -721,15 +875,18 @@ DataSet read_data_set(const fs::path& csv) { return read_data_set(csv, metadata_
 
 DataSet read_data_set(const fs::path& csv, const fs::path& json_file) {
   DataSet d;
-  // Metadata first: a data set without its description is not usable.
+  // Both files are read only if they are regular files (a directory or a FIFO is named as such;
+  // a FIFO never blocks). Metadata first: a data set without its description is not usable.
+  const std::string samples = read_input_file(csv);
   std::error_code ec;
-  if (!fs::exists(csv, ec)) throw Error(csv.string() + ": no such file");
-  if (!fs::exists(json_file, ec))
+  if (fs::symlink_status(json_file, ec).type() == fs::file_type::not_found)
     throw Error(json_file.string() + ": missing (every " + csv.filename().string() +
                 " needs its metadata file beside it, with the same name and .json)");
+  const std::string text = read_input_file(json_file);
+  check_json_depth(text, json_file.string());  // before the parser, which is slow on deep nesting
   const json doc = ConfigReader::parse_file(json_file.string());
-  d.meta = parse_metadata(doc, read_text(json_file), json_file.string(), d.notes);
-  d.tests = parse_samples(read_text(csv), csv.string(), d.notes);
+  d.meta = parse_metadata(doc, text, json_file.string(), d.notes);
+  d.tests = parse_samples(samples, csv.string(), d.notes);
   if (d.meta.name != csv.stem().string())
     d.notes.push_back({json_file.string(), "name '" + d.meta.name + "' differs from the file name '" +
                                                csv.stem().string() + "'"});
@@ -768,13 +925,13 @@ std::string format_metadata(const Metadata& m) {
       else if (x.object == "indenter" || x.object == "sample")
         o[x.object][x.key] = v;
       else
-        throw Error("metadata of '" + m.name + "': unknown key '" + x.key + "' in an unknown object '" +
-                    x.object + "'");
+        throw Error("metadata of '" + printable(m.name) + "': unknown key '" + printable(x.key) +
+                    "' in an unknown object '" + printable(x.object) + "'");
     }
     return o.dump(2) + "\n";
   } catch (const nlohmann::json::exception& e) {
     // Strings made in memory that are not UTF-8 (the reader only ever yields valid UTF-8).
-    throw Error("metadata of '" + m.name + "': " + e.what());
+    throw Error("metadata of '" + printable(m.name) + "': " + printable(e.what()));
   }
 }
 
@@ -800,7 +957,7 @@ std::string format_samples(const DataSet& d) {
 
 void validate(const DataSet& d) {
   // The writer's output must read back: check it with the reader itself (one set of rules).
-  const std::string label = d.meta.name.empty() ? std::string("(data set)") : d.meta.name;
+  const std::string label = d.meta.name.empty() ? std::string("(data set)") : printable(d.meta.name);
   for (const Test& t : d.tests) {
     if (t.displacement_m.size() != t.size() || t.force_N.size() != t.size())
       throw Error(label + ": test '" + t.id + "': time, displacement and force have different lengths");
@@ -817,16 +974,33 @@ void validate(const DataSet& d) {
   parse_samples(format_samples(d), label + ".csv (as it would be written)", ignored);
 }
 
-fs::path write_data_set(const DataSet& d, const fs::path& dir) {
-  validate(d);
+namespace {
+
+/// Writes a validated data set: the CSV, then the metadata (a CSV without its JSON does not read as
+/// a data set), each through a fresh temporary file and a rename.
+fs::path write_valid(const DataSet& d, const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir.string() + ": cannot create directory (" + ec.message() + ")");
   const fs::path csv = dir / (d.meta.name + ".csv");
-  // The metadata is written last: a CSV without its JSON does not read as a data set.
   write_file_atomically(csv, format_samples(d));
   write_file_atomically(metadata_path(csv), format_metadata(d.meta));
   return csv;
+}
+
+}  // namespace
+
+fs::path write_data_set(const DataSet& d, const fs::path& dir) {
+  validate(d);
+  return write_valid(d, dir);
+}
+
+fs::path write_data_set(const DataSet& d, const fs::path& dir, const std::vector<fs::path>& inputs,
+                        bool overwrite) {
+  validate(d);
+  const fs::path csv = dir / (d.meta.name + ".csv");
+  check_output_files({csv, metadata_path(csv)}, inputs, overwrite);  // both, before either is written
+  return write_valid(d, dir);
 }
 
 }  // namespace tmlab::measured

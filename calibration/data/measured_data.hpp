@@ -44,10 +44,12 @@ struct Indenter {
 
 struct Sample {
   SampleShape shape = SampleShape::block;
-  std::array<double, 3> size_m{};    ///< block: x, y, z with z the loaded direction
-  double radius_m = 0.0;             ///< cylinder
-  double height_m = 0.0;             ///< cylinder (along the load)
-  std::optional<Interface> bottom;   ///< required unless the sample is a half-space
+  std::array<double, 3> size_m{};  ///< block: x, y, z with z the loaded direction
+  double radius_m = 0.0;           ///< cylinder
+  double height_m = 0.0;           ///< cylinder (along the load)
+  /// Required unless the sample is a half-space; in a compression test the bottom platen, so
+  /// optional there (read as `platens` when absent; a note when it differs from `platens`).
+  std::optional<Interface> bottom;
   std::optional<Interface> platens;  ///< compression tests only, required there
 };
 
@@ -61,7 +63,7 @@ struct ExtraKey {
 
 /// NAME.json, parsed. Unknown keys are kept in `extra` (in the order of the keys of each object).
 struct Metadata {
-  std::string name;  ///< the data set's name: letters, digits, '_', '-', '.'
+  std::string name;  ///< the data set's name: name_problem() is ""
   TestType test = TestType::indentation;
   std::optional<Indenter> indenter;  ///< indentation tests only, required there
   Sample sample;
@@ -112,6 +114,25 @@ bool parse_decimal(std::string_view s, double& out, std::string& why);
 /// The metadata file that goes with `csv`: the same path with the extension .json.
 std::filesystem::path metadata_path(const std::filesystem::path& csv);
 
+/// The longest data-set name or test_id (a name becomes a file name).
+inline constexpr std::size_t kMaxNameLength = 200;
+/// Why `s` is not a plain data-set name or test_id ("" when it is one): the length rule first
+/// (at most kMaxNameLength characters), then letters, digits, '_', '-', '.', not starting with '.'
+/// or '-'. User text in the reason is shown through tmlab::printable().
+std::string name_problem(const std::string& s);
+
+/// The whole content of a user's input file. tmlab::Error naming the path when it does not exist,
+/// is a directory, or is not a regular file (a FIFO, socket or device: refused without reading, and
+/// opened non-blocking, so a FIFO never blocks the command).
+std::string read_input_file(const std::filesystem::path& path);
+
+/// The deepest nesting of arrays and objects a NAME.json may have.
+inline constexpr int kMaxJsonDepth = 64;
+/// Refuses JSON text nested deeper than kMaxJsonDepth levels, naming file:line:column of the bracket
+/// that opens the first level too many. One linear pass over the text (strings and comments
+/// skipped), run before the JSON parser so that a hostile 100k-deep file fails at once.
+void check_json_depth(const std::string& text, const std::string& file);
+
 /// Reads `csv` and its metadata (metadata_path(csv) unless given). tmlab::Error naming the file,
 /// line and column for every violation of the format; notes for what was kept but not used.
 DataSet read_data_set(const std::filesystem::path& csv);
@@ -126,7 +147,14 @@ std::string format_samples(const DataSet& data);
 /// numbers, all extra columns the same in every test) on data made in memory; tmlab::Error otherwise.
 void validate(const DataSet& data);
 /// Writes dir/NAME.csv and dir/NAME.json (NAME = meta.name), each atomically, after validate();
-/// creates `dir`. Returns the CSV path.
+/// creates `dir`. Returns the CSV path. For a directory tmlab owns (a result's staging directory):
+/// files already there are replaced.
 std::filesystem::path write_data_set(const DataSet& data, const std::filesystem::path& dir);
+/// The same into a user's folder (`tmlab data convert --out`): tmlab::check_output_files()
+/// (core/io/output_file.hpp) on both NAME.csv and NAME.json before either is written, so a refusal
+/// leaves the folder as it was: never over one of `inputs` (also through links), and over an
+/// existing file only when `overwrite`.
+std::filesystem::path write_data_set(const DataSet& data, const std::filesystem::path& dir,
+                                     const std::vector<std::filesystem::path>& inputs, bool overwrite);
 
 }  // namespace tmlab::measured

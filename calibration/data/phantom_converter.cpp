@@ -8,8 +8,6 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
-#include <sstream>
 #include <string_view>
 #include <vector>
 
@@ -99,7 +97,7 @@ double metres_from_millimetres(std::string_view text, double mm) {
 }
 
 /// Text from the file for the metadata: printable ASCII only (the JSON must be valid UTF-8).
-std::string printable(std::string_view s) {
+std::string ascii_text(std::string_view s) {
   std::string out;
   for (char c : s.substr(0, 200)) out += (c >= 0x20 && c < 0x7F) ? c : '?';
   return out;
@@ -115,6 +113,37 @@ std::string safe_name(const std::string& stem) {
   return n.substr(0, 200);
 }
 
+/// The lines before the column line: the sample's label, the cylinder and the machine.
+struct Header {
+  std::string label, machine, load_cell, speed;
+  double diameter_mm = 0.0, height_mm = 0.0;
+  long height_line = 0;  ///< where the height was read (for messages)
+};
+
+Header read_header(const std::vector<std::string_view>& lines, std::size_t table, const std::string& file) {
+  Header h;
+  bool compression = false;
+  for (std::size_t i = 0; i < table; ++i) {
+    const std::string_view l = trim(lines[i]);
+    if (i == 0) h.label = ascii_text(l.substr(0, 120));
+    if (l == "Compression test;" || l == "Compression test") compression = true;
+    if (l.substr(0, 18) == "Cylinder Diameter:" && !millimetres(l, "Cylinder Diameter:", h.diameter_mm))
+      throw located(file, long(i) + 1, 1, "cannot read the diameter (expected 'Cylinder Diameter: 50mm;')");
+    if (l.substr(0, 16) == "Cylinder Height:" && !millimetres(l, "Cylinder Height:", h.height_mm))
+      throw located(file, long(i) + 1, 1, "cannot read the height (expected 'Cylinder Height: 30mm;')");
+    if (l.substr(0, 16) == "Cylinder Height:") h.height_line = long(i) + 1;
+    if (h.machine.empty()) h.machine = ascii_text(header_value(l, "Machine:"));
+    if (h.load_cell.empty()) h.load_cell = ascii_text(header_value(l, "Load cell:"));
+    if (h.speed.empty()) h.speed = ascii_text(header_value(l, "Speed (mm/min):"));
+  }
+  if (!compression) throw located(file, 1, 1, "the header does not say 'Compression test;'");
+  if (h.diameter_mm <= 0.0)
+    throw located(file, long(table) + 1, 1, "the header has no 'Cylinder Diameter: ...mm;' line");
+  if (h.height_mm <= 0.0)
+    throw located(file, long(table) + 1, 1, "the header has no 'Cylinder Height: ...mm;' line");
+  return h;
+}
+
 }  // namespace
 
 bool is_phantom_csv(const std::string& text) {
@@ -125,13 +154,7 @@ bool is_phantom_csv(const std::string& text) {
 }
 
 DataSet convert_phantom(const fs::path& file, const PhantomOptions& options) {
-  std::error_code ec;
-  if (fs::is_directory(file, ec)) throw Error(file.string() + ": is a directory, not a phantom CSV");
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string() + ": cannot open file");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return convert_phantom_text(ss.str(), file.string(), options);
+  return convert_phantom_text(read_input_file(file), file.string(), options);
 }
 
 DataSet convert_phantom_text(const std::string& text, const std::string& file,
@@ -148,26 +171,7 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
     throw located(file, 1, 1,
                   "not a silicone phantom CSV: no column line starting '" + std::string(kTableStart) +
                       "' in the first 30 lines");
-  std::string label, machine, load_cell, speed;
-  double diameter_mm = 0.0, height_mm = 0.0;
-  bool compression = false;
-  for (std::size_t i = 0; i < table; ++i) {
-    const std::string_view l = trim(lines[i]);
-    if (i == 0) label = printable(l.substr(0, 120));
-    if (l == "Compression test;" || l == "Compression test") compression = true;
-    if (l.substr(0, 18) == "Cylinder Diameter:" && !millimetres(l, "Cylinder Diameter:", diameter_mm))
-      throw located(file, long(i) + 1, 1, "cannot read the diameter (expected 'Cylinder Diameter: 50mm;')");
-    if (l.substr(0, 16) == "Cylinder Height:" && !millimetres(l, "Cylinder Height:", height_mm))
-      throw located(file, long(i) + 1, 1, "cannot read the height (expected 'Cylinder Height: 30mm;')");
-    if (machine.empty()) machine = printable(header_value(l, "Machine:"));
-    if (load_cell.empty()) load_cell = printable(header_value(l, "Load cell:"));
-    if (speed.empty()) speed = printable(header_value(l, "Speed (mm/min):"));
-  }
-  if (!compression) throw located(file, 1, 1, "the header does not say 'Compression test;'");
-  if (diameter_mm <= 0.0)
-    throw located(file, long(table) + 1, 1, "the header has no 'Cylinder Diameter: ...mm;' line");
-  if (height_mm <= 0.0)
-    throw located(file, long(table) + 1, 1, "the header has no 'Cylinder Height: ...mm;' line");
+  const Header h = read_header(lines, table, file);
 
   // The table: Time, Compression, Load by name; the engineering stress for the geometry check.
   const auto header = fields_of(lines[table]);
@@ -209,9 +213,13 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
   }
   if (t.time_s.empty())
     throw located(file, long(table) + 2, 1, "no samples after the column line (an empty test)");
+  if (t.size() == 1)
+    throw located(file, line_of[0], 1,
+                  "one sample only (line " + std::to_string(line_of[0]) +
+                      "): a force-displacement curve needs at least two");
 
   std::string conversion =
-      "Converted by 'tmlab data convert' from " + printable(fs::path(file).filename().string()) +
+      "Converted by 'tmlab data convert' from " + ascii_text(fs::path(file).filename().string()) +
       ": Time (s) -> time_s; Compression (mm) / 1000 -> displacement_m; Load (N) -> force_N. The derived "
       "strain and stress columns are not copied (their stress unit is kPa, although the upstream README "
       "says N/mm^2).";
@@ -222,20 +230,29 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
     for (double& F : t.force_N) F = -F;
     conversion += " The load was negative at the deepest compression and was negated.";
   }
+  // A sample cannot shorten by its whole height: the header's height or the column is wrong.
+  if (t.displacement_m[deepest] >= h.height_mm * 1e-3) {
+    const long line = line_of[deepest];
+    throw located(file, line, fields_of(lines[std::size_t(line) - 1])[std::size_t(c_comp)].second,
+                  "column 'Compression (mm)': the compression reaches " +
+                      significant(t.displacement_m[deepest] * 1e3, 6) + " mm, not less than the height " +
+                      significant(h.height_mm, 6) + " mm of 'Cylinder Height' (line " +
+                      std::to_string(h.height_line) + "): a sample cannot be compressed by its whole height");
+  }
   // Geometry check: engineering stress (kPa) = load / initial area, at the peak load.
   if (c_stress >= 0) {
     const std::size_t peak =
         std::size_t(std::max_element(t.force_N.begin(), t.force_N.end(),
                                      [](double a, double b) { return std::fabs(a) < std::fabs(b); }) -
                     t.force_N.begin());
-    const double area_m2 = kPi * 0.25 * diameter_mm * diameter_mm * 1e-6;
+    const double area_m2 = kPi * 0.25 * h.diameter_mm * h.diameter_mm * 1e-6;
     const double expected_kPa = std::fabs(t.force_N[peak]) / area_m2 * 1e-3;
     if (std::fabs(t.force_N[peak]) > 0.0 &&
         std::fabs(std::fabs(stress_kPa[peak]) - expected_kPa) > 0.01 * expected_kPa)
       throw located(file, line_of[peak], 1,
                     "'Engineering Stress (kPa)' is " + significant(stress_kPa[peak], 6) +
                         " but Load / (pi (D/2)^2) is " + significant(expected_kPa, 6) +
-                        " kPa with D = " + significant(diameter_mm, 6) +
+                        " kPa with D = " + significant(h.diameter_mm, 6) +
                         " mm from the header: the geometry or the stress unit is not what the header says");
   }
 
@@ -243,8 +260,8 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
   d.meta.name = safe_name(fs::path(file).stem().string());
   d.meta.test = TestType::unconfined_compression;
   d.meta.sample.shape = SampleShape::cylinder;
-  d.meta.sample.radius_m = 0.5 * diameter_mm * 1e-3;
-  d.meta.sample.height_m = height_mm * 1e-3;
+  d.meta.sample.radius_m = 0.5 * h.diameter_mm * 1e-3;
+  d.meta.sample.height_m = h.height_mm * 1e-3;
   d.meta.sample.bottom = options.platens;
   d.meta.sample.platens = options.platens;
   d.meta.source =
@@ -253,12 +270,12 @@ DataSet convert_phantom_text(const std::string& text, const std::string& file,
       "and Inverse Design Framework; data: "
       "https://github.com/abubakardawood/tissue-phantom-material-database "
       "(sample " +
-      label + ")";
+      h.label + ")";
   d.meta.license = "CC-BY-4.0";
   d.meta.notes = "Silicone (Ecoflex) phantom, unconfined uniaxial compression on " +
-                 (machine.empty() ? std::string("an Instron") : machine) +
-                 (load_cell.empty() ? "" : " (load cell " + load_cell + ")") +
-                 (speed.empty() ? "" : ", crosshead " + speed + " mm/min") +
+                 (h.machine.empty() ? std::string("an Instron") : h.machine) +
+                 (h.load_cell.empty() ? "" : " (load cell " + h.load_cell + ")") +
+                 (h.speed.empty() ? "" : ", crosshead " + h.speed + " mm/min") +
                  ", a monotonic ramp (no hold, no unloading). " + conversion +
                  " Platen friction is not documented upstream: " + to_string(options.platens) +
                  " assumed for both platens. Attribution (CC BY 4.0): cite the article in 'source'; changes: "

@@ -30,7 +30,8 @@ struct PhantomOptions {
 bool is_phantom_csv(const std::string& text);
 
 /// Converts one phantom CSV; the data set is named after the file's stem. tmlab::Error naming the
-/// file, line and column for a malformed file.
+/// file, line and column for a malformed file, a compression that reaches the header's height, or a
+/// single sample; naming the path for a directory, FIFO or other file that is not a regular file.
 DataSet convert_phantom(const std::filesystem::path& file, const PhantomOptions& options = {});
 /// The same from text (`file` names it in messages and gives the data set's name).
 DataSet convert_phantom_text(const std::string& text, const std::string& file,

@@ -6,12 +6,15 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -98,7 +101,7 @@ TEST_F(MeasuredData, ReadsAValidFileWithItsMetadata) {
 
 TEST_F(MeasuredData, ToleratesBomCrLfBlanksAndCommentLines) {
   write("a.csv",
-        "\xEF\xBB\xBFtime_s , displacement_m,force_N\r\n\r\n# a comment\r\n 0 ,0,+1e-3\r\n2,1E-3,-.5\r\n");
+        "\xEF\xBB\xBFtime_s , displacement_m,force_N\r\n\r\n# a comment\r\n 0 ,0,+1e-3\r\n2,1E-3,-0.5\r\n");
   write("a.json", kIndentationJson);
   const DataSet d = read_data_set(dir_ / "a.csv");
   ASSERT_EQ(d.tests.size(), 1u);
@@ -143,7 +146,7 @@ TEST_F(MeasuredData, WrittenDataSetReadsBackBitForBit) {
   d.meta.sample.shape = SampleShape::cylinder;
   d.meta.sample.radius_m = 0.025;
   d.meta.sample.height_m = 0.03;
-  d.meta.sample.bottom = Interface::frictionless;
+  d.meta.sample.bottom = Interface::bonded;
   d.meta.sample.platens = Interface::bonded;
   d.meta.source = "a test";
   d.meta.license = "CC-BY-4.0";
@@ -361,6 +364,201 @@ TEST(MeasuredDataNumbers, Decimals) {
   for (const char* bad :
        {"", ".", "+.25", "7.", ".5", "e5", "1e", "1.2.3", "0x10", "1,5", "nan", "-Infinity", "1e400", " 1"})
     EXPECT_FALSE(parse_decimal(bad, v, why)) << bad;
+}
+
+// --- issue 26: every bad input named, nothing of the user's written over ----------------------
+
+const char* kCompressionJson = R"({
+  "format": "tmlab-measured/1",
+  "name": "a",
+  "test": "unconfined_compression",
+  "sample": { "shape": "cylinder", "radius_m": 0.025, "height_m": 0.03, "platens": "bonded" }
+}
+)";
+
+TEST_F(MeasuredData, CompressionTakesPlatensAloneAsTheBottomToo) {
+  // Between two platens the bottom platen is the bottom: `platens` alone says both.
+  write("a.csv", kGoodCsv);
+  write("a.json", kCompressionJson);
+  const DataSet d = read_data_set(dir_ / "a.csv");
+  EXPECT_EQ(d.meta.sample.platens, Interface::bonded);
+  EXPECT_EQ(d.meta.sample.bottom, Interface::bonded);
+  EXPECT_TRUE(d.notes.empty());
+  // A `bottom` that differs is kept as written, with a note that the rigs use `platens`.
+  std::string differs = kCompressionJson;
+  differs.replace(differs.find("\"platens\""), 9, "\"bottom\": \"frictionless\", \"platens\"");
+  write("a.json", differs);
+  const DataSet e = read_data_set(dir_ / "a.csv");
+  EXPECT_EQ(e.meta.sample.bottom, Interface::frictionless);
+  ASSERT_EQ(e.notes.size(), 1u);
+  EXPECT_EQ(e.notes[0].where, json_name() + ":5:83");
+  EXPECT_NE(
+      e.notes[0].text.find("key 'sample.bottom' is \"frictionless\" but 'sample.platens' is \"bonded\""),
+      std::string::npos)
+      << e.notes[0].text;
+  // `bottom` alone does not say what the top platen is: refused, saying what to write.
+  std::string bottom_only = kCompressionJson;
+  bottom_only.replace(bottom_only.find("\"platens\""), 9, "\"bottom\"");
+  const std::string b = error_of(kGoodCsv, bottom_only);
+  EXPECT_NE(b.find(json_name() + ":5:13: missing key 'sample.platens' in 'sample' (a sample compressed "
+                                 "between two platens needs their interface"),
+            std::string::npos)
+      << b;
+  // Still refused: platens in a test without platens.
+  const std::string p = error_of(
+      kGoodCsv, json_with("\"bottom\": \"bonded\"", "\"bottom\": \"bonded\", \"platens\": \"bonded\""));
+  EXPECT_NE(p.find("key 'sample.platens' is only for compression tests"), std::string::npos) << p;
+}
+
+TEST_F(MeasuredData, ALongNameIsRefusedForItsLength) {
+  const std::string n =
+      error_of(kGoodCsv, json_with("\"name\": \"a\"", "\"name\": \"" + std::string(300, 'n') + "\""));
+  EXPECT_NE(n.find(json_name() + ":3:11: key 'name' is 300 characters long: at most 200"), std::string::npos)
+      << n;
+  const std::string id =
+      error_of("test_id,time_s,displacement_m,force_N\n" + std::string(201, 'i') + ",0,0,0\n");
+  EXPECT_NE(id.find(csv_name() + ":2:1: column 'test_id': test_id is 201 characters long: at most 200"),
+            std::string::npos)
+      << id;
+  // 200 is allowed; the character rule still holds.
+  EXPECT_EQ(error_of("test_id,time_s,displacement_m,force_N\n" + std::string(200, 'i') + ",0,0,0\n"), "");
+  const std::string bad = error_of("test_id,time_s,displacement_m,force_N\na b,0,0,0\n");
+  EXPECT_NE(bad.find(csv_name() + ":2:1: column 'test_id': test_id must be a plain file stem"),
+            std::string::npos)
+      << bad;
+}
+
+TEST_F(MeasuredData, ControlCharactersInQuotedTextAreEscaped) {
+  // A NUL in a header name: the message goes on past it, the NUL shown as \x00.
+  const std::string nul = error_of(std::string("time_s,displacement_m,for\0ce_N\n0,0,0\n", 37));
+  EXPECT_NE(nul.find(csv_name() + ":1:23: column name 'for\\x00ce_N' is not a tmlab-measured/1 name"),
+            std::string::npos)
+      << nul;
+  // An ANSI colour sequence in a test_id: shown as text, no ESC reaches the terminal.
+  const std::string esc = error_of("test_id,time_s,displacement_m,force_N\n\x1b[31mred,0,0,0\n");
+  EXPECT_NE(esc.find("(got \"\\x1b[31mred\")"), std::string::npos) << esc;
+  EXPECT_EQ(esc.find('\x1b'), std::string::npos) << esc;
+  // A key of NAME.json (JSON escapes decode to the raw characters).
+  const std::string key =
+      error_of(kGoodCsv, json_with("\"license\"", "\"x\\u0000y\\u001b[31m\": 5, \"license\""));
+  EXPECT_NE(key.find("key 'x\\x00y\\x1b[31m' is a unit-less number"), std::string::npos) << key;
+  EXPECT_EQ(key.find('\x1b'), std::string::npos) << key;
+  const std::string name = error_of(kGoodCsv, json_with("\"name\": \"a\"", "\"name\": \"a\\u001b[2Jb\""));
+  EXPECT_NE(name.find("(got \"a\\x1b[2Jb\")"), std::string::npos) << name;
+}
+
+TEST_F(MeasuredData, DeepNestingFailsAtOnceNamingWhere) {
+  // 100k levels took half a minute in the JSON parser: the depth is checked before it. Unclosed,
+  // the parser would have called it invalid JSON (at the end of the file); it never gets there.
+  const std::string open = "{\"format\": \"tmlab-measured/1\", \"x\": " + std::string(100000, '[');
+  const std::string e = error_of(kGoodCsv, open);
+  // The root object is level 1: the 64th '[' (column 37 + 63) opens level 65.
+  EXPECT_NE(e.find(json_name() + ":1:100: nested deeper than 64 levels"), std::string::npos)
+      << e.substr(0, 300);
+  const std::string closed = error_of(kGoodCsv, open + std::string(100000, ']') + "}");
+  EXPECT_NE(closed.find(json_name() + ":1:100: nested deeper than 64 levels"), std::string::npos)
+      << closed.substr(0, 300);
+  // Brackets in strings and comments are not nesting.
+  const std::string many = std::string(100, '[') + std::string(100, '{');
+  EXPECT_EQ(error_of(kGoodCsv, json_with("\"license\"", "\"note\": \"" + many + "\\\"" + many + "\", /* " +
+                                                            many + " */ // " + many + "\n \"license\"")),
+            "");
+}
+
+TEST_F(MeasuredData, DirectoriesAndFifosAreNamedAndNeverBlock) {
+  // No d.json beside it: the directory is named, not its missing metadata.
+  fs::create_directory(dir_ / "d.csv");
+  try {
+    read_data_set(dir_ / "d.csv");
+    FAIL() << "read a directory";
+  } catch (const tmlab::Error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "d.csv").string() + ": is a directory, not a file");
+  }
+  // A FIFO with no writer: opening it for reading would wait for ever.
+  ASSERT_EQ(::mkfifo((dir_ / "f.csv").c_str(), 0600), 0);
+  write("f.json", kIndentationJson);
+  try {
+    read_data_set(dir_ / "f.csv");
+    FAIL() << "read a FIFO";
+  } catch (const tmlab::Error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "f.csv").string() + ": is not a regular file (a FIFO)");
+  }
+  write("g.csv", kGoodCsv);
+  ASSERT_EQ(::mkfifo((dir_ / "g.json").c_str(), 0600), 0);
+  try {
+    read_data_set(dir_ / "g.csv");
+    FAIL() << "read a FIFO as metadata";
+  } catch (const tmlab::Error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "g.json").string() + ": is not a regular file (a FIFO)");
+  }
+  try {
+    read_input_file(dir_ / "none.csv");
+    FAIL() << "read a missing file";
+  } catch (const tmlab::Error& e) {
+    EXPECT_EQ(std::string(e.what()), (dir_ / "none.csv").string() + ": no such file");
+  }
+}
+
+/// A small valid data set named `name`.
+DataSet small_set(const std::string& name) {
+  DataSet d;
+  d.meta.name = name;
+  d.meta.test = TestType::indentation;
+  d.meta.indenter = Indenter{IndenterShape::flat_punch, 0.002, {}};
+  d.meta.sample.shape = SampleShape::half_space;
+  d.tests.push_back({"", 0, {0.0, 1.0}, {0.0, 1e-3}, {0.0, 1.0}, {}});
+  return d;
+}
+
+TEST_F(MeasuredData, WriterIntoAUsersFolderReplacesNothingUnasked) {
+  fs::create_directories(dir_ / "out");
+  write("out/s.json", "the user's own notes");
+  try {
+    write_data_set(small_set("s"), dir_ / "out", {}, false);
+    FAIL() << "wrote over s.json";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir_ / "out" / "s.json").string() + ": exists already"),
+              std::string::npos)
+        << e.what();
+  }
+  // Both targets are checked before either is written.
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "s.csv"));
+  std::ifstream kept(dir_ / "out" / "s.json");
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(kept), {}), "the user's own notes");
+  // With overwrite they are replaced, and nothing else appears in the folder (no temporary left).
+  EXPECT_EQ(write_data_set(small_set("s"), dir_ / "out", {}, true), dir_ / "out" / "s.csv");
+  EXPECT_EQ(read_data_set(dir_ / "out" / "s.csv").meta.name, "s");
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(dir_ / "out")) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"s.csv", "s.json"}));
+}
+
+TEST_F(MeasuredData, WriterNeverWritesOverAnInputEvenThroughLinks) {
+  fs::create_directories(dir_ / "raw");
+  write("raw/s.csv", "raw data");
+  const fs::path input = dir_ / "raw" / "s.csv";
+  const auto refused = [&](const fs::path& out, const std::string& target) {
+    try {
+      write_data_set(small_set("s"), out, {input}, true);
+    } catch (const tmlab::Error& e) {
+      return std::string(e.what()).find(target + ": is the input " + input.string()) != std::string::npos;
+    }
+    return false;
+  };
+  EXPECT_TRUE(refused(dir_ / "raw", (dir_ / "raw" / "s.csv").string()));
+  // The folder through a symbolic link, the file through a symbolic link and a hard link.
+  fs::create_directory_symlink(dir_ / "raw", dir_ / "link");
+  EXPECT_TRUE(refused(dir_ / "link", (dir_ / "link" / "s.csv").string()));
+  fs::create_directories(dir_ / "viasym");
+  fs::create_symlink(input, dir_ / "viasym" / "s.csv");
+  EXPECT_TRUE(refused(dir_ / "viasym", (dir_ / "viasym" / "s.csv").string()));
+  fs::create_directories(dir_ / "viahard");
+  fs::create_hard_link(input, dir_ / "viahard" / "s.csv");
+  EXPECT_TRUE(refused(dir_ / "viahard", (dir_ / "viahard" / "s.csv").string()));
+  std::ifstream in(input);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), {}), "raw data");
+  EXPECT_FALSE(fs::exists(dir_ / "raw" / "s.json"));
 }
 
 }  // namespace

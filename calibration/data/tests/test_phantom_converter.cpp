@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 
 namespace {
 
@@ -126,6 +128,42 @@ TEST(PhantomConverter, MalformedFilesAreNamed) {
       geo.find("x.csv:7:1: 'Engineering Stress (kPa)' is -5.093 but Load / (pi (D/2)^2) is 7.95775 kPa"),
       std::string::npos)
       << geo;
+}
+
+TEST(PhantomConverter, ACompressionBeyondTheHeightAndASingleSampleAreRefused) {
+  // The header says 30 mm high; a row compresses it by 35 mm (stress consistent with D = 50 mm).
+  const std::string deep =
+      error_of(std::string(kHeader) + "0,0,0,0,0,0,0\n1,35.0,10,-1.17,-5.093,0,0\n2,10,5,-0.33,-2.546,0,0\n");
+  EXPECT_NE(
+      deep.find("x.csv:7:3: column 'Compression (mm)': the compression reaches 35 mm, not less than the "
+                "height 30 mm of 'Cylinder Height' (line 4)"),
+      std::string::npos)
+      << deep;
+  // Exactly the height is refused too (the sample would have no thickness left).
+  EXPECT_NE(error_of(std::string(kHeader) + "0,0,0,0,0,0,0\n1,30,10,-1,-5.093,0,0\n").find("reaches 30 mm"),
+            std::string::npos);
+  const std::string one = error_of(std::string(kHeader) + "0,0.1,1,0,0.5093,0,0\n");
+  EXPECT_NE(one.find("x.csv:6:1: one sample only (line 6): a force-displacement curve needs at least two"),
+            std::string::npos)
+      << one;
+}
+
+TEST(PhantomConverter, DirectoriesAndFifosAreNamed) {
+  const fs::path dir = fs::temp_directory_path() / ("tmlab_phantom_kinds_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir / "d.csv");
+  ASSERT_EQ(::mkfifo((dir / "f.csv").c_str(), 0600), 0);
+  for (const auto& [path, what] :
+       {std::pair<fs::path, std::string>{dir / "d.csv", "is a directory, not a file"},
+        {dir / "f.csv", "is not a regular file (a FIFO)"}}) {
+    try {
+      convert_phantom(path);
+      ADD_FAILURE() << "converted " << path;
+    } catch (const tmlab::Error& e) {
+      EXPECT_EQ(std::string(e.what()), path.string() + ": " + what);
+    }
+  }
+  fs::remove_all(dir);
 }
 
 }  // namespace
