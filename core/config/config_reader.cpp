@@ -22,8 +22,14 @@ namespace {
 class DuplicateKeyGuard {
  public:
   explicit DuplicateKeyGuard(std::string file) : file_(std::move(file)) {}
-  bool operator()(int /*depth*/, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+  /// Deeper nesting than any case or parameter file needs is refused as it is met, before the parser
+  /// builds (and the guard copies key paths for) a pathologically deep document.
+  static constexpr int kMaxDepth = 64;
+  bool operator()(int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using E = nlohmann::json::parse_event_t;
+    if (depth > kMaxDepth)
+      throw Error(file_ + ": nested deeper than " + std::to_string(kMaxDepth) + " levels (key '" +
+                  current_key().substr(0, 200) + "...')");
     switch (event) {
       case E::object_start:
         frames_.push_back({true, {}, current_key()});
@@ -74,6 +80,8 @@ class DuplicateKeyGuard {
 nlohmann::json ConfigReader::parse_file(const std::string& file) {
   std::error_code ec;
   if (std::filesystem::is_directory(file, ec)) throw Error(file + ": is a directory, not a JSON file");
+  if (std::filesystem::exists(file, ec) && !std::filesystem::is_regular_file(file, ec))
+    throw Error(file + ": is not a regular file (a FIFO, socket or device), not a JSON file");
   std::ifstream in(file);
   if (!in) throw Error(file + ": cannot open file");
   std::stringstream ss;

@@ -13,6 +13,9 @@ void check_output_files(const std::vector<fs::path>& targets, const std::vector<
   for (const fs::path& t : targets) {
     const std::string shown = printable(t.string(), 300);
     std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(t, ec)) && !fs::exists(fs::status(t, ec)))
+      throw Error(shown + ": is a symbolic link to " + printable(fs::read_symlink(t, ec).string(), 300) +
+                  ", which does not exist: writing it would create a file elsewhere; name another output");
     const fs::file_status st = fs::status(t, ec);
     if (!fs::exists(st)) continue;
     for (const fs::path& in : inputs) {

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+
+#include <sys/stat.h>
+
 #include <unistd.h>
 
 #include <filesystem>
@@ -77,6 +81,28 @@ TEST_F(ConfigReaderTest, DirectoryIsNotAJsonFile) {
     FAIL() << "a directory was parsed";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("is a directory"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(ConfigReaderTest, FifoAndDeepNestingAreRefusedAtOnce) {
+  // Issue 26: a FIFO would block the reader; 100k nested arrays took tens of seconds (the duplicate-key
+  // guard copied the key path at every level).
+  const std::filesystem::path fifo = dir_ / "pipe.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+  try {
+    (void)ConfigReader::parse_file(fifo.string());
+    FAIL() << "a FIFO was parsed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is not a regular file"), std::string::npos) << e.what();
+  }
+  const std::filesystem::path deep = dir_ / "deep.json";
+  std::ofstream(deep) << "{\"a\": " << std::string(100000, '[') << std::string(100000, ']') << "}";
+  try {
+    (void)ConfigReader::parse_file(deep.string());
+    FAIL() << "100000 levels were parsed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nested deeper than 64 levels (key 'a[][]"), std::string::npos)
+        << e.what();
   }
 }
 

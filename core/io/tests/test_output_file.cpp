@@ -49,6 +49,11 @@ TEST_F(OutputFile, NeverOverAnInputEvenWithOverwriteOrThroughALink) {
   }
 }
 
+TEST_F(OutputFile, ADanglingLinkIsNotAnAbsentFile) {
+  fs::create_symlink(dir_ / "elsewhere" / "x.csv", dir_ / "a.csv");
+  EXPECT_NE(refusal({dir_ / "a.csv"}, {}, true).find("which does not exist"), std::string::npos);
+}
+
 TEST_F(OutputFile, ADirectoryIsNotAFileToReplace) {
   fs::create_directories(dir_ / "a.msh");
   EXPECT_NE(refusal({dir_ / "a.msh"}, {}, true).find("not a regular file"), std::string::npos);
