@@ -187,8 +187,9 @@ namespace {
 
 std::string mm(double metres) { return significant(1e3 * metres, 4) + " mm"; }
 
-/// "12,345,678": counts in messages.
+/// "12,345,678": counts in messages (beyond 10^18, "1.2e+22").
 std::string grouped(double v) {
+  if (!(v < 1e18)) return significant(v, 3);
   std::string d = std::to_string(static_cast<long long>(std::llround(v)));
   for (int i = static_cast<int>(d.size()) - 3; i > 0; i -= 3) d.insert(static_cast<std::size_t>(i), ",");
   return d;
@@ -196,6 +197,13 @@ std::string grouped(double v) {
 
 std::string memory(double bytes) {
   return bytes >= 1e9 ? significant(bytes / 1e9, 3) + " GB" : significant(bytes / 1e6, 3) + " MB";
+}
+
+/// The shortest time between two samples of the history (at least two samples).
+double shortest_segment(const DisplacementHistory& h) {
+  double shortest = h.t.back();
+  for (std::size_t k = 1; k < h.t.size(); ++k) shortest = std::min(shortest, h.t[k] - h.t[k - 1]);
+  return shortest;
 }
 
 /// The block's cells per axis, as rig_mesh makes them (doubles: a far too large rig still has a size).
@@ -272,8 +280,8 @@ void validate_history(const RigSpec& s) {
   const double steps = rig_load_steps(s);
   if (steps > kMaxLoadSteps)
     refuse(s, "steps_per_segment",
-           std::to_string(s.steps_per_sample) +
-               " steps across the shortest segment of the history, uniform over its " +
+           std::to_string(s.steps_per_sample) + " steps across the shortest segment of the history (" +
+               significant(shortest_segment(h), 6) + " s), at that step over all its " +
                significant(h.t.back(), 6) + " s, make " + grouped(steps) + " load steps; the limit is " +
                grouped(kMaxLoadSteps) + " (a static run of more would take days): give fewer");
 }
@@ -327,9 +335,7 @@ void validate_material(const RigSpec& s) {
 double rig_load_steps(const RigSpec& s) {
   const DisplacementHistory& h = s.history;
   if (h.t.size() < 2) return 0.0;
-  double shortest = h.t.back();
-  for (std::size_t k = 1; k < h.t.size(); ++k) shortest = std::min(shortest, h.t[k] - h.t[k - 1]);
-  return std::ceil(h.t.back() / shortest * s.steps_per_sample - 1e-9);
+  return std::ceil(h.t.back() / shortest_segment(h) * s.steps_per_sample - 1e-9);
 }
 
 void validate(const RigSpec& s) {

@@ -249,6 +249,11 @@ TEST(RigValidation, MeshTooLargeIsRefusedFromItsSize) {
   EXPECT_NE(refusal(s).find("2,880,000 tets"), std::string::npos);
   s.layers = 100;  // 720,000 tets
   EXPECT_EQ(refusal(s), "");
+  // A sample so slender its cell count is astronomical still gets its size, not an overflow.
+  s = RigSpec{};
+  s.size_x = 1e10;
+  s.size_y = 1e-10;
+  EXPECT_NE(refusal(s).find("tets (about "), std::string::npos) << refusal(s);
 }
 
 TEST(RigValidation, LoadStepsHaveAnUpperBound) {
