@@ -1,6 +1,7 @@
 #include "realtime/coupling_study.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -38,6 +39,10 @@ std::vector<Vec3> ground_truth(ControlModel& model, const std::vector<Vec3>& x, 
   if (x.empty()) return f;
   model.reset(x.front());
   for (const Vec3& c : x) {
+    // A long recording's replay is interruptible (a pending SIGINT / SIGTERM throws tmlab::Interrupted).
+    if (f.size() % 1024 == 0 && pending_interrupt() != 0)
+      check_interrupt("while replaying the ground truth (tick " + std::to_string(f.size()) + " of " +
+                      std::to_string(x.size()) + ")");
     f.push_back(model.step(c));  // force at (u^n, x_n), then on to the next tick
     for (int j = 1; j < substeps; ++j) model.step(c);
   }
@@ -68,6 +73,8 @@ CouplingStudy run_coupling_study(ControlModel& model, const ProbeTrajectory& tra
   s.extrapolation.assign(static_cast<std::size_t>(ticks), Vec3::Zero());
   s.local_model.assign(static_cast<std::size_t>(ticks), Vec3::Zero());
   for (long k = 0; k * N < ticks; ++k) {
+    if (k % 64 == 0 && pending_interrupt() != 0)
+      check_interrupt("during the coupling study (control block " + std::to_string(k) + ")");
     // Haptic ticks of block k render from the snapshot published at its start (none for k = 0).
     for (long n = k * N; n < std::min((k + 1) * N, ticks); ++n) {
       if (k == 0) continue;

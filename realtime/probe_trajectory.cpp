@@ -1,12 +1,12 @@
 #include "realtime/probe_trajectory.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/base/number.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -16,6 +16,8 @@ namespace tmlab::rt {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// At most this many characters of the file are quoted in a message (control characters escaped).
+constexpr std::size_t kExcerpt = 40;
 
 /// s(x) = (1 - cos(pi x))/2 on [0, 1], clamped outside: the smooth ramp (zero slope at both ends).
 double smooth(double x) {
@@ -123,27 +125,27 @@ ProbeTrajectory ProbeTrajectory::read_csv(const std::string& path, const ProbeBo
       std::string h;
       for (char c : s)
         if (c != ' ' && c != '\t') h += c;
-      if (h != "t,x,y,z") throw Error(at + "the header must be 't,x,y,z' (got '" + s + "')");
+      if (h != "t,x,y,z")
+        throw Error(at + "the header must be 't,x,y,z' (got '" + printable(s, kExcerpt) + "')");
       header = true;
       continue;
     }
     if (std::count(s.begin(), s.end(), ',') != 3)
-      throw Error(at + "expected 4 comma-separated columns t,x,y,z (got '" + s + "')");
+      throw Error(at + "expected 4 comma-separated columns t,x,y,z (got " +
+                  std::to_string(std::count(s.begin(), s.end(), ',') + 1) + ")");
     double v[4];
     std::size_t pos = 0;
     for (int k = 0; k < 4; ++k) {
       const std::size_t comma = k < 3 ? s.find(',', pos) : s.size();
       const std::string field = trim(s.substr(pos, comma - pos));
       const char* names[] = {"t", "x", "y", "z"};
-      char* end = nullptr;
-      errno = 0;
-      v[k] = std::strtod(field.c_str(), &end);
-      if (field.empty() || end != field.c_str() + field.size() || errno == ERANGE || !std::isfinite(v[k]))
-        throw Error(at + "column " + std::to_string(k + 1) + " (" + names[k] + ") is not a finite number: '" +
-                    field + "'");
+      std::string why;
+      if (!parse_decimal(field, v[k], why))
+        throw Error(at + "column " + std::to_string(k + 1) + " (" + names[k] + "): " + why);
       pos = comma + 1;
     }
-    if (t.empty() && v[0] != 0.0) throw Error(at + "the first sample must be at t = 0 (got " + trim(s) + ")");
+    if (t.empty() && v[0] != 0.0)
+      throw Error(at + "the first sample must be at t = 0 (got t = " + number(v[0]) + ")");
     if (!t.empty() && !(v[0] > t.back()))
       throw Error(at + "time " + number(v[0]) + " is not after the previous sample's (" + number(t.back()) +
                   ")");

@@ -12,7 +12,9 @@
 // A trajectory file (docs/realtime.md) is a CSV with the header `t,x,y,z` (seconds, metres, the
 // probe centre in the mesh frame), then one sample per line with strictly increasing t, first t = 0;
 // blank lines and lines starting with '#' are skipped. Between samples the position is linear in t;
-// before the first / after the last sample it is held. Errors name the file and line. Given the
+// before the first / after the last sample it is held. Numbers follow tmlab's one decimal grammar
+// (core/base/number.hpp). Errors name the file, line and column and quote at most 40 characters of
+// the file (control characters escaped), never a whole line. Given the
 // box the probe may move in, a sample outside it is an error too: a file in millimetres or in
 // another frame would otherwise run without ever touching the tissue.
 #pragma once

@@ -1,11 +1,13 @@
 #include "realtime/realtime_case.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/config/case_config.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "realtime/live_protocol.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -20,6 +22,27 @@ Vec3 read_vec3(ConfigReader& r, const std::string& key) {
   if (v.size() != 3 || !std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]))
     throw r.error(key, "must be 3 finite numbers");
   return {v[0], v[1], v[2]};
+}
+
+/// trajectory.file: resolved against the case file's folder (symbolic links followed) and refused
+/// unless it stays inside that folder, so a case cannot make tmlab read (and quote in an error) a
+/// file from elsewhere on the machine.
+fs::path trajectory_file(ConfigReader& tr, const std::string& case_path) {
+  const std::string given = tr.require<std::string>("file");
+  if (given.empty()) throw tr.error("file", "is empty (a CSV file next to the case file)");
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(fs::absolute(case_path, ec).parent_path(), ec);
+  const fs::path f(given);
+  const fs::path resolved = ec ? fs::path() : fs::weakly_canonical(f.is_absolute() ? f : folder / f, ec);
+  if (ec) throw tr.error("file", "= '" + printable(given, 100) + "' cannot be resolved: " + ec.message());
+  const auto [in_folder, in_resolved] =
+      std::mismatch(folder.begin(), folder.end(), resolved.begin(), resolved.end());
+  if (in_folder != folder.end() || in_resolved == resolved.end())
+    throw tr.error("file", "= '" + printable(given, 100) + "' resolves to " +
+                               printable(resolved.string(), 200) + ", outside the case file's folder " +
+                               printable(folder.string(), 200) +
+                               ": a trajectory file must lie in that folder or below it");
+  return resolved;
 }
 
 double rate(ConfigReader& r, const std::string& key, double fallback) {
@@ -106,8 +129,7 @@ RealtimeCase load_realtime_case(const std::string& path, const std::string& tmla
           c.probe_start, c.direction, lateral, tr.positive("depth"), tr.positive("amplitude", 0.0, true),
           tr.positive("period"), tr.get<int>("cycles", 1), tr.positive("ramp")));
     } else if (type == "csv") {
-      const fs::path f(tr.require<std::string>("file"));
-      const fs::path resolved = f.is_absolute() ? f : (fs::path(path).parent_path() / f).lexically_normal();
+      const fs::path resolved = trajectory_file(tr, path);
       const Box reach = probe_box(c.mesh, 2.0 * c.control.probe_radius);
       const ProbeBounds bounds{reach.min, reach.max, "the mesh's bounding box grown by two probe radii"};
       c.trajectory = std::make_shared<ProbeTrajectory>(ProbeTrajectory::read_csv(resolved.string(), &bounds));

@@ -1,6 +1,7 @@
 #include "realtime/realtime_loop.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "realtime/triple_buffer.hpp"
 
 #include <algorithm>
@@ -81,6 +82,11 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
   const auto stopping = [&] {
     return stop.load(std::memory_order_relaxed) || (opt.stop && opt.stop->load());
   };
+  // The waiting thread turns a pending SIGINT / SIGTERM into the stop (the handler only records it).
+  const auto signalled = [&] {
+    if (opt.stop_on_interrupt && r.signal == 0) r.signal = pending_interrupt();
+    return r.signal != 0;
+  };
 
   std::thread haptic([&] {
     ExtrapolationCoupling extrapolation;
@@ -159,21 +165,23 @@ LoopResult run_realtime_loop(ControlModel& control, const LoopOptions& opt) {
   });
 
   // Main thread: report the phases for the allocation test, then wait for the end.
-  while (warm.load() < 3 && Clock::now() < end && !stopping())
+  while (warm.load() < 3 && Clock::now() < end && !stopping() && !signalled())
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   if (opt.on_phase) opt.on_phase(1);
-  while (Clock::now() < end && !stopping()) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  while (Clock::now() < end && !stopping() && !signalled())
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
   if (opt.on_phase) opt.on_phase(2);
   stop = true;
   haptic.join();
   ctl.join();
   visual.join();
-  const double elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+  const double elapsed = std::max(0.0, std::chrono::duration<double>(Clock::now() - start).count());
   r.frames.resize(frames_kept);
   r.haptic = haptic_timing.summary("haptic", opt.haptic_hz, elapsed);
   r.control = control_timing.summary("control", 1.0 / dt, elapsed);
   r.visual = visual_timing.summary("visual", opt.visual_hz, elapsed);
   r.model_time = control.time();
+  r.wall_time = elapsed;
   return r;
 }
 

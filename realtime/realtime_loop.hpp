@@ -61,6 +61,9 @@ struct LoopOptions {
   std::function<void(int)> on_phase;
   /// Stops the loop early when set (may be null).
   const std::atomic<bool>* stop = nullptr;
+  /// A pending SIGINT / SIGTERM (core/base/interrupt.hpp) stops the loop too, within one period of
+  /// each thread (the waiting thread polls every 5 ms); LoopResult::signal says which.
+  bool stop_on_interrupt = true;
   /// Keep the per-tick and per-step logs of LoopResult (false for long interactive runs, whose
   /// logs would need storage for the whole duration reserved up front).
   bool keep_log = true;
@@ -77,6 +80,8 @@ struct LoopResult {
   // per control step: the probe centre it used and the force on the probe at (u_n, probe)
   std::vector<Vec3> control_probe, control_force;
   double model_time = 0.0;  ///< model time reached, s
+  double wall_time = 0.0;   ///< s from the start to the stop of the three threads
+  int signal = 0;           ///< the SIGINT / SIGTERM that stopped the loop early (0: none)
   // kept visual frames
   std::vector<std::vector<float>> frames;
   std::vector<double> frame_t;

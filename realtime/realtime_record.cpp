@@ -1,6 +1,8 @@
 #include "realtime/realtime_record.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/base/interrupt.hpp"
 #include "realtime/coupling_study.hpp"
 #include "realtime/frame_renderer.hpp"
 #include "realtime/realtime_loop.hpp"
@@ -42,6 +44,7 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   log("preparing the control model (" + std::to_string(c.mesh.num_points()) +
       " nodes; the surface compliance of the local-model coupling)");
   auto control = c.make_control();
+  check_interrupt("while preparing the control model, before the real-time run: nothing measured");
   LoopOptions lo;
   lo.duration = duration;
   lo.haptic_hz = c.haptic_hz;
@@ -52,6 +55,9 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
   lo.frame_every = c.png_every;
   log("running the three threads for " + short_number(duration) + " s");
   const LoopResult r = run_realtime_loop(*control, lo);
+  // A signal stops the three threads at their next tick: the run is cut short, so nothing is measured.
+  check_interrupt("during the real-time run, stopped after " + significant(r.wall_time, 3) + " s of " +
+                  short_number(duration) + " s: nothing measured");
   const double pace = r.model_time / duration;
   log("model time reached " + short_number(r.model_time) + " s in " + short_number(duration) +
       " s of wall time (" + short_number(std::round(100.0 * pace)) + " % of real time)" +
@@ -111,6 +117,8 @@ nlohmann::json record_realtime(const RealtimeCase& c, const RecordOptions& opt, 
     for (const Vec3& f : rendered) fmax = std::max(fmax, f.norm());
     std::vector<double> history;
     for (std::size_t k = 0; k < r.frames.size(); ++k) {
+      check_interrupt("while writing the PNG frames (" + std::to_string(k) + " of " +
+                      std::to_string(r.frames.size()) + " written)");
       history.clear();
       for (std::size_t n = 0; n < r.t.size() && r.t[n] <= r.frame_t[k]; ++n)
         history.push_back(rendered[n].norm());

@@ -36,6 +36,11 @@ SeriesTable comparison_table(const ComparisonSeries& s, double floor) {
   return t;
 }
 
+/// The comparison's result directory: <case>-compare (against the reference), <case>-compare-<against>.
+std::string compare_dir_name(const std::string& case_name, const std::string& against) {
+  return case_name + "-compare" + (against == "reference" ? "" : "-" + against);
+}
+
 }  // namespace
 
 int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
@@ -45,12 +50,15 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   const std::string against = p.get("--against", "reference");
   if (against != "reference" && against != "tl_oracle")
     throw UsageError("--against must be reference or tl_oracle");
-  const int degree = p.has("--degree") ? static_cast<int>(parse_double("--degree", p.get("--degree"))) : 1;
+  const int degree =
+      p.has("--degree") ? static_cast<int>(parse_whole("--degree", p.get("--degree"), 1, 2)) : 1;
   const std::string time_integration = p.get("--time-integration", "fixed_step");
   if (time_integration != "fixed_step" && time_integration != "ida")
     throw UsageError("--time-integration must be fixed_step or ida");
   if (time_integration == "ida" && against != "reference")
     throw UsageError("--time-integration ida needs --against reference");
+  if (p.has("--degree") && against != "reference")
+    throw UsageError("--degree (the reference's element degree) needs --against reference");
 
   tmlab::RunOptions opt;
   opt.tmlab_root = tmlab_root();
@@ -80,9 +88,10 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   cmp["a"] = a.dir;
   cmp["b"] = b.dir;
   cmp["against"] = against;
-  // The comparison is a result of its own, <results>/<case>-compare/, written through the same
-  // protocol as every run (staged, summary.json last, one writer, FAILED/INTERRUPTED on failure).
-  RunOutput out(fs::path(opt.results_root) / (cfg.name + "-compare"), &std::cerr);
+  // The comparison is a result of its own, written through the same protocol as every run (staged,
+  // summary.json last, one writer, FAILED/INTERRUPTED on failure): <results>/<case>-compare/ against
+  // the reference, <results>/<case>-compare-tl_oracle/ against the oracle, so neither replaces the other.
+  RunOutput out(fs::path(opt.results_root) / compare_dir_name(cfg.name, against), &std::cerr);
   try {
     ManifestInput mi;
     mi.command_line = opt.command_line;

@@ -9,19 +9,16 @@
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/results/run_output.hpp"
 #include "realtime/live_server.hpp"
 #include "realtime/realtime_loop.hpp"
 #include "realtime/realtime_record.hpp"
 
-#include <atomic>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
-#include <thread>
 
 namespace tmlab::cli {
 
@@ -68,13 +65,6 @@ int serve(const rt::RealtimeCase& c, int port, double duration) {
            "'npm ci --prefix build/npm' after copying realtime/web/package*.json there (docs/realtime.md)\n";
   std::cout << "serving http://127.0.0.1:" << server.port() << "/  (Ctrl-C stops)" << std::endl;
 
-  std::atomic<bool> stop{false}, done{false};
-  std::thread watcher([&] {  // a signal only sets a flag (core/base/interrupt.hpp): turn it into the stop
-    while (!done.load()) {
-      if (pending_interrupt() != 0) stop = true;
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-  });
   rt::LoopOptions lo;
   lo.duration = duration;
   lo.haptic_hz = c.haptic_hz;
@@ -86,19 +76,11 @@ int serve(const rt::RealtimeCase& c, int port, double duration) {
   lo.on_frame = [&server](const std::vector<float>& xyz, const Vec3& f, const Vec3& x) {
     server.publish(xyz, f, x);
   };
-  lo.stop = &stop;
-  rt::LoopResult r;
-  try {
-    r = rt::run_realtime_loop(*control, lo);
-  } catch (...) {
-    done = true;
-    watcher.join();
-    throw;
-  }
-  done = true;
-  watcher.join();
+  // SIGINT / SIGTERM stop the loop at its next tick (LoopOptions::stop_on_interrupt): the normal end
+  // of an interactive session, so the timing is printed and the exit code is 0.
+  const rt::LoopResult r = rt::run_realtime_loop(*control, lo);
   server.stop();
-  const int sig = pending_interrupt();
+  const int sig = r.signal;
   const rt::LiveServerStats st = server.stats();
   std::cout << "stopped (" << (sig ? signal_name(sig) : std::string("--duration reached")) << ")\n"
             << "timing (wall clock, this machine's load included):\n";
@@ -120,14 +102,14 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
     throw UsageError("realtime needs one case (a file or a name in cases/realtime/)");
   if (p.has("--serve") && p.has("--record")) throw UsageError("--serve and --record exclude each other");
   if (p.has("--port") && !p.has("--serve")) throw UsageError("--port goes with --serve");
-  int port = 8765;
-  if (p.has("--port")) {
-    const double v = parse_double("--port", p.get("--port"));
-    if (!(v >= 0.0 && v <= 65535.0) || v != std::floor(v))
-      throw UsageError("--port must be a whole number in 0..65535 (0: any free port), not '" +
-                       p.get("--port") + "'");
-    port = static_cast<int>(v);
-  }
+  for (const char* opt : {"--results", "--no-frames"})
+    if (p.has(opt) && !p.has("--record"))
+      throw UsageError(std::string(opt) +
+                       " only applies with --record (where the recording goes, whether it keeps PNG "
+                       "frames); add --record to record the run");
+  // 0: any free port.
+  const int port =
+      p.has("--port") ? static_cast<int>(parse_whole("--port", p.get("--port"), 0, 65535)) : 8765;
   const std::string file = resolve_realtime_case(p.positional[0]);
   rt::RealtimeCase c = rt::load_realtime_case(file, tmlab_root());
   double duration = c.duration;
@@ -162,7 +144,11 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
     lo.visual_hz = c.visual_hz;
     lo.rendered = c.rendered;
     lo.trajectory = c.trajectory.get();
+    check_interrupt("while preparing the control model, before the real-time run");
     const rt::LoopResult r = rt::run_realtime_loop(*control, lo);
+    // A signal stops the threads at their next tick; the cut-short run is reported as interrupted.
+    check_interrupt("during the real-time run, stopped after " + significant(r.wall_time) + " s of " +
+                    significant(duration) + " s");
     std::cout << "timing (wall clock, this machine's load included):\n";
     for (const rt::ThreadTiming* t : {&r.haptic, &r.control, &r.visual}) print_timing(*t);
     std::printf("  model time reached %.3f s in %.3f s of wall time\n", r.model_time, duration);

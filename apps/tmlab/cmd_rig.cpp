@@ -13,20 +13,36 @@
 
 #include <cmath>
 #include <iostream>
-#include <sstream>
 
 namespace tmlab::cli {
 
 namespace {
 
-// "a,b,c" as numbers; UsageError naming the option otherwise.
+// "a,b,c": exactly n numbers; UsageError naming the option otherwise (an empty item is no number).
 std::vector<double> parse_list(const std::string& key, const std::string& s, std::size_t n) {
   std::vector<double> v;
-  std::stringstream in(s);
-  std::string item;
-  while (std::getline(in, item, ',')) v.push_back(parse_double(key, item));
+  for (std::size_t from = 0;;) {
+    const std::size_t comma = s.find(',', from);
+    v.push_back(
+        parse_double(key, s.substr(from, comma == std::string::npos ? std::string::npos : comma - from)));
+    if (comma == std::string::npos) break;
+    from = comma + 1;
+  }
   if (v.size() != n) throw UsageError(key + " needs " + std::to_string(n) + " comma-separated numbers");
   return v;
+}
+
+// A whole-number option within [min, max] into `out` (unchanged when the option is absent).
+void whole(const Parsed& p, const char* key, long long min, long long max, int& out) {
+  if (p.has(key)) out = static_cast<int>(parse_whole(key, p.get(key), min, max));
+}
+
+// The mesh resolution and the load steps, the same for every rig (the library's limits).
+void apply_resolution(const Parsed& p, int& cells, int& layers, double& grading, int& steps) {
+  whole(p, "--cells", rigs::kMinCells, rigs::kMaxCells, cells);
+  whole(p, "--layers", 1, rigs::kMaxLayers, layers);
+  if (p.has("--grading")) grading = parse_double("--grading", p.get("--grading"));
+  whole(p, "--steps-per-segment", 1, rigs::kMaxLoadSteps, steps);
 }
 
 rigs::RigTest rig_test(const std::string& name) {
@@ -61,16 +77,7 @@ void apply_geometry(const Parsed& p, rigs::RigSpec& s) {
   }
   if (p.has("--bottom")) s.bottom = rigs::parse_support(p.get("--bottom"), "--bottom");
   if (p.has("--platens")) s.platens = rigs::parse_support(p.get("--platens"), "--platens");
-  const auto whole = [&](const char* key, int& out) {
-    if (!p.has(key)) return;
-    const double v = parse_double(key, p.get(key));
-    if (v != static_cast<int>(v)) throw UsageError(std::string(key) + " needs a whole number");
-    out = static_cast<int>(v);
-  };
-  whole("--cells", s.cells);
-  whole("--layers", s.layers);
-  whole("--steps-per-segment", s.steps_per_sample);
-  if (p.has("--grading")) s.grading = parse_double("--grading", p.get("--grading"));
+  apply_resolution(p, s.cells, s.layers, s.grading, s.steps_per_sample);
 }
 
 // The material section and the model.
@@ -98,9 +105,9 @@ void apply_loading(const Parsed& p, rigs::RigSpec& s) {
   const double signed_depth = tension ? -std::abs(depth) : depth;
   const double ramp = p.has("--ramp") ? parse_double("--ramp", p.get("--ramp")) : 1.0;
   if (p.has("--cycles")) {
-    const double n = parse_double("--cycles", p.get("--cycles"));
-    if (n != static_cast<int>(n)) throw UsageError("--cycles needs a whole number");
-    s.history = rigs::DisplacementHistory::cycles(signed_depth, ramp, static_cast<int>(n));
+    int n = 1;
+    whole(p, "--cycles", 1, 100000, n);
+    s.history = rigs::DisplacementHistory::cycles(signed_depth, ramp, n);
   } else {
     const double hold = p.has("--hold") ? parse_double("--hold", p.get("--hold")) : 0.0;
     s.history = rigs::DisplacementHistory::ramp_hold(signed_depth, ramp, hold);
@@ -137,18 +144,10 @@ rigs::RigSpec data_rig(const Parsed& p) {
                      " tests; choose one with --test ID (" + ids + ")");
   }
   rigs::DataRigMesh mesh;
-  auto whole = [&](const char* opt, int& v) {
-    if (!p.has(opt)) return;
-    const double x = parse_double(opt, p.get(opt));
-    if (x != std::floor(x) || !(x >= 1 && x <= 1e6))
-      throw UsageError(std::string(opt) + " needs a whole number >= 1");
-    v = static_cast<int>(x);
-  };
-  whole("--cells", mesh.cells);
-  whole("--layers", mesh.layers);
-  if (p.has("--grading")) mesh.grading = parse_double("--grading", p.get("--grading"));
+  int steps = 1;  // one load step across the shortest sampling interval
+  apply_resolution(p, mesh.cells, mesh.layers, mesh.grading, steps);
   rigs::RigSpec s = rigs::rig_from_data(data, k, mesh);
-  whole("--steps-per-segment", s.steps_per_sample);
+  s.steps_per_sample = steps;
   const std::string test_id = data.tests[k].id;
   std::string name = data.meta.name + (test_id.empty() || data.tests.size() == 1 ? "" : "-" + test_id);
   if (!result_name_problem(name).empty()) name = "data_rig";
@@ -187,11 +186,15 @@ int cmd_rig(const std::vector<std::string>& args) {
                           "--model",
                           "--data",
                           "--test"},
-                         {});
+                         {"--overwrite"});
+  rigs::RigWriteOptions w;
+  w.overwrite = p.has("--overwrite");
   if (p.has("--data")) {
     if (!p.has("--out")) throw UsageError("rig needs --out DIR (where NAME.json and NAME.msh go)");
     const rigs::RigSpec s = data_rig(p);
-    const auto case_file = rigs::write_rig(s, p.get("--out"));
+    // The data set's own files are never written over (NAME.json could be the rig's case file).
+    w.inputs = {p.get("--data"), measured::metadata_path(p.get("--data"))};
+    const auto case_file = rigs::write_rig(s, p.get("--out"), w);
     std::cout << "rig: " << rigs::rig_test_name(s.test) << " of " << p.get("--data") << " written to "
               << case_file.string() << " (mesh " << (case_file.parent_path() / (s.name + ".msh")).string()
               << "; " << s.history.t.size() << " history samples)\nrun it with: tmlab run "
@@ -217,7 +220,7 @@ int cmd_rig(const std::vector<std::string>& args) {
   apply_geometry(p, s);
   apply_loading(p, s);
   apply_material(p, s);
-  const auto case_file = rigs::write_rig(s, p.get("--out"));
+  const auto case_file = rigs::write_rig(s, p.get("--out"), w);
   std::cout << "rig: " << rigs::rig_test_name(s.test) << " written to " << case_file.string() << " (mesh "
             << (case_file.parent_path() / (s.name + ".msh")).string() << ")\nrun it with: tmlab run "
             << case_file.string() << "\n";

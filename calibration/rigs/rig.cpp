@@ -2,12 +2,17 @@
 #include "calibration/rigs/rig.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/config/case_config.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/sample_meshes.hpp"
+#include "core/results/run_output.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <optional>
 #include <string>
 
 namespace tmlab::rigs {
@@ -174,17 +179,45 @@ double DisplacementHistory::peak() const {
   return p;
 }
 
-void validate(const RigSpec& s) {
-  const auto bad = [&](const std::string& field, const std::string& why) {
-    throw Error("rig '" + s.name + "': " + field + ": " + why);
-  };
-  if (s.name.empty() ||
-      s.name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-.") !=
-          std::string::npos) {
-    bad("name", "use letters, digits, '_', '-' and '.' only");
-  }
+namespace {
+
+[[noreturn]] void refuse(const RigSpec& s, const std::string& field, const std::string& why) {
+  throw Error("rig '" + s.name + "': " + field + ": " + why);
+}
+
+std::string mm(double metres) { return significant(1e3 * metres, 4) + " mm"; }
+
+/// "12,345,678": counts in messages (beyond 10^18, "1.2e+22").
+std::string grouped(double v) {
+  if (!(v < 1e18)) return significant(v, 3);
+  std::string d = std::to_string(static_cast<long long>(std::llround(v)));
+  for (int i = static_cast<int>(d.size()) - 3; i > 0; i -= 3) d.insert(static_cast<std::size_t>(i), ",");
+  return d;
+}
+
+std::string memory(double bytes) {
+  return bytes >= 1e9 ? significant(bytes / 1e9, 3) + " GB" : significant(bytes / 1e6, 3) + " MB";
+}
+
+/// The shortest time between two samples of the history (at least two samples).
+double shortest_segment(const DisplacementHistory& h) {
+  double shortest = h.t.back();
+  for (std::size_t k = 1; k < h.t.size(); ++k) shortest = std::min(shortest, h.t[k] - h.t[k - 1]);
+  return shortest;
+}
+
+/// The block's cells per axis, as rig_mesh makes them (doubles: a far too large rig still has a size).
+std::array<double, 3> block_cells(const RigSpec& s) {
+  const double lateral = std::min(s.size_x, s.size_y);
+  return {std::max(2.0, std::round(s.cells * s.size_x / lateral)),
+          std::max(2.0, std::round(s.cells * s.size_y / lateral)), static_cast<double>(s.layers)};
+}
+
+int cylinder_rings(const RigSpec& s) { return std::max(1, s.cells / 2); }
+
+void validate_sample(const RigSpec& s) {
   const auto positive = [&](double v, const char* field) {
-    if (!(v > 0.0) || !std::isfinite(v)) bad(field, "must be positive and finite");
+    if (!(v > 0.0) || !std::isfinite(v)) refuse(s, field, "must be positive and finite");
   };
   positive(s.height, "height");
   if (s.shape == SampleShape::Block) {
@@ -193,42 +226,126 @@ void validate(const RigSpec& s) {
   } else {
     positive(s.radius, "radius");
   }
-  if (s.cells < 2 || s.cells > 400) bad("cells", "must be in [2, 400]");
-  if (s.layers < 1 || s.layers > 400) bad("layers", "must be in [1, 400]");
-  if (!(s.grading >= 1.0 && s.grading <= 4.0)) bad("grading", "must be in [1, 4]");
-  if (s.steps_per_sample < 1) bad("steps_per_sample", "must be >= 1");
+  if (!std::isfinite(s.cx) || !std::isfinite(s.cy))
+    refuse(s, "--at (the indenter centre cx, cy)", "must be two finite numbers, m");
+  if (s.shape == SampleShape::Block && (std::abs(s.cx) > 0.5 * s.size_x || std::abs(s.cy) > 0.5 * s.size_y))
+    refuse(s, "--at (the indenter centre cx, cy)",
+           "(" + mm(s.cx) + ", " + mm(s.cy) + ") lies outside the top face, x in +-" + mm(0.5 * s.size_x) +
+               " and y in +-" + mm(0.5 * s.size_y) +
+               " (the sample is centred on x = y = 0; --at is in metres)");
+}
+
+void validate_indenter(const RigSpec& s) {
+  if (!(s.indenter_radius > 0.0) || !std::isfinite(s.indenter_radius))
+    refuse(s, "indenter_radius", "must be positive and finite");
+  if (s.shape != SampleShape::Block) refuse(s, "shape", "indentation rigs use a block sample");
+  const double hx = 0.5 * s.size_x, hy = 0.5 * s.size_y, r = s.indenter_radius;
+  if (std::abs(s.cx) + r <= hx && std::abs(s.cy) + r <= hy) return;
+  if (r > hx || r > hy)
+    refuse(s, "indenter_radius",
+           "the indenter (radius " + mm(r) + ") is wider than the top face (half widths " + mm(hx) + ", " +
+               mm(hy) + ")");
+  refuse(s, "--at (the indenter centre cx, cy)",
+         "(" + mm(s.cx) + ", " + mm(s.cy) +
+             ") is too close to the edge of the top face for the indenter radius " + mm(r) +
+             ": the indenter reaches beyond the face (|cx| + radius must stay within " + mm(hx) +
+             " and |cy| + radius within " + mm(hy) + ")");
+}
+
+void validate_history(const RigSpec& s) {
   const DisplacementHistory& h = s.history;
   if (h.t.size() != h.d.size() || h.t.size() < 2)
-    bad("history", "needs at least two (time, displacement) samples");
+    refuse(s, "history", "needs at least two (time, displacement) samples");
   for (std::size_t k = 0; k < h.t.size(); ++k) {
     if (!std::isfinite(h.t[k]) || !std::isfinite(h.d[k]))
-      bad("history", "sample " + std::to_string(k) + " is not finite");
+      refuse(s, "history", "sample " + std::to_string(k) + " is not finite");
     if (k > 0 && !(h.t[k] > h.t[k - 1]))
-      bad("history", "times must increase strictly (sample " + std::to_string(k) + ")");
+      refuse(s, "history", "times must increase strictly (sample " + std::to_string(k) + ")");
   }
-  if (h.t.front() != 0.0 || h.d.front() != 0.0) bad("history", "must start at t = 0 with zero displacement");
-  if (!(h.peak() > 0.0)) bad("history", "the displacement is zero throughout");
-  if (h.peak() >= s.height) bad("history", "the displacement reaches the sample height");
+  if (h.t.front() != 0.0 || h.d.front() != 0.0)
+    refuse(s, "history", "must start at t = 0 with zero displacement");
+  if (!(h.peak() > 0.0)) refuse(s, "history", "the displacement is zero throughout");
+  if (h.peak() >= s.height) refuse(s, "history", "the displacement reaches the sample height");
   const double min_d = *std::min_element(h.d.begin(), h.d.end());
   const double max_d = *std::max_element(h.d.begin(), h.d.end());
-  if (min_d < 0.0 && max_d > 0.0) bad("history", "mixes compression (d > 0) and tension (d < 0)");
+  if (min_d < 0.0 && max_d > 0.0) refuse(s, "history", "mixes compression (d > 0) and tension (d < 0)");
   if (s.test == RigTest::UniaxialTension) {
-    if (max_d > 0.0) bad("history", "a tension test pulls: the displacement must be <= 0");
-    if (s.platens != Support::Bonded) bad("platens", "a tension test needs bonded (gripped) platens");
+    if (max_d > 0.0) refuse(s, "history", "a tension test pulls: the displacement must be <= 0");
+    if (s.platens != Support::Bonded) refuse(s, "platens", "a tension test needs bonded (gripped) platens");
   } else if (min_d < 0.0) {
-    bad("history", "a compression or indentation test pushes: the displacement must be >= 0");
+    refuse(s, "history", "a compression or indentation test pushes: the displacement must be >= 0");
   }
-  if (s.test == RigTest::Indentation) {
-    positive(s.indenter_radius, "indenter_radius");
-    if (s.shape != SampleShape::Block) bad("shape", "indentation rigs use a block sample");
-    const double half = 0.5 * std::min(s.size_x, s.size_y);
-    if (std::abs(s.cx) + s.indenter_radius > 0.5 * s.size_x ||
-        std::abs(s.cy) + s.indenter_radius > 0.5 * s.size_y) {
-      bad("indenter_radius", "the indenter (radius " + std::to_string(s.indenter_radius) +
-                                 " m at its position) reaches beyond the top face (half width " +
-                                 std::to_string(half) + " m)");
-    }
+  if (s.steps_per_sample < 1 || s.steps_per_sample > kMaxLoadSteps)
+    refuse(s, "steps_per_segment", "must be in [1, " + grouped(kMaxLoadSteps) + "]");
+  const double steps = rig_load_steps(s);
+  if (steps > kMaxLoadSteps)
+    refuse(s, "steps_per_segment",
+           std::to_string(s.steps_per_sample) + " steps across the shortest segment of the history (" +
+               significant(shortest_segment(h), 6) + " s), at that step over all its " +
+               significant(h.t.back(), 6) + " s, make " + grouped(steps) + " load steps; the limit is " +
+               grouped(kMaxLoadSteps) + " (a static run of more would take days): give fewer");
+}
+
+/// The mesh's size before it is generated, against kMaxRigTets.
+void validate_mesh_size(const RigSpec& s) {
+  if (s.cells < kMinCells || s.cells > kMaxCells)
+    refuse(s, "cells", "must be in [" + std::to_string(kMinCells) + ", " + std::to_string(kMaxCells) + "]");
+  if (s.layers < 1 || s.layers > kMaxLayers)
+    refuse(s, "layers", "must be in [1, " + std::to_string(kMaxLayers) + "]");
+  if (!(s.grading >= 1.0 && s.grading <= 4.0)) refuse(s, "grading", "must be in [1, 4]");
+  SampleMeshSize size;
+  std::string formula;
+  if (s.shape == SampleShape::Block) {
+    const auto n = block_cells(s);
+    size = block_mesh_size(n[0], n[1], n[2]);
+    formula =
+        "a block of " + grouped(n[0]) + " x " + grouped(n[1]) + " x " + grouped(n[2]) +
+        " cells (cells across the smaller side, scaled to the other; layers through the height), 6 tets each";
+  } else {
+    size = cylinder_mesh_size(cylinder_rings(s), s.layers);
+    formula = "a cylinder of " + std::to_string(cylinder_rings(s)) + " rings (cells / 2) and " +
+              std::to_string(s.layers) + " layers, 18 rings^2 tets per layer";
   }
+  if (size.tets <= kMaxRigTets) return;
+  refuse(s, "cells, layers",
+         "cells " + std::to_string(s.cells) + " and layers " + std::to_string(s.layers) + " give " + formula +
+             ": " + grouped(size.nodes) + " nodes and " + grouped(size.tets) + " tets (about " +
+             memory(size.generator_bytes() + size.gmsh_bytes()) + " to generate and a " +
+             memory(size.gmsh_bytes()) + " mesh file); the limit is " + grouped(kMaxRigTets) +
+             " tets (the largest mesh tmlab's benchmarks run is 2.4M tets, and a static contact run "
+             "costs far more per tet): give fewer cells or layers");
+}
+
+/// The material section and the model as `tmlab run` reads them (core/config's case-file parser),
+/// and the law-model pairing the runner accepts (tensormass/runner: St VK models run St VK only).
+void validate_material(const RigSpec& s) {
+  const std::optional<CaseModel> model = case_model_from_string(s.model);
+  if (!model)
+    refuse(s, "model",
+           "must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl' (got '" + printable(s.model, 40) + "')");
+  const MaterialSpec m = parse_material_section(s.material, "rig '" + s.name + "'");
+  if (m.law != MaterialLaw::StVK && *model != CaseModel::HyperelasticTL)
+    refuse(s, "model",
+           "'" + s.model + "' runs St Venant-Kirchhoff only; material.law '" + to_string(m.law) +
+               "' runs on the F-based kernel: use model hyperelastic_tl (--model hyperelastic_tl)");
+}
+
+}  // namespace
+
+double rig_load_steps(const RigSpec& s) {
+  const DisplacementHistory& h = s.history;
+  if (h.t.size() < 2) return 0.0;
+  return std::ceil(h.t.back() / shortest_segment(h) * s.steps_per_sample - 1e-9);
+}
+
+void validate(const RigSpec& s) {
+  if (const std::string problem = result_name_problem(s.name); !problem.empty())
+    refuse(s, "name", problem + " (it names the case and its result directory)");
+  validate_sample(s);
+  validate_mesh_size(s);
+  validate_history(s);
+  if (s.test == RigTest::Indentation) validate_indenter(s);
+  validate_material(s);
 }
 
 Mesh rig_mesh(const RigSpec& s) {
@@ -237,7 +354,7 @@ Mesh rig_mesh(const RigSpec& s) {
     CylinderSpec c;
     c.radius = s.radius;
     c.height = s.height;
-    c.rings = std::max(1, s.cells / 2);
+    c.rings = cylinder_rings(s);
     c.layers = s.layers;
     return make_cylinder_mesh(c);
   }
@@ -247,10 +364,10 @@ Mesh rig_mesh(const RigSpec& s) {
   b.size_z = s.height;
   b.cx = s.cx;
   b.cy = s.cy;
-  const double lateral = std::min(s.size_x, s.size_y);
-  b.nx = std::max(2, static_cast<int>(std::lround(s.cells * s.size_x / lateral)));
-  b.ny = std::max(2, static_cast<int>(std::lround(s.cells * s.size_y / lateral)));
-  b.nz = s.layers;
+  const auto n = block_cells(s);
+  b.nx = static_cast<int>(n[0]);
+  b.ny = static_cast<int>(n[1]);
+  b.nz = static_cast<int>(n[2]);
   b.grading = s.test == RigTest::Indentation ? s.grading : 1.0;
   return make_block_mesh(b);
 }
@@ -267,30 +384,57 @@ json rig_case(const RigSpec& s, const std::string& mesh_file) {
   if (s.test == RigTest::Indentation) c["contact"] = {{"bodies", json::array({indenter_body(s)})}};
   // Uniform quasi-static steps, `steps_per_sample` across the shortest history segment (so the
   // kinks of a ramp-hold or cycle history fall on step ends).
-  double shortest = s.history.t.back();
-  for (std::size_t k = 1; k < s.history.t.size(); ++k)
-    shortest = std::min(shortest, s.history.t[k] - s.history.t[k - 1]);
-  const double steps_real = std::ceil(s.history.t.back() / shortest * s.steps_per_sample - 1e-9);
-  if (steps_real > 1e6) throw Error("rig '" + s.name + "': the history needs more than 10^6 load steps");
-  const int steps = static_cast<int>(steps_real);
+  const int steps = static_cast<int>(rig_load_steps(s));  // <= kMaxLoadSteps (validate)
   c["solver"] = {{"type", "static"}, {"t_end", s.history.t.back()}, {"steps", steps}};
   c["output"] = {{"vtu", false}, {"xdmf", true}, {"plots", true}};
   return c;
 }
 
-std::filesystem::path write_rig(const RigSpec& s, const std::filesystem::path& dir) {
-  validate(s);
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Refuses an output that is one of the inputs (always) or that exists (unless overwrite), naming it.
+void check_output(const RigSpec& s, const fs::path& out, const RigWriteOptions& opt) {
   std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) throw Error(dir.string() + ": cannot create the directory: " + ec.message());
-  const std::filesystem::path mesh_path = dir / (s.name + ".msh");
-  const std::filesystem::path case_path = dir / (s.name + ".json");
+  const fs::file_status st = fs::symlink_status(out, ec);
+  if (ec || !fs::exists(st)) return;
+  for (const fs::path& in : opt.inputs)
+    if (fs::equivalent(in, out, ec))
+      throw Error("rig '" + s.name + "': " + out.string() + " is the input " + in.string() +
+                  ": a rig never writes over its input; choose another --name or --out");
+  if (!opt.overwrite)
+    throw Error("rig '" + s.name + "': " + out.string() +
+                " already exists: choose another --name or --out, or give --overwrite to replace " + s.name +
+                ".json and " + s.name + ".msh");
+  if (fs::is_directory(st)) throw Error("rig '" + s.name + "': " + out.string() + " is a directory");
+}
+
+}  // namespace
+
+fs::path write_rig(const RigSpec& s, const fs::path& dir, const RigWriteOptions& opt) {
+  validate(s);
+  const fs::path mesh_path = dir / (s.name + ".msh");
+  const fs::path case_path = dir / (s.name + ".json");
+  for (const fs::path& out : {mesh_path, case_path}) check_output(s, out, opt);
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw Error(dir.string() + ": not a directory (the rig's NAME.json and NAME.msh go into --out)");
+  // Everything is known to be writable in principle: build both in memory, then write.
   const Mesh mesh = rig_mesh(s);
-  const std::filesystem::path tmp = dir / (s.name + ".msh.tmp");
+  const std::string case_text = rig_case(s, mesh_path.filename().string()).dump(2) + "\n";
+  fs::create_directories(dir, ec);
+  if (ec) throw Error(dir.string() + ": cannot create the directory: " + ec.message());
+  const fs::path tmp = dir / (s.name + ".msh.tmp");
   write_gmsh22(mesh, tmp.string());
-  std::filesystem::rename(tmp, mesh_path, ec);
+  try {
+    write_file_atomically(case_path, case_text);
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
+  fs::rename(tmp, mesh_path, ec);
   if (ec) throw Error(mesh_path.string() + ": cannot write the mesh: " + ec.message());
-  write_file_atomically(case_path, rig_case(s, mesh_path.filename().string()).dump(2) + "\n");
   return case_path;
 }
 

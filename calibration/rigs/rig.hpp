@@ -80,9 +80,25 @@ struct RigSpec {
   std::string model = "tensor_mass";
 };
 
-/// Throws tmlab::Error naming the offending field (a depth beyond the sample, an indenter wider
-/// than the sample, a tension test with frictionless platens, a history that is not increasing in
-/// time, a cylinder for an off-centre indentation ...).
+/// Limits of a rig, each refused beyond with its reason (validate()).
+inline constexpr int kMinCells = 2, kMaxCells = 400, kMaxLayers = 400;
+/// The largest mesh a rig generates: the largest tmlab's benchmarks run is 2.4M tets
+/// (docs/performance.md), and a rig's static contact run costs far more per tet than their steps.
+inline constexpr double kMaxRigTets = 2e6;
+/// The most quasi-static load steps a rig's case may take (and so the largest steps_per_sample).
+inline constexpr long kMaxLoadSteps = 1000000;
+
+/// The number of quasi-static load steps of the rig's case: steps_per_sample across the shortest
+/// segment of the history, uniform over the whole history (so every kink falls on a step end).
+double rig_load_steps(const RigSpec& spec);
+
+/// Throws tmlab::Error naming the offending field, before anything is computed or written: a name
+/// run would refuse, a depth beyond the sample, an indenter centre (--at) off the top face or too
+/// close to its edge for the indenter's radius, an indenter wider than the top face, a tension test
+/// with frictionless platens, a history that is not increasing in time, a mesh above kMaxRigTets
+/// (with its size and memory), more than kMaxLoadSteps load steps, a material section or model that
+/// `tmlab run` would refuse (the case-file parser's own checks, core/config), a law the model does
+/// not run.
 void validate(const RigSpec& spec);
 
 /// The sample mesh of the rig (core/mesh/sample_meshes.hpp), in metres.
@@ -91,8 +107,19 @@ Mesh rig_mesh(const RigSpec& spec);
 /// The case file of the rig; `mesh_file` is the path the case names (relative to the case file).
 nlohmann::json rig_case(const RigSpec& spec, const std::string& mesh_file);
 
-/// Writes DIR/NAME.msh and DIR/NAME.json (each written atomically; DIR is created). Returns the
-/// case file's path.
-std::filesystem::path write_rig(const RigSpec& spec, const std::filesystem::path& dir);
+/// How write_rig treats files already there.
+struct RigWriteOptions {
+  /// Replace an existing DIR/NAME.json and DIR/NAME.msh (otherwise either is refused, named).
+  bool overwrite = false;
+  /// The files the rig was made from (a data set's NAME.csv and NAME.json): never written over,
+  /// even with `overwrite`.
+  std::vector<std::filesystem::path> inputs;
+};
+
+/// Writes DIR/NAME.msh and DIR/NAME.json (each written atomically; DIR is created). Everything is
+/// checked first (validate(), the files already there, the inputs), so a refused rig leaves no file
+/// and no folder behind. Returns the case file's path.
+std::filesystem::path write_rig(const RigSpec& spec, const std::filesystem::path& dir,
+                                const RigWriteOptions& options = {});
 
 }  // namespace tmlab::rigs

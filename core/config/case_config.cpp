@@ -426,6 +426,12 @@ CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
   return c;
 }
 
+MaterialSpec parse_material_section(const nlohmann::json& material, const std::string& where) {
+  const nlohmann::json doc = {{"material", material}};
+  ConfigReader root(doc, where);
+  return parse_material(root);
+}
+
 namespace {
 
 // The sections of effective_case_json, each the case-file form of one parse_* above.

@@ -134,6 +134,10 @@ struct CaseConfig {
 /// `search_dirs` in order (the case file's directory first, then the tmlab root).
 CaseConfig parse_case(const nlohmann::json& doc, const std::string& where,
                       const std::vector<std::string>& search_dirs);
+/// A case file's `material` section alone, checked exactly as parse_case checks it (the test rigs
+/// refuse an impossible material before they write a case). `where` names the document in messages
+/// ("<where>: key 'material.E': ...").
+MaterialSpec parse_material_section(const nlohmann::json& material, const std::string& where);
 /// Reads the case's mesh, scales it, re-orients tets when asked, and refuses a mesh with inverted
 /// or degenerate tets (tmlab::Error naming the file and the first bad tet). Every model's runner
 /// starts here. `report` receives the mesh report, `repaired` the number of re-oriented tets.

@@ -179,6 +179,31 @@ Mesh make_cylinder_mesh(const CylinderSpec& s) {
   return mesh;
 }
 
+double SampleMeshSize::generator_bytes() const {
+  const double per_node = sizeof(Vec3) + sizeof(long);
+  const double per_tet = sizeof(Tet) + sizeof(int) + 4.0 * (sizeof(Tri) + sizeof(Index) + sizeof(int));
+  const double per_triangle = sizeof(Tri) + sizeof(int);
+  return per_node * nodes + per_tet * tets + per_triangle * boundary_triangles;
+}
+
+double SampleMeshSize::gmsh_bytes() const { return 64.0 * nodes + 48.0 * (tets + boundary_triangles); }
+
+SampleMeshSize block_mesh_size(double nx, double ny, double nz) {
+  SampleMeshSize m;
+  m.nodes = (nx + 1.0) * (ny + 1.0) * (nz + 1.0);
+  m.tets = 6.0 * nx * ny * nz;
+  m.boundary_triangles = 4.0 * (nx * ny + ny * nz + nz * nx);
+  return m;
+}
+
+SampleMeshSize cylinder_mesh_size(double rings, double layers) {
+  SampleMeshSize m;
+  m.nodes = (1.0 + 3.0 * rings * (rings + 1.0)) * (layers + 1.0);
+  m.tets = 18.0 * rings * rings * layers;
+  m.boundary_triangles = 12.0 * rings * rings + 12.0 * rings * layers;
+  return m;
+}
+
 double cylinder_mesh_volume(const CylinderSpec& s) {
   const double n = 6.0 * s.rings;
   return 0.5 * n * s.radius * s.radius * std::sin(2.0 * kPi / n) * s.height;

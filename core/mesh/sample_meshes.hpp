@@ -64,4 +64,23 @@ Mesh make_cylinder_mesh(const CylinderSpec& spec);
 /// The exact volume of make_cylinder_mesh(spec): the outer ring's polygon area times the height.
 double cylinder_mesh_volume(const CylinderSpec& spec);
 
+/// The size of a sample mesh, known before it is generated, so that a caller can refuse one too
+/// large to build (rather than meet std::bad_alloc). The counts are doubles: exact below 2^53, and a
+/// specification far too large to generate still gets its size.
+struct SampleMeshSize {
+  double nodes = 0.0, tets = 0.0, boundary_triangles = 0.0;
+  /// Peak memory of generating the mesh (points with their file ids, tets with their physical tags,
+  /// the boundary-face search of 4 faces per tet, the boundary triangles), bytes.
+  double generator_bytes() const;
+  /// The size of its Gmsh 2.2 file (write_gmsh22's own estimate per node and element), bytes.
+  double gmsh_bytes() const;
+};
+
+/// The size of make_block_mesh with nx x ny x nz cells: (nx+1)(ny+1)(nz+1) nodes, 6 nx ny nz tets
+/// (Kuhn split), 4 (nx ny + ny nz + nz nx) boundary triangles.
+SampleMeshSize block_mesh_size(double nx, double ny, double nz);
+/// The size of make_cylinder_mesh with `rings` and `layers`: (1 + 3 rings (rings + 1)) (layers + 1)
+/// nodes, 18 rings^2 layers tets, 12 rings^2 + 12 rings layers boundary triangles.
+SampleMeshSize cylinder_mesh_size(double rings, double layers);
+
 }  // namespace tmlab

@@ -1,16 +1,21 @@
 // Probe trajectories: scripted motions are closed and smooth; the CSV reader is strict and its
-// errors name the file and line.
+// errors name the file and line; a case's trajectory file stays in the case's folder.
 #include "realtime/probe_trajectory.hpp"
+#include "realtime/realtime_case.hpp"
 
 #include "core/base/error.hpp"
 #include "core/testing/temp_dir.hpp"
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 
 namespace tmlab::rt {
 namespace {
+
+namespace fs = std::filesystem;
 
 TEST(ProbeTrajectory, PokeIsClosedAndReachesItsDepth) {
   const Vec3 s(0.0, 0.0, 1.0);
@@ -68,19 +73,34 @@ TEST_F(TrajectoryCsv, ErrorsNameFileAndLine) {
   const std::string p = (dir_ / "probe.csv").string();
   EXPECT_EQ(error_of("t,x,y\n0,0,0\n"), p + ":1: the header must be 't,x,y,z' (got 't,x,y')");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,abc,1\n"),
-            p + ":3: column 3 (y) is not a finite number: 'abc'");
+            p + ":3: column 3 (y): 'abc' is not a number (decimal: [+-]digits[.digits][e[+-]digits])");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0\n"),
-            p + ":3: expected 4 comma-separated columns t,x,y,z (got '0.1,0,0')");
+            p + ":3: expected 4 comma-separated columns t,x,y,z (got 3)");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1,5\n"),
-            p + ":3: expected 4 comma-separated columns t,x,y,z (got '0.1,0,0,1,5')");
+            p + ":3: expected 4 comma-separated columns t,x,y,z (got 5)");
   EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n0.1,0,0,1\n0.1,0,0,1\n"),
             p + ":4: time 0.1 is not after the previous sample's (0.1)");
-  EXPECT_EQ(error_of("t,x,y,z\n0.5,0,0,1\n"), p + ":2: the first sample must be at t = 0 (got 0.5,0,0,1)");
-  EXPECT_EQ(error_of("t,x,y,z\n0,0,nan,1\n"), p + ":2: column 3 (y) is not a finite number: 'nan'");
-  EXPECT_EQ(error_of("t,x,y,z\n0,0,1e999,1\n"), p + ":2: column 3 (y) is not a finite number: '1e999'");
+  EXPECT_EQ(error_of("t,x,y,z\n0.5,0,0,1\n"), p + ":2: the first sample must be at t = 0 (got t = 0.5)");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,nan,1\n"), p + ":2: column 3 (y): NaN is not a value");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,1e999,1\n"),
+            p + ":2: column 3 (y): '1e999' is out of the range of a double");
+  EXPECT_EQ(error_of("t,x,y,z\n0,0x1p-1,0,1\n").substr(p.size()),
+            ":2: column 2 (x): '0x1p-1' is not a number "
+            "(decimal: [+-]digits[.digits][e[+-]digits])");
   EXPECT_EQ(error_of(""), p + ": empty trajectory file (expected the header 't,x,y,z')");
   EXPECT_EQ(error_of("t,x,y,z\n"), p + ": the trajectory has a header but no sample");
   EXPECT_NE(error_of("t,x,y,z\n0,,0,1\n").find(":2: column 2 (x)"), std::string::npos);
+  // A message quotes at most 40 characters of the file, control characters escaped: never a whole line.
+  const std::string secret(200, 's');
+  const std::string header = error_of("\x1b[31m" + secret + "\n");
+  EXPECT_EQ(header.find(secret.substr(0, 41)), std::string::npos) << header;
+  EXPECT_EQ(header.find('\x1b'), std::string::npos) << header;
+  EXPECT_NE(header.find(":1: the header must be 't,x,y,z' (got '\\x1b[31m"), std::string::npos) << header;
+  const std::string field = error_of("t,x,y,z\n0,0," + secret + ",1\n");
+  EXPECT_EQ(field.find(secret.substr(0, 41)), std::string::npos) << field;
+  EXPECT_NE(field.find(":2: column 3 (y): 'ssss"), std::string::npos) << field;
+  EXPECT_EQ(error_of("t,x,y,z\n0,0,0,1\n" + secret + "," + secret + "\n").find(secret.substr(0, 10)),
+            std::string::npos);
   EXPECT_THROW(ProbeTrajectory::read_csv((dir_ / "missing.csv").string()), Error);
 }
 
@@ -100,6 +120,60 @@ TEST_F(TrajectoryCsv, SamplesOutsideTheBoundsNameFileAndLine) {
   // On the box itself is inside; without bounds nothing is checked.
   EXPECT_NO_THROW(ProbeTrajectory::read_csv(write("t,x,y,z\n0,-0.1,0.1,1.7\n"), &b));
   EXPECT_NO_THROW(ProbeTrajectory::read_csv(write("t,x,y,z\n0,0,0,1.65\n0.5,-40,-57,1636\n")));
+}
+
+/// A case's trajectory file must lie in the case file's folder (or below it): a path leading out,
+/// directly or through a symbolic link, is refused naming where it resolved to, and nothing of the
+/// outside file is read or quoted (issue 26).
+TEST_F(TrajectoryCsv, CaseTrajectoryFileStaysInTheCaseFolder) {
+  const fs::path folder = dir_ / "case";
+  fs::create_directories(folder / "sub");
+  std::ofstream(dir_ / "secret.csv") << "root:x:0:0:secret\n";
+  std::ofstream(folder / "sub" / "probe.csv") << "t,x,y,z\n0,-0.04,-0.057,1.636\n1,-0.04,-0.057,1.626\n";
+  std::ifstream in(fs::path(TMLAB_SOURCE_DIR) / "cases" / "realtime" / "liver-poke.json");
+  const std::string src((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto case_with = [&](const std::string& file) {
+    std::string c = src;
+    const auto a = c.find("\"trajectory\": {");
+    c.replace(a, c.find('}', a) - a + 1, "\"trajectory\": {\"type\": \"csv\", \"file\": \"" + file + "\"}");
+    std::ofstream(folder / "c.json") << c;
+    return (folder / "c.json").string();
+  };
+  const auto error_of_case = [&](const std::string& file) -> std::string {
+    try {
+      load_realtime_case(case_with(file), TMLAB_SOURCE_DIR);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  const std::string canonical_folder = fs::canonical(folder).string();
+  for (const std::string& out : {std::string("../secret.csv"), std::string("../../../../../../etc/passwd"),
+                                 (dir_ / "secret.csv").string(), std::string("sub/../../secret.csv")}) {
+    const std::string e = error_of_case(out);
+    EXPECT_NE(e.find("key 'trajectory.file' = '" + out + "' resolves to "), std::string::npos) << e;
+    EXPECT_NE(e.find(", outside the case file's folder " + canonical_folder +
+                     ": a trajectory file must lie in that folder or below it"),
+              std::string::npos)
+        << e;
+    EXPECT_EQ(e.find("root:"), std::string::npos) << e;
+  }
+  // A symbolic link in the folder that leads out is followed, and refused.
+  std::error_code ec;
+  fs::create_symlink(dir_ / "secret.csv", folder / "link.csv", ec);
+  if (!ec) {
+    const std::string e = error_of_case("link.csv");
+    EXPECT_NE(e.find("resolves to " + fs::canonical(dir_ / "secret.csv").string() + ", outside"),
+              std::string::npos)
+        << e;
+  }
+  // Inside the folder: read, and its errors name the resolved file.
+  const RealtimeCase c = load_realtime_case(case_with("sub/probe.csv"), TMLAB_SOURCE_DIR);
+  EXPECT_EQ(c.trajectory->describe(), fs::canonical(folder / "sub" / "probe.csv").string());
+  std::ofstream(folder / "sub" / "probe.csv") << "t,x,y,z\n0,-0.04,oops,1.636\n";
+  EXPECT_NE(error_of_case("./sub/probe.csv")
+                .find(fs::canonical(folder / "sub" / "probe.csv").string() + ":2: column 3 (y): 'oops'"),
+            std::string::npos);
 }
 
 TEST(ProbeTrajectory, BadScriptsAreRefused) {

@@ -174,7 +174,9 @@ TEST_F(Cli, CompareWritesTheDifferences) {
     ASSERT_EQ(r.status, 0) << r.output;
     // A result directory of its own (issue 12): staged, summary.json listing compare.json; the
     // tensor-mass run's own directory is left as its summary describes it.
-    const fs::path cdir = dir_ / "res" / "cube-uniaxial-compare";
+    // Each comparison its own directory (issue 26): the oracle's does not replace the reference's.
+    const fs::path cdir =
+        dir_ / "res" / (against == "reference" ? "cube-uniaxial-compare" : "cube-uniaxial-compare-tl_oracle");
     std::ifstream in(cdir / "compare.json");
     const auto c = nlohmann::json::parse(in);
     std::ifstream sin(cdir / "summary.json");
@@ -187,6 +189,19 @@ TEST_F(Cli, CompareWritesTheDifferences) {
     EXPECT_LT(c["rel_diff_displacement"].get<double>(), 1e-8) << c.dump();
     EXPECT_LT(c["rel_diff_reaction"].get<double>(), 1e-8) << c.dump();
     EXPECT_LT(c["rel_diff_energy"].get<double>(), 1e-8) << c.dump();
+  }
+#ifdef TMLAB_HAVE_REFERENCE
+  // The oracle's comparison, made first, is still there beside the reference's.
+  std::ifstream oracle(dir_ / "res" / "cube-uniaxial-compare-tl_oracle" / "compare.json");
+  ASSERT_TRUE(oracle.good());
+  EXPECT_EQ(nlohmann::json::parse(oracle)["against"], "tl_oracle");
+#endif
+  // --degree is a whole number 1 or 2 of the reference's elements, and only for the reference.
+  for (const std::string bad :
+       {"--degree 1.5", "--degree 0x2", "--degree 3", "--against tl_oracle --degree 2"}) {
+    const Result r = run("compare cube-uniaxial " + bad + " --results '" + (dir_ / "res").string() + "'");
+    EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
+    EXPECT_NE(r.output.find("--degree"), std::string::npos) << r.output;
   }
 }
 

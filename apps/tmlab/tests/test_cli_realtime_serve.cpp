@@ -104,7 +104,8 @@ TEST_F(ServeCli, ServesThePageRefusesTraversalAndStopsOnSigint) {
 }
 
 TEST_F(ServeCli, BadOptionsAreRefused) {
-  for (const char* port : {"-1", "65536", "1.5", "http"}) {
+  // One number grammar (core/base/number.hpp): no hex, no blanks, no exponent for a whole number.
+  for (const char* port : {"-1", "65536", "1.5", "http", "0x4A3B", " 1.9e4", "1.9e4", "8765 "}) {
     const Result r = tmlab({"realtime", "liver-poke", "--serve", "--port", port});
     EXPECT_EQ(r.status, 2) << port << ": " << r.output;
     EXPECT_NE(r.output.find("--port"), std::string::npos) << r.output;
@@ -115,6 +116,9 @@ TEST_F(ServeCli, BadOptionsAreRefused) {
   r = tmlab({"realtime", "liver-poke", "--serve", "--record"});
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("exclude each other"), std::string::npos) << r.output;
+  r = tmlab({"realtime", "liver-poke", "--serve", "--results", dir_.string()});
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.output.find("--results only applies with --record"), std::string::npos) << r.output;
 }
 
 // ---------------------------------------------------------------- the browser test

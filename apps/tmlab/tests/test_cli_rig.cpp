@@ -128,4 +128,86 @@ TEST_F(CliRig, RefusesImpossibleRigsAndUnknownTests) {
   EXPECT_EQ(no_out.status, 2) << no_out.output;
 }
 
+/// Every option is checked before anything is written (issue 26): each refusal names the option,
+/// exits 2 (a malformed option) or 1 (a rig `tmlab run` would refuse), and leaves no folder.
+TEST_F(CliRig, OptionsAreCheckedBeforeAnythingIsWritten) {
+  const std::string out = (dir_ / "x").string();
+  const std::string ogden0 =
+      R"({"law": "ogden", "mu": [1000], "alpha": [0], "kappa": 100000, "density": 1000})";
+  const std::string neo = R"({"law": "neo_hookean", "E": 3000, "nu": 0.45, "density": 1000})";
+  struct Case {
+    std::vector<std::string> args;
+    int status;
+    std::string says;
+  };
+  const std::vector<Case> cases = {
+      {{"--cells", "400", "--layers", "400"}, 1, "384,000,000 tets"},
+      {{"--cells", "400", "--layers", "400"}, 1, "the limit is 2,000,000 tets"},
+      {{"--steps-per-segment", "1e8"}, 2, "--steps-per-segment needs a whole number"},
+      {{"--steps-per-segment", "100000000"}, 2, "--steps-per-segment needs a whole number"},
+      {{"--steps-per-segment", "200000", "--hold", "10"}, 1, "2,200,000 load steps; the limit is 1,000,000"},
+      {{"--at", "nan,0"}, 2, "--at needs a number"},
+      {{"--at", "0.01,"}, 2, "--at needs a number"},
+      {{"--at", "0.5,0.5"},
+       1,
+       "--at (the indenter centre cx, cy): (500 mm, 500 mm) lies outside the top face"},
+      {{"--at", "0.018,0"}, 1, "--at (the indenter centre cx, cy): (18 mm, 0 mm) is too close to the edge"},
+      {{"--cells", "0x10"}, 2, "--cells needs a whole number"},
+      {{"--cells", "1.5"}, 2, "--cells needs a whole number"},
+      {{"--layers", " 4"}, 2, "--layers needs a whole number"},
+      {{"--cycles", "2.0"}, 2, "--cycles needs a whole number"},
+      {{"--E", "-1"}, 1, "key 'material.E'"},
+      {{"--material", R"({"E": 3000, "nu": 0.45, "density": 1000, "colour": "red"})"}, 1, "colour"},
+      {{"--material", ogden0, "--model", "hyperelastic_tl"}, 1, "key 'material.alpha'"},
+      {{"--material", neo}, 1, "use model hyperelastic_tl"},
+      {{"--model", "fast"}, 1, "model: must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl'"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args{"rig", "indentation", "--out", out};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const Result r = run_argv(args, dir_ / "log");
+    EXPECT_EQ(r.status, c.status) << c.args[0] << " " << c.args[1] << ": " << r.output;
+    EXPECT_NE(r.output.find(c.says), std::string::npos) << c.args[0] << " " << c.args[1] << ": " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << c.args[0] << " " << c.args[1] << " left " << out;
+  }
+}
+
+/// NAME.json and NAME.msh already in --out are refused (named) unless --overwrite; a data set's own
+/// files are never written over, --overwrite or not (issue 26).
+TEST_F(CliRig, ExistingFilesAreNotReplacedSilently) {
+  const std::vector<std::string> rig{"rig", "unconfined", "--out", dir_.string(), "--name",
+                                     "r",   "--cells",    "4",     "--layers",    "2"};
+  ASSERT_EQ(run_argv(rig, dir_ / "a.log").status, 0);
+  const std::string first = tmlab::testing::read_file(dir_ / "r.json");
+  std::vector<std::string> other = rig;
+  other.insert(other.end(), {"--E", "5000"});
+  Result r = run_argv(other, dir_ / "b.log");
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find((dir_ / "r.msh").string() + " already exists"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("--overwrite"), std::string::npos) << r.output;
+  EXPECT_EQ(tmlab::testing::read_file(dir_ / "r.json"), first);
+  other.push_back("--overwrite");
+  r = run_argv(other, dir_ / "c.log");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(tmlab::testing::read_file(dir_ / "r.json"), first);
+
+  // --data disc.csv --out <its own folder>: the rig would be disc.json, the data set's metadata.
+  const std::string meta = R"({"format": "tmlab-measured/1", "name": "disc", "test": "unconfined_compression",
+    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "bottom": "bonded",
+               "platens": "frictionless"}})";
+  const fs::path csv =
+      write_data(dir_, "disc", "test_id,time_s,displacement_m,force_N\na,0,0,0\na,1,0.0005,0.1\n", meta);
+  for (const bool overwrite : {false, true}) {
+    std::vector<std::string> args{"rig", "--data", csv.string(), "--out", dir_.string(), "--cells", "4"};
+    if (overwrite) args.push_back("--overwrite");
+    r = run_argv(args, dir_ / "d.log");
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find((dir_ / "disc.json").string() + " is the input " + csv.parent_path().string()),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(tmlab::testing::read_file(dir_ / "disc.json"), meta);
+    EXPECT_FALSE(fs::exists(dir_ / "disc.msh"));
+  }
+}
+
 }  // namespace

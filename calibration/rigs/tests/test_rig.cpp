@@ -15,6 +15,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <functional>
 
 namespace tmlab::rigs {
 namespace {
@@ -32,7 +34,9 @@ class RigTest_ : public ::testing::Test {
 
   // Writes the rig, reads the case back through the case-file parser and runs the fast model.
   nlohmann::json run(const RigSpec& spec) const {
-    const fs::path case_file = write_rig(spec, dir_ / "rig");
+    RigWriteOptions w;
+    w.overwrite = true;  // one folder for the rigs a test compares
+    const fs::path case_file = write_rig(spec, dir_ / "rig", w);
     const CaseConfig c = load_case(case_file.string(), dir_.string());
     RunOptions o;
     o.results_root = (dir_ / "results").string();
@@ -180,6 +184,160 @@ TEST(RigValidation, RefusesImpossibleRigs) {
     FAIL() << "cells = 1 accepted";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("cells"), std::string::npos) << e.what();
+  }
+}
+
+/// The message of validate(s) ("" when it accepts the rig).
+std::string refusal(const RigSpec& s) {
+  try {
+    validate(s);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// The indenter's centre (--at): off the top face, too close to its edge, or not a number, the
+// message names --at; an indenter wider than the face names its radius (issue 26).
+TEST(RigValidation, IndenterPositionNamesAt) {
+  RigSpec s;
+  s.cx = s.cy = 0.5;  // metres: far off the 40 mm block
+  std::string e = refusal(s);
+  EXPECT_NE(e.find("--at (the indenter centre cx, cy): (500 mm, 500 mm) lies outside the top face, x in "
+                   "+-20 mm and y in +-20 mm"),
+            std::string::npos)
+      << e;
+  s.cx = 0.018;  // on the face, but the 5 mm indenter reaches over its edge
+  s.cy = 0.0;
+  e = refusal(s);
+  EXPECT_NE(
+      e.find("--at (the indenter centre cx, cy): (18 mm, 0 mm) is too close to the edge of the top face "
+             "for the indenter radius 5 mm"),
+      std::string::npos)
+      << e;
+  EXPECT_EQ(e.find("indenter_radius"), std::string::npos) << e;
+  s.cx = std::nan("");
+  EXPECT_NE(refusal(s).find("--at (the indenter centre cx, cy): must be two finite numbers"),
+            std::string::npos);
+  s = RigSpec{};
+  s.indenter_radius = 0.03;
+  EXPECT_NE(refusal(s).find("indenter_radius: the indenter (radius 30 mm) is wider than the top face"),
+            std::string::npos);
+  s = RigSpec{};
+  s.cx = 0.01;
+  EXPECT_EQ(refusal(s), "");
+}
+
+// A mesh too large to build is refused from its size before meshing (not std::bad_alloc), with
+// the size, the memory, the limit and how to go lower.
+TEST(RigValidation, MeshTooLargeIsRefusedFromItsSize) {
+  RigSpec s;
+  s.cells = s.layers = 400;
+  const std::string e = refusal(s);
+  EXPECT_NE(
+      e.find("rig 'rig': cells, layers: cells 400 and layers 400 give a block of 400 x 400 x 400 cells"),
+      std::string::npos)
+      << e;
+  EXPECT_NE(e.find(": 64,481,201 nodes and 384,000,000 tets (about "), std::string::npos) << e;
+  EXPECT_NE(e.find("GB to generate"), std::string::npos) << e;
+  EXPECT_NE(e.find("the limit is 2,000,000 tets"), std::string::npos) << e;
+  EXPECT_NE(e.find("give fewer cells or layers"), std::string::npos) << e;
+  s.test = RigTest::UnconfinedCompression;
+  s.shape = SampleShape::Cylinder;
+  EXPECT_NE(refusal(s).find("a cylinder of 200 rings (cells / 2) and 400 layers"), std::string::npos);
+  s.cells = 40;  // 20 rings, 400 layers: 2,880,000 tets
+  EXPECT_NE(refusal(s).find("2,880,000 tets"), std::string::npos);
+  s.layers = 100;  // 720,000 tets
+  EXPECT_EQ(refusal(s), "");
+  // A sample so slender its cell count is astronomical still gets its size, not an overflow.
+  s = RigSpec{};
+  s.size_x = 1e10;
+  s.size_y = 1e-10;
+  EXPECT_NE(refusal(s).find("tets (about "), std::string::npos) << refusal(s);
+}
+
+TEST(RigValidation, LoadStepsHaveAnUpperBound) {
+  RigSpec s;
+  s.steps_per_sample = 100000000;
+  EXPECT_NE(refusal(s).find("steps_per_segment: must be in [1, 1,000,000]"), std::string::npos) << refusal(s);
+  s.steps_per_sample = 100000;  // across each of 11 one-second segments: 1.1 million steps
+  s.history = DisplacementHistory::ramp_hold(0.002, 1.0, 10.0);
+  EXPECT_NE(refusal(s).find("make 1,100,000 load steps; the limit is 1,000,000"), std::string::npos)
+      << refusal(s);
+  s.steps_per_sample = 90000;
+  EXPECT_EQ(refusal(s), "");
+  EXPECT_EQ(rig_load_steps(s), 990000.0);
+}
+
+// The material and model as `tmlab run` would read them: refused at rig time, naming the key.
+TEST(RigValidation, MaterialIsCheckedAsRunChecksIt) {
+  RigSpec s;
+  s.material = {{"E", -1.0}, {"nu", 0.45}, {"density", 1000.0}};
+  EXPECT_NE(refusal(s).find("key 'material.E'"), std::string::npos) << refusal(s);
+  s.material = {{"E", 3000.0}, {"nu", 0.45}, {"density", 1000.0}, {"colour", "red"}};
+  EXPECT_NE(refusal(s).find("colour"), std::string::npos) << refusal(s);
+  s.material = {{"law", "ogden"}, {"mu", {1000.0}}, {"alpha", {0.0}}, {"kappa", 1e5}, {"density", 1000.0}};
+  s.model = "hyperelastic_tl";
+  EXPECT_NE(refusal(s).find("key 'material.alpha'"), std::string::npos) << refusal(s);
+  s.material["alpha"] = {2.0};
+  EXPECT_EQ(refusal(s), "");
+  s.model = "tensor_mass";  // St VK only: run would refuse the Ogden law
+  EXPECT_NE(refusal(s).find("model: 'tensor_mass' runs St Venant-Kirchhoff only; material.law 'ogden'"),
+            std::string::npos)
+      << refusal(s);
+  s.model = "reference";
+  EXPECT_NE(refusal(s).find("model: must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl'"),
+            std::string::npos);
+  s = RigSpec{};
+  s.name = ".hidden";
+  EXPECT_NE(refusal(s).find("name: "), std::string::npos);
+}
+
+// write_rig checks everything before it writes: a refused rig leaves no folder and no file; files
+// already there are refused (named) unless overwrite; an input is never written over.
+TEST_F(RigTest_, WriteRigRefusesBeforeWritingAndNeverReplacesSilently) {
+  RigSpec s;
+  s.name = "r";
+  s.cells = 4;
+  s.layers = 2;
+  using Break = std::function<void(RigSpec&)>;
+  const std::vector<Break> breaks = {
+      [](RigSpec& r) { r.cells = r.layers = 400; }, [](RigSpec& r) { r.steps_per_sample = 2000000; },
+      [](RigSpec& r) { r.cx = std::nan(""); }, [](RigSpec& r) { r.material["E"] = -1.0; }};
+  for (const Break& broken : breaks) {
+    RigSpec b = s;
+    broken(b);
+    EXPECT_THROW(write_rig(b, dir_ / "out"), Error);
+    EXPECT_FALSE(fs::exists(dir_ / "out"));
+  }
+  const fs::path case_file = write_rig(s, dir_ / "out");
+  EXPECT_EQ(case_file, dir_ / "out" / "r.json");
+  const auto mtime = fs::last_write_time(case_file);
+  try {
+    write_rig(s, dir_ / "out");
+    FAIL() << "an existing rig was replaced without overwrite";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find((dir_ / "out" / "r.msh").string() + " already exists"),
+              std::string::npos)
+        << e.what();
+  }
+  // Only the case file there (a user's own r.json): refused too, naming it, and left alone.
+  fs::remove(dir_ / "out" / "r.msh");
+  { std::ofstream(dir_ / "out" / "r.json") << "mine"; }
+  EXPECT_THROW(write_rig(s, dir_ / "out"), Error);
+  EXPECT_FALSE(fs::exists(dir_ / "out" / "r.msh"));
+  RigWriteOptions w;
+  w.overwrite = true;
+  EXPECT_NO_THROW(write_rig(s, dir_ / "out", w));
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "r.msh"));
+  EXPECT_GE(fs::last_write_time(case_file), mtime);
+  // An input is never written over, even with overwrite.
+  w.inputs = {dir_ / "out" / "r.json"};
+  try {
+    write_rig(s, dir_ / "out", w);
+    FAIL() << "an input was written over";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is the input"), std::string::npos) << e.what();
   }
 }
 

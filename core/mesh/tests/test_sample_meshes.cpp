@@ -6,9 +6,11 @@
 #include "core/testing/small_meshes.hpp"
 
 #include <gtest/gtest.h>
+
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <map>
 
@@ -113,6 +115,36 @@ TEST(CylinderMesh, ConformingPositiveAndExactVolume) {
     EXPECT_NEAR(group_area(m, kCylinderTop), polygon, 1e-14);
     EXPECT_NEAR(group_area(m, kCylinderSide), perimeter * s.height, 1e-14);
   }
+}
+
+/// The size known before meshing (what a caller checks against its limit) is the generated mesh's.
+TEST(SampleMeshSize, CountsAreTheGeneratedMeshes) {
+  for (const auto& [nx, ny, nz] : {std::array<int, 3>{2, 2, 1}, {5, 3, 4}, {8, 8, 2}}) {
+    BlockSpec s;
+    s.nx = nx;
+    s.ny = ny;
+    s.nz = nz;
+    const Mesh m = make_block_mesh(s);
+    const SampleMeshSize z = block_mesh_size(nx, ny, nz);
+    EXPECT_EQ(z.nodes, static_cast<double>(m.num_points())) << nx << " " << ny << " " << nz;
+    EXPECT_EQ(z.tets, static_cast<double>(m.num_tets()));
+    EXPECT_EQ(z.boundary_triangles, static_cast<double>(m.triangles.size()));
+  }
+  for (const auto& [rings, layers] : {std::array<int, 2>{1, 1}, {3, 2}, {6, 5}}) {
+    CylinderSpec s;
+    s.rings = rings;
+    s.layers = layers;
+    const Mesh m = make_cylinder_mesh(s);
+    const SampleMeshSize z = cylinder_mesh_size(rings, layers);
+    EXPECT_EQ(z.nodes, static_cast<double>(m.num_points())) << rings << " " << layers;
+    EXPECT_EQ(z.tets, static_cast<double>(m.num_tets()));
+    EXPECT_EQ(z.boundary_triangles, static_cast<double>(m.triangles.size()));
+  }
+  // Far beyond what could be generated, the size is still known (no overflow): 400^3 cells.
+  const SampleMeshSize big = block_mesh_size(400, 400, 400);
+  EXPECT_EQ(big.tets, 384e6);
+  EXPECT_GT(big.generator_bytes(), 3e10);
+  EXPECT_GT(big.gmsh_bytes(), 1.8e10);
 }
 
 TEST(CylinderMesh, QualityHoldsAsRingsGrow) {
