@@ -109,6 +109,10 @@ RigSpec rig_from_data(const DataSet& d, std::size_t k, const DataRigMesh& mesh) 
                   " test needs a finite sample (block or cylinder), not a half_space");
     if (!sm.platens) throw Error(key(d, "sample.platens") + ": missing (bonded or frictionless platens)");
     s.platens = support(*sm.platens);
+    if (sm.bottom && *sm.bottom != *sm.platens)
+      throw Error(key(d, "sample.bottom") + ": is " + to_string(*sm.bottom) + " but sample.platens is " +
+                  to_string(*sm.platens) + ": the platen rigs give both platens one interface (omit " +
+                  "'bottom' or make it equal to 'platens')");
     if (sm.shape == ms::SampleShape::cylinder) {
       s.shape = rigs::SampleShape::Cylinder;
       s.radius = sm.radius_m;

@@ -11,9 +11,14 @@
 
 #include <algorithm>
 #include <array>
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <optional>
 #include <string>
+
+#include <stdlib.h>
+#include <unistd.h>
 
 namespace tmlab::rigs {
 
@@ -425,8 +430,18 @@ fs::path write_rig(const RigSpec& s, const fs::path& dir, const RigWriteOptions&
   const std::string case_text = rig_case(s, mesh_path.filename().string()).dump(2) + "\n";
   fs::create_directories(dir, ec);
   if (ec) throw Error(dir.string() + ": cannot create the directory: " + ec.message());
-  const fs::path tmp = dir / (s.name + ".msh.tmp");
-  write_gmsh22(mesh, tmp.string());
+  // A fresh temporary (created exclusively): never a file that was there.
+  std::string tmpl = (dir / (s.name + ".msh.tmpXXXXXX")).string();
+  const int fd = ::mkstemp(tmpl.data());
+  if (fd < 0) throw Error(mesh_path.string() + ": cannot write the mesh: " + std::strerror(errno));
+  ::close(fd);
+  const fs::path tmp = tmpl;
+  try {
+    write_gmsh22(mesh, tmp.string());
+  } catch (...) {
+    fs::remove(tmp, ec);
+    throw;
+  }
   try {
     write_file_atomically(case_path, case_text);
   } catch (...) {

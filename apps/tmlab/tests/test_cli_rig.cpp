@@ -72,8 +72,7 @@ TEST_F(CliRig, DataSetTestBecomesARigDrivenByItsDisplacementColumn) {
                  "a,0,0,0\na,1,0.0005,0.1\n"
                  "b,5,0,0\nb,6,0.0004,0.05\nb,7,0.0008,0.1\nb,9,0.0008,0.09\nb,10,0.0004,0.04\n",
                  R"({"format": "tmlab-measured/1", "name": "disc", "test": "unconfined_compression",
-    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "bottom": "bonded",
-               "platens": "frictionless"}})");
+    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "platens": "frictionless"}})");
   const Result several =
       run_argv({"rig", "--data", csv.string(), "--out", (dir_ / "rig").string()}, dir_ / "s.log");
   EXPECT_EQ(several.status, 2) << several.output;
@@ -193,8 +192,7 @@ TEST_F(CliRig, ExistingFilesAreNotReplacedSilently) {
 
   // --data disc.csv --out <its own folder>: the rig would be disc.json, the data set's metadata.
   const std::string meta = R"({"format": "tmlab-measured/1", "name": "disc", "test": "unconfined_compression",
-    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "bottom": "bonded",
-               "platens": "frictionless"}})";
+    "sample": {"shape": "cylinder", "radius_m": 0.01, "height_m": 0.01, "platens": "frictionless"}})";
   const fs::path csv =
       write_data(dir_, "disc", "test_id,time_s,displacement_m,force_N\na,0,0,0\na,1,0.0005,0.1\n", meta);
   for (const bool overwrite : {false, true}) {

@@ -129,8 +129,13 @@ TEST(DataRig, MissingOrRiglessMetadataNamesTheKey) {
   d.meta.sample.platens.reset();
   expect_error(d, "cmp.json: key 'sample.platens'");
   d = compression(ms::TestType::uniaxial_tension);
+  d.meta.sample.bottom.reset();
   d.meta.sample.platens = ms::Interface::frictionless;
   expect_error(d, "platens");
+  // The platen rigs give both platens one interface: a different bottom is refused, not ignored.
+  d = compression(ms::TestType::unconfined_compression);
+  d.meta.sample.platens = ms::Interface::frictionless;
+  expect_error(d, "cmp.json: key 'sample.bottom': is bonded but sample.platens is frictionless");
   // A displacement reaching the sample height: the rig's check, reported against the test.
   d = indentation();
   d.tests[0].displacement_m.back() = 0.03;
