@@ -41,16 +41,17 @@ void check_force_sign(const DataSet& data, const std::string& file) {
   // Both columns flipped (a tension recorded as a compression's mirror image) need both flipped back.
   // (Not for indentation, where an approach before contact may be long and at negative depth.)
   const bool displacement_too = kind != TestType::indentation && wrong_side(t.displacement_m, sign);
-  std::string msg = printable(file.empty() ? data.meta.name : file, 200) + ": test " +
-                    (t.id.empty() ? std::to_string(first + 1) : "'" + printable(t.id, 60) + "'") + " (" +
-                    to_string(kind) + "): force must be " + positive + " in " + kind_word(kind) +
-                    " (tmlab-measured/1: force_N positive when the sample pushes back, negative when it "
-                    "pulls): " +
-                    std::to_string(wrong) + " of " + std::to_string(t.size()) + " samples are " + negative +
-                    "; flip the sign of force_N" +
-                    (displacement_too ? " (and of displacement_m, which is " + negative +
-                                            " too: it must be " + positive + " in " + kind_word(kind) + ")"
-                                      : std::string());
+  std::string msg =
+      printable(file.empty() ? data.meta.name : file, 200) + ": test " +
+      (t.id.empty() ? std::to_string(first + 1) : "'" + printable(t.id, 60) + "'") + " (" + to_string(kind) +
+      "): force must be " + positive + " in " + kind_word(kind) +
+      " (the sign convention of tmlab-measured/1: force_N positive when the sample pushes back, negative "
+      "when it pulls): " +
+      std::to_string(wrong) + " of " + std::to_string(t.size()) + " samples are " + negative +
+      "; flip the sign of force_N" +
+      (displacement_too ? " (and of displacement_m, which is " + negative + " too: it must be " + positive +
+                              " in " + kind_word(kind) + ")"
+                        : std::string());
   if (bad_tests > 1)
     msg += " (" + std::to_string(bad_tests) + " of the " + std::to_string(data.tests.size()) +
            " tests have the wrong sign)";
