@@ -35,10 +35,7 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
   opt.quick = p.has("--quick");
   opt.large = p.has("--large");
   if (opt.quick && opt.large) throw UsageError("--quick and --large exclude each other");
-  const double threads = parse_double("--threads", p.get("--threads", "2"));
-  if (!(threads >= 1 && threads <= 64 && threads == static_cast<int>(threads)))
-    throw UsageError("--threads must be a whole number from 1 to 64");
-  opt.max_threads = static_cast<int>(threads);
+  opt.max_threads = static_cast<int>(parse_whole("--threads", p.get("--threads", "2"), 1, 64));
   opt.min_time = parse_double("--min-time", p.get("--min-time", opt.quick ? "0.002" : "0.2"));
   if (!(opt.min_time > 0.0 && opt.min_time <= 60.0))
     throw UsageError("--min-time must be in (0, 60] seconds");

@@ -8,6 +8,7 @@
 #include "fit_checkpoint.hpp"
 
 #include "calibration/data/measured_data.hpp"
+#include "calibration/data/sign_convention.hpp"
 #include "calibration/discover/benchmark.hpp"
 #include "calibration/discover/discover.hpp"
 #include "calibration/discover/fe_refit.hpp"
@@ -280,7 +281,10 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
   UnitList<discover::BenchmarkEntry> units(dir, "discover-benchmark", fingerprint, checkpoint_schedule(p),
                                            put_benchmark_entries, "benchmark set(s)");
   UnitCheckpoint& ck = units.ck;
-  if (p.has("--resume")) log.restored = units.restore(get_benchmark_entries);
+  if (p.has("--resume")) {
+    refuse_resume_of_complete(dir, "benchmark");
+    log.restored = units.restore(get_benchmark_entries);
+  }
   log.finished = [&units](const discover::BenchmarkEntry& e) { units.finished(e); };
   RunOutput out(dir, &std::cerr,
                 p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
@@ -408,6 +412,7 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
                          const discover::FeRefitOptions& fe, const std::string& command_line) {
   const fs::path csv = p.positional[0];
   const measured::DataSet data = measured::read_data_set(csv);
+  measured::check_force_sign(data, csv.string());  // the check tmlab fit makes (one rule)
   const fs::path dir = p.has("--out") ? fs::path(p.get("--out"))
                                       : fs::path(tmlab_root()) / "results" / "discover" / data.meta.name;
   if (!p.has("--out")) {
@@ -428,7 +433,10 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
   UnitList<discover::FitOutcome> units(dir, "discover", fingerprint, checkpoint_schedule(p), put_fit_outcomes,
                                        "fit(s)");
   UnitCheckpoint& ck = units.ck;
-  if (p.has("--resume")) log.restored = units.restore(get_fit_outcomes);
+  if (p.has("--resume")) {
+    refuse_resume_of_complete(dir, "discovery");
+    log.restored = units.restore(get_fit_outcomes);
+  }
   log.finished = [&units](const discover::FitOutcome& f) { units.finished(f); };
   o.fit_log = &log;
   RunOutput out(dir, &std::cerr,
@@ -506,11 +514,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
                           "--resume", "--no-test-control"});
   discover::Options o;
   auto whole = [&](const std::string& key, int fallback, int lo, int hi) {
-    if (!p.has(key)) return fallback;
-    const double v = parse_double(key, p.get(key));
-    if (!(v >= lo && v <= hi && v == std::floor(v)))
-      throw UsageError(key + " must be a whole number " + std::to_string(lo) + ".." + std::to_string(hi));
-    return int(v);
+    return p.has(key) ? int(parse_whole(key, p.get(key), lo, hi)) : fallback;
   };
   o.max_samples = std::size_t(whole("--max-samples", int(o.max_samples), 50, 1000000));
   o.max_rounds = whole("--rounds", o.max_rounds, 1, 20);
@@ -544,12 +548,8 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
     const std::string m = p.get("--mesh");
     const std::size_t comma = m.find(',');
     if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
-    const double c = parse_double("--mesh cells", m.substr(0, comma)),
-                 l = parse_double("--mesh layers", m.substr(comma + 1));
-    if (!(c >= 2 && c <= 400 && l >= 1 && l <= 400 && c == std::floor(c) && l == std::floor(l)))
-      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
-    fe.mesh.cells = int(c);
-    fe.mesh.layers = int(l);
+    fe.mesh.cells = int(parse_whole("--mesh CELLS", m.substr(0, comma), 2, 400));
+    fe.mesh.layers = int(parse_whole("--mesh LAYERS", m.substr(comma + 1), 1, 400));
   }
   fe.substeps = whole("--substeps", fe.substeps, 1, 100);
   fe.max_iterations = whole("--fe-iterations", fe.max_iterations, 1, 200);

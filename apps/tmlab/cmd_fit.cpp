@@ -7,6 +7,7 @@
 #include "fit_checkpoint.hpp"
 
 #include "calibration/data/measured_data.hpp"
+#include "calibration/data/sign_convention.hpp"
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/relaxation_bands.hpp"
@@ -37,6 +38,19 @@ std::pair<std::string, double> name_value(const std::string& option, const std::
   const std::size_t eq = s.find('=');
   if (eq == std::string::npos || eq == 0) throw UsageError(option + " needs NAME=VALUE, got '" + s + "'");
   return {s.substr(0, eq), parse_double(option + " " + s.substr(0, eq), s.substr(eq + 1))};
+}
+
+/// When fewer local runs ran than --local-runs asked for (one per candidate start, and there were
+/// fewer starts, or fewer the model could evaluate): what ran and why; "" otherwise.
+std::string local_runs_note(const fit::FitResult& r, const fit::FitOptions& o) {
+  if (r.local_runs >= o.local_runs) return "";
+  return "--local-runs " + std::to_string(o.local_runs) + " asked for more Levenberg-Marquardt runs than " +
+         "there were candidate starts to run them from: " + std::to_string(r.local_runs) + " ran (" +
+         (o.global == fit::GlobalStage::Siman ? "simulated annealing gives 2 starts: its best state and the "
+                                                "parameters' values"
+                                              : "--starts " + std::to_string(o.starts) +
+                                                    ", each run from one start the model could evaluate") +
+         ")";
 }
 
 nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fit::FitOptions& o,
@@ -87,7 +101,8 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
                        {"model", r.global_model_name},
                        {"surrogate_solves", r.global_solves},
                        {"starts", o.global == fit::GlobalStage::Siman ? 1 : o.starts},
-                       {"local_runs", o.local_runs},
+                       {"local_runs", r.local_runs},
+                       {"local_runs_requested", o.local_runs},
                        {"seed", o.seed},
                        {"start_costs", json::array()},
                        {"surrogate_costs", json::array()}};
@@ -112,6 +127,7 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
   for (const auto& c : r.confounded)
     j["confounded"].push_back({{"a", c.a}, {"b", c.b}, {"correlation", c.correlation}, {"note", c.note}});
   j["notes"] = r.notes;
+  if (const std::string n = local_runs_note(r, o); !n.empty()) j["notes"].push_back(n);
   if (!r.profile.parameter.empty()) {
     json pts = json::array();
     for (const auto& q : r.profile.points)
@@ -131,11 +147,7 @@ nlohmann::json to_json(const fit::FitResult& r, const fit::Problem& pr, const fi
 
 /// A whole number 1..10000 for option `key`, `fallback` when it is not given.
 int positive_int(const Parsed& p, const std::string& key, int fallback) {
-  if (!p.has(key)) return fallback;
-  const double v = parse_double(key, p.get(key));
-  if (!(v >= 1.0 && v <= 10000.0 && v == std::floor(v)))
-    throw UsageError(key + " must be a whole number 1..10000");
-  return int(v);
+  return p.has(key) ? int(parse_whole(key, p.get(key), 1, 10000)) : fallback;
 }
 
 /// Every --prior NAME=MEAN:SD.
@@ -162,12 +174,8 @@ fit::FeRigOptions parse_fe_rig_options(const Parsed& p) {
     const std::string m = p.get("--mesh");
     const std::size_t comma = m.find(',');
     if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
-    const double c = parse_double("--mesh cells", m.substr(0, comma)),
-                 l = parse_double("--mesh layers", m.substr(comma + 1));
-    if (!(c >= 2 && c <= 400 && c == std::floor(c) && l >= 1 && l <= 400 && l == std::floor(l)))
-      throw UsageError("--mesh: CELLS in 2..400 and LAYERS in 1..400, whole numbers");
-    fe.mesh.cells = int(c);
-    fe.mesh.layers = int(l);
+    fe.mesh.cells = int(parse_whole("--mesh CELLS", m.substr(0, comma), 2, 400));
+    fe.mesh.layers = int(parse_whole("--mesh LAYERS", m.substr(comma + 1), 1, 400));
   }
   fe.substeps = positive_int(p, "--substeps", fe.substeps);
   return fe;
@@ -251,7 +259,8 @@ fit::Problem build_problem(const Parsed& p, const measured::DataSet& data, const
     }
   }
   problem.priors = q.priors;
-  if (q.band_floor > 0.0)  // tau_j in ordered bands of [floor x sampling interval, ceiling x duration]
+  fit::check_priors(problem);  // a parameter given two priors, or a fixed one, refused before computing
+  if (q.band_floor > 0.0)      // tau_j in ordered bands of [floor x sampling interval, ceiling x duration]
     fit::band_relaxation_times(problem.parameters, q.spec,
                                fit::relaxation_range(data, q.band_floor, q.band_ceiling));
   if (p.has("--noise")) {
@@ -381,7 +390,7 @@ std::string make_fit_plots(const Parsed& p, const RunOutput& out, const measured
 }
 
 /// The parameter table, the cost and its forward model, the profile, the confounded pairs and notes.
-void print_fit_report(const fit::FitResult& r, const fit::Problem& problem) {
+void print_fit_report(const fit::FitResult& r, const fit::Problem& problem, const fit::FitOptions& o) {
   std::cout << std::left << std::setw(10) << "parameter" << std::right << std::setw(14) << "value"
             << std::setw(6) << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval"
             << "\n";
@@ -414,6 +423,7 @@ void print_fit_report(const fit::FitResult& r, const fit::Problem& problem) {
     std::cout << "confounded: " << c.a << " and " << c.b << " (correlation " << significant(c.correlation, 4)
               << "): " << c.note << "\n";
   for (const auto& n : r.notes) std::cout << "note: " << n << "\n";
+  if (const std::string n = local_runs_note(r, o); !n.empty()) std::cout << "note: " << n << "\n";
 }
 
 }  // namespace
@@ -429,6 +439,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   const fs::path csv = p.positional[0];
   const measured::DataSet data = measured::read_data_set(csv);
   const FitRequest q = parse_fit_request(p);
+  measured::check_force_sign(data, csv.string());
   std::string why_closed_form;
   const fit::Problem problem = build_problem(p, data, q, why_closed_form);
   const fs::path dir = result_dir(p, data, q.spec);
@@ -444,6 +455,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
                     });
   fit::FitOptions options = q.options;
   if (p.has("--resume")) {
+    refuse_resume_of_complete(dir, "fit");
     restored = get_fit_units(ck.read());
     ck.resumed_from(describe(restored));
     options.resume.restored = &restored;
@@ -467,7 +479,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
     out.write_json("fit.json", to_json(r, problem, q.options, q.spec));
     write_fit_h5(out.file("fit.h5"), data, r);
     const std::string plots = make_fit_plots(p, out, data, q.spec, r);
-    print_fit_report(r, problem);
+    print_fit_report(r, problem, q.options);
     nlohmann::json summary = {{"model", q.spec.text},
                               {"forward_model", r.model_name},
                               {"residual_rms_percent_of_peak", r.rms_percent_peak},

@@ -36,10 +36,7 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   const std::vector<std::string> groups = split_list(p.get("--histories", "ramp_hold,sine,random"));
   if (groups.empty()) throw UsageError("--histories needs a comma-separated list (ramp_hold, sine, random)");
   if (p.has("--seed")) {
-    const double s = parse_double("--seed", p.get("--seed"));
-    if (!(s >= 0.0) || s != std::floor(s) || s > 9.0e15)
-      throw UsageError("--seed needs a non-negative integer");
-    o.study.seed = static_cast<std::uint64_t>(s);
+    o.study.seed = static_cast<std::uint64_t>(parse_whole("--seed", p.get("--seed"), 0, 9000000000000000LL));
   }
   o.histories = tm::study_histories(groups, o.study);
   // Quick runs only the seed's form (a pk2 liver step costs ~7x a nodal_force one).

@@ -35,9 +35,7 @@ int cmd_inversion(const std::vector<std::string>& args, const std::string& comma
   if (p.has("--cells")) {
     o.cells.clear();
     for (const std::string& c : split_list(p.get("--cells"))) {
-      const double n = parse_double("--cells", c);
-      if (!(n >= 2) || n != std::floor(n) || n > 64) throw UsageError("--cells needs integers in [2, 64]");
-      o.cells.push_back(static_cast<int>(n));
+      o.cells.push_back(static_cast<int>(parse_whole("--cells", c, 2, 64)));
     }
     if (o.cells.empty()) throw UsageError("--cells needs a comma-separated list of integers");
   }

@@ -121,6 +121,13 @@ std::string describe(const fit::FitUnits& u) {
   return s;
 }
 
+void refuse_resume_of_complete(const std::filesystem::path& dir, const std::string& what) {
+  std::error_code ec;
+  if (std::filesystem::exists(dir / "summary.json", ec))
+    throw Error("nothing to resume: " + dir.string() + " holds a complete " + what +
+                " (summary.json); run without --resume to redo it");
+}
+
 // --- fit results ------------------------------------------------------------------------------------
 
 void put_fit_result(CheckpointData& d, const std::string& prefix, const fit::FitResult& r) {
@@ -138,6 +145,7 @@ void put_fit_result(CheckpointData& d, const std::string& prefix, const fit::Fit
             {"global_solves", r.global_solves},
             {"threads", r.threads},
             {"iterations", r.iterations},
+            {"local_runs", r.local_runs},
             {"correlation_size", r.correlation.size()},
             {"profile",
              {{"parameter", r.profile.parameter},
@@ -195,6 +203,7 @@ fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix
     r.global_solves = m.at("global_solves").get<long>();
     r.threads = m.at("threads").get<int>();
     r.iterations = m.at("iterations").get<int>();
+    r.local_runs = m.value("local_runs", 0);  // absent from checkpoints of earlier builds
     r.profile.parameter = m.at("profile").at("parameter").get<std::string>();
     r.profile.lower_found = m.at("profile").at("lower_found").get<bool>();
     r.profile.upper_found = m.at("profile").at("upper_found").get<bool>();

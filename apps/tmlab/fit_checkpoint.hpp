@@ -42,6 +42,11 @@ std::vector<discover::FitOutcome> get_fit_outcomes(const CheckpointData& d);
 void put_benchmark_entries(CheckpointData& d, const std::vector<discover::BenchmarkEntry>& v);
 std::vector<discover::BenchmarkEntry> get_benchmark_entries(const CheckpointData& d);
 
+/// --resume of a result directory that holds a complete result (its summary.json): tmlab::Error
+/// "nothing to resume: DIR holds a complete WHAT (summary.json); run without --resume to redo it".
+/// Checked before the checkpoint is read and before the result directory is opened.
+void refuse_resume_of_complete(const std::filesystem::path& dir, const std::string& what);
+
 /// "0123456789abcdef": a file's FNV-1a-64 hash for a fingerprint (tmlab::Error naming a missing file).
 std::string file_hash(const std::filesystem::path& path);
 

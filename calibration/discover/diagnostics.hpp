@@ -27,6 +27,10 @@ struct Thresholds {
   double alpha = 1e-3;        ///< significance level of runs, Ljung-Box, Jarque-Bera, Fisher g
   double noise_ratio = 1.5;   ///< residual RMS / high-frequency noise level above this: not noise
   int min_period_cycles = 5;  ///< a spectral peak must repeat at least this often per test
+  /// Residual RMS below this times the noise level: the data carry no noise to weigh a candidate
+  /// against (noise-free or smoothed data: a fit to noisy data cannot go much below the noise, so
+  /// the "noise level" is the curve's own curvature), and the loop selects nothing (discover.hpp).
+  double below_noise = 0.5;
 };
 
 struct Diagnostic {

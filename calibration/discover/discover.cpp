@@ -1,5 +1,6 @@
 #include "calibration/discover/discover.hpp"
 
+#include "calibration/data/sign_convention.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/interrupt.hpp"
@@ -484,12 +485,27 @@ std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
   return accepted;
 }
 
+/// Why nothing is selected when `cur`'s residual lies below th.below_noise x the data's noise level
+/// (noise-free data: a BIC with the residual as its own noise scale makes any candidate that bends
+/// the curve toward a smooth residual look very strong evidence); "" otherwise.
+std::string below_noise(const Fitted& cur, const Thresholds& th) {
+  const double sigma = cur.study.noise_sigma;
+  if (!(sigma > 0.0) || !(cur.fit.rms < th.below_noise * sigma)) return "";
+  return "the residual (RMS " + significant(cur.fit.rms, 4) + " N) is below " +
+         significant(th.below_noise, 2) + " x the data's noise level (" + significant(sigma, 4) +
+         " N, from second differences of the force): a fit to noisy data cannot get there, so the data "
+         "carry no noise to weigh a candidate against (noise-free or smoothed data) and no effect is "
+         "selected; the structure left is smaller than the data's own high-frequency content";
+}
+
 }  // namespace
 
 Report run(const measured::DataSet& data, const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Report r;
   r.options = o;
+  // A force against the sign convention would be "explained" as drift: refused first.
+  measured::check_force_sign(data, "");
   r.data = prepare(data, o.max_samples);
   const Prepared& p = r.data;
   held_out_folds(p, &r.held_out_scheme);
@@ -515,6 +531,12 @@ Report run(const measured::DataSet& data, const Options& o) {
   for (int round = 1; round <= o.max_rounds; ++round) {
     if (!cur.study.structured) {
       r.stop_reason = "the residual is noise (every decisive diagnostic passes)";
+      break;
+    }
+    if (const std::string why = below_noise(cur, o.thresholds); !why.empty()) {
+      r.stop_reason = why;
+      r.notes.push_back(why);
+      say(o, "round " + std::to_string(round) + ": " + why);
       break;
     }
     std::vector<std::size_t> step_of;

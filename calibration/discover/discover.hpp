@@ -1,4 +1,5 @@
 // The discovery loop of `tmlab discover` (issue 15; docs/discover.md):
+//   0. the data checked against the sign convention (measured::check_force_sign);
 //   1. baseline: the paper's model (St VK, two Prony terms) on the data's rig, fitted (tmlab::fit);
 //   2. the residual studied (diagnostics.hpp): noise, or structure, and where;
 //   3. every applicable effect of the library (effects.hpp) added in turn and fitted, starting from

@@ -1,6 +1,8 @@
 // The fitting engine (fitter.hpp has the method and the equations).
 #include "calibration/fit/fitter.hpp"
 
+#include "calibration/fit/model_spec.hpp"
+
 #include "calibration/fit/parallel.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -452,6 +454,7 @@ Local local_stage(const Problem& pr, const FitOptions& opt, const Evaluator& ev,
       log.finished();
     }
     res.iterations += l.iterations;
+    ++res.local_runs;
     if (l.cost < best.cost) best = std::move(l);
   }
   if (!std::isfinite(best.cost))
@@ -667,12 +670,16 @@ void profile_likelihood(const Problem& pr, const FitOptions& opt, const Evaluato
   double worst_rel = -1.0;
   for (std::size_t j = 0; j < p; ++j) {
     const ParameterResult& r = res.parameters[ev.free[j]];
-    const double rel = r.identifiable ? r.standard_error / std::max(std::abs(r.value), 1e-300) : kInf;
+    double rel = r.identifiable ? r.standard_error / std::max(std::abs(r.value), 1e-300) : kInf;
+    // A NaN standard error (a covariance that is NaN: a degenerate optimum) determines nothing: the
+    // worst, not a value every comparison skips (which left `worst` one past the end).
+    if (std::isnan(rel)) rel = kInf;
     if (rel > worst_rel) {
       worst_rel = rel;
       worst = j;
     }
   }
+  if (worst == p) return;  // no free parameter
   const std::size_t i = ev.free[worst];
   const Parameter& q = pr.parameters[i];
   res.profile.parameter = q.name;
@@ -848,6 +855,21 @@ std::vector<std::vector<double>> global_units(const Problem& pr, const FitOption
 
 }  // namespace
 
+void check_priors(const Problem& pr) {
+  for (std::size_t k = 0; k < pr.priors.size(); ++k) {
+    const Prior& q = pr.priors[k];
+    const std::size_t i = index_of(pr.parameters, q.parameter);
+    if (pr.parameters[i].fixed) throw Error("fit: a prior on '" + q.parameter + "', which is fixed");
+    if (!(q.sd > 0.0) || !std::isfinite(q.sd) || !std::isfinite(q.mean))
+      throw Error("fit: the prior on '" + q.parameter + "' needs a finite mean and a positive sd");
+    for (std::size_t j = 0; j < k; ++j)
+      if (pr.priors[j].parameter == q.parameter)
+        throw Error("fit: two priors on '" + q.parameter + "' (mean " + shortest(pr.priors[j].mean) +
+                    ", sd " + shortest(pr.priors[j].sd) + " and mean " + shortest(q.mean) + ", sd " +
+                    shortest(q.sd) + "): give one");
+  }
+}
+
 bool converged_stop(const std::string& stop_reason) {
   return stop_reason == kStopXtol || stop_reason == kStopGtol || stop_reason == kStopConverged;
 }
@@ -881,13 +903,9 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
       throw Error(
           "fit: a prior needs the noise level of the data, which cannot be estimated from these "
           "samples (give it: --noise SIGMA_N)");
-    for (const Prior& q : pr.priors) {
-      const std::size_t i = index_of(pr.parameters, q.parameter);
-      if (pr.parameters[i].fixed) throw Error("fit: a prior on '" + q.parameter + "', which is fixed");
-      if (!(q.sd > 0.0) || !std::isfinite(q.sd) || !std::isfinite(q.mean))
-        throw Error("fit: the prior on '" + q.parameter + "' needs a finite mean and a positive sd");
-      ev.priors.emplace_back(i, q.mean, q.sd);
-    }
+    check_priors(pr);
+    for (const Prior& q : pr.priors)
+      ev.priors.emplace_back(index_of(pr.parameters, q.parameter), q.mean, q.sd);
     res.noise_sigma = ev.sigma;
   }
   res.global_stage = to_string(opt.global);

@@ -147,6 +147,10 @@ struct FitResult {
   double wall_seconds = 0.0;
   int threads = 1;
   int iterations = 0;
+  /// Levenberg-Marquardt runs of the local stage that ran (restored ones included): at most
+  /// FitOptions::local_runs, fewer when there were fewer candidate starts (or fewer that the model
+  /// could evaluate).
+  int local_runs = 0;
   std::string stop_reason;
   /// The costs of the local stage's candidate starts, in candidate order (the global stage's, or,
   /// with a surrogate, the final model's costs of the surrogate's best candidates).
@@ -160,6 +164,11 @@ struct FitResult {
 /// True when `stop_reason` (FitResult::stop_reason) is one of the local stage's convergence tests
 /// (the step, xtol, or the gradient, gtol), false for the iteration limit or a GSL error.
 bool converged_stop(const std::string& stop_reason);
+
+/// Checks the problem's priors: each names a free parameter, has a finite mean and a positive sd,
+/// and no parameter has two (tmlab::Error naming both). fit() calls it; a caller may call it first
+/// to refuse before computing.
+void check_priors(const Problem& problem);
 
 /// Fits `problem`. Deterministic for a given seed, independent of options.threads.
 /// Throws tmlab::Error when no candidate start can be evaluated.

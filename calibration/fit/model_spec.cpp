@@ -1,12 +1,16 @@
 #include "calibration/fit/model_spec.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
+#include "core/base/number.hpp"
 #include "tensormass/materials/law_factory.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 namespace tmlab::fit {
@@ -26,13 +30,15 @@ std::vector<std::string> split(const std::string& s, char sep) {
   }
 }
 
+/// "--model 'SPEC'" with the SPEC shown safely (control characters escaped, long text cut).
+std::string label(const std::string& spec) { return "--model '" + printable(spec, 80) + "'"; }
+
 int small_count(const std::string& spec, const std::string& what, const std::string& s) {
-  if (s.empty() || s.size() > 2 ||
-      !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
-    throw Error("--model '" + spec + "': " + what + " must be a whole number 1..9, got '" + s + "'");
-  const int n = std::stoi(s);
-  if (n < 1 || n > 9) throw Error("--model '" + spec + "': " + what + " must be 1..9, got " + s);
-  return n;
+  std::int64_t n = 0;
+  std::string why;
+  if (!parse_whole(s, 1, 9, n, why))
+    throw Error(label(spec) + ": " + what + " must be a whole number 1..9: " + why);
+  return int(n);
 }
 
 Parameter param(std::string name, std::string unit, double value, double lo, double hi, double s_lo,
@@ -63,6 +69,12 @@ double kappa_from(double mu0, double nu) { return 2.0 * mu0 * (1.0 + nu) / (3.0 
 
 }  // namespace
 
+std::string shortest(double v) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, r.ptr);
+}
+
 ModelSpec parse_model_spec(const std::string& text) {
   ModelSpec spec;
   spec.text = text;
@@ -73,7 +85,7 @@ ModelSpec parse_model_spec(const std::string& text) {
     const std::string tail = head.substr(plus + 1);
     head = head.substr(0, plus);
     if (tail.rfind("prony:", 0) != 0)
-      throw Error("--model '" + text + "': after '+' only 'prony:M' is known, got '" + tail + "'");
+      throw Error(label(text) + ": after '+' only 'prony:M' is known, got '" + printable(tail, 40) + "'");
     spec.prony_terms = small_count(text, "the number of Prony terms", tail.substr(6));
   }
   const std::size_t colon = head.find(':');
@@ -82,27 +94,25 @@ ModelSpec parse_model_spec(const std::string& text) {
   if (std::find(names.begin(), names.end(), spec.law) == names.end()) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw Error("--model '" + text + "': unknown law '" + spec.law + "' (use " + list + ")");
+    throw Error(label(text) + ": unknown law '" + printable(spec.law, 40) + "' (use " + list + ")");
   }
   if (colon != std::string::npos) {
-    if (spec.law != "ogden") throw Error("--model '" + text + "': ':N' (number of terms) is for ogden only");
+    if (spec.law != "ogden") throw Error(label(text) + ": ':N' (number of terms) is for ogden only");
     spec.ogden_terms = small_count(text, "the number of Ogden terms", head.substr(colon + 1));
   }
   for (std::size_t i = 1; i < parts.size(); ++i) {
     const std::size_t eq = parts[i].find('=');
     if (eq == std::string::npos || eq == 0)
-      throw Error("--model '" + text + "': '" + parts[i] + "' is not NAME=VALUE");
+      throw Error(label(text) + ": '" + printable(parts[i], 40) + "' is not NAME=VALUE");
     const std::string name = parts[i].substr(0, eq), value = parts[i].substr(eq + 1);
-    std::size_t used = 0;
     double v = 0.0;
-    try {
-      v = std::stod(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used == 0 || used != value.size() || !std::isfinite(v))
-      throw Error("--model '" + text + "': the value of '" + name + "' is not a finite number: '" + value +
-                  "'");
+    std::string why;
+    if (!parse_decimal(value, v, why))
+      throw Error(label(text) + ": the value of '" + printable(name, 40) + "': " + why);
+    for (const auto& [other, w] : spec.fixed)
+      if (other == name)
+        throw Error(label(text) + ": '" + printable(name, 40) + "' is fixed twice (" + shortest(w) + " and " +
+                    shortest(v) + "): give it once");
     spec.fixed.emplace_back(name, v);
   }
   return spec;

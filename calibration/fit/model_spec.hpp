@@ -36,8 +36,14 @@ struct ModelSpec {
   std::vector<std::pair<std::string, double>> fixed;  ///< NAME=VALUE, in order
 };
 
-/// Parses a SPEC; tmlab::Error naming the SPEC and the offending part.
+/// Parses a SPEC; tmlab::Error naming the SPEC and the offending part. Every number follows tmlab's
+/// one grammar (core/base/number.hpp: decimal, finite; N and M whole numbers 1..9); a NAME fixed
+/// twice is refused with both values.
 ModelSpec parse_model_spec(const std::string& text);
+
+/// `v` in the shortest decimal text that reads back to the same double ("0.45", "1e-06"): how a
+/// refusal quotes a value the user gave.
+std::string shortest(double v);
 
 /// The law's parameters (and the Prony terms), free, with starting values and start ranges scaled
 /// by `modulus` (an estimate of the small-strain Young's modulus from the data, Pa) and `duration`

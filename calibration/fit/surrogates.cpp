@@ -2,6 +2,7 @@
 
 #include "calibration/closed_forms/homogeneous.hpp"
 #include "calibration/closed_forms/indentation.hpp"
+#include "calibration/data/sign_convention.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 
@@ -189,6 +190,22 @@ std::pair<double, double> platen_sample(const Metadata& m, const std::string& na
               " test needs a finite sample (block or cylinder), not a half-space");
 }
 
+/// A parameter fixed twice, in the SPEC and by --fix or twice by --fix, is refused with both values
+/// (the last one would silently win otherwise). The SPEC refuses its own repeats when it is parsed.
+void refuse_fixed_twice(const ModelSpec& spec, const std::vector<std::pair<std::string, double>>& fixes) {
+  for (std::size_t a = 0; a < fixes.size(); ++a) {
+    const auto& [name, v] = fixes[a];
+    for (const auto& [k, w] : spec.fixed)
+      if (k == name)
+        throw Error("'" + printable(name, 40) + "' is fixed twice: " + shortest(w) + " in --model '" +
+                    printable(spec.text, 80) + "' and " + shortest(v) + " by --fix: give it once");
+    for (std::size_t b = 0; b < a; ++b)
+      if (fixes[b].first == name)
+        throw Error("--fix " + printable(name, 40) + " is given twice (" + shortest(fixes[b].second) +
+                    " and " + shortest(v) + "): give it once");
+  }
+}
+
 }  // namespace
 
 Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
@@ -196,6 +213,8 @@ Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
                           const std::vector<std::pair<std::string, double>>& weights) {
   const std::string& name = d.meta.name;
   if (d.tests.empty()) throw Error(name + ": the data set has no tests");
+  // The sign convention first: a flipped force would otherwise be fitted, to a modulus near zero.
+  check_force_sign(d, "");
   Problem pr;
   // Observations, and the checks that apply to every rig.
   double duration = 0.0;
@@ -217,6 +236,11 @@ Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
     pr.data.weights.push_back(1.0);
     duration = std::max(duration, t.time_s.back() - t.time_s.front());
   }
+  for (std::size_t a = 0; a < weights.size(); ++a)
+    for (std::size_t b = 0; b < a; ++b)
+      if (weights[b].first == weights[a].first)
+        throw Error(name + ": --weight names test '" + printable(weights[a].first, 60) + "' twice (" +
+                    shortest(weights[b].second) + " and " + shortest(weights[a].second) + "): give it once");
   for (const auto& [id, w] : weights) {
     const auto it = std::find(pr.data.test_ids.begin(), pr.data.test_ids.end(), id);
     if (it == pr.data.test_ids.end())
@@ -283,6 +307,7 @@ Problem make_data_problem(const DataSet& d, const ModelSpec& spec,
       throw Error(name + ": the force does not rise with the displacement (check the sign convention)");
   }
   pr.parameters = law_parameters(spec, modulus, duration);
+  refuse_fixed_twice(spec, fixes);
   for (const auto& [k, v] : spec.fixed) fix(pr.parameters, k, v);
   for (const auto& [k, v] : fixes) fix(pr.parameters, k, v);
   validate(pr.parameters);

@@ -25,7 +25,9 @@ namespace tmlab::fit {
 /// The problem of `data` and `spec` without a forward model: the observations (with per-test
 /// `weights`, test id -> weight, default 1), the law's parameters with start values from a modulus
 /// estimate of the data, the SPEC's fixed values and then `fixes` applied. tmlab::Error for data
-/// that cannot be fitted (no tests, zero force, non-finite samples, fewer samples than parameters).
+/// that cannot be fitted (a force against the sign convention, measured::check_force_sign; no
+/// tests, zero force, non-finite samples, fewer samples than parameters), for a parameter fixed
+/// twice (in the SPEC and by `fixes`, or twice in `fixes`) and a test weighted twice.
 Problem make_data_problem(const measured::DataSet& data, const ModelSpec& spec,
                           const std::vector<std::pair<std::string, double>>& fixes = {},
                           const std::vector<std::pair<std::string, double>>& weights = {});

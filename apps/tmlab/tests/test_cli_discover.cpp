@@ -7,7 +7,10 @@
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -101,6 +104,55 @@ TEST_F(CliDiscover, BadOptionsAreRefused) {
   EXPECT_EQ(r.status, 2) << r.output;
   r = tmlab({"discover", csv.string(), "--poisson", "0.6"});
   EXPECT_EQ(r.status, 2) << r.output;
+  // Issue 26: whole numbers under the one grammar (no "2.0", blanks or hex), the option named.
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--rounds", "2.0"},
+                                                        {"--max-samples", " 150"},
+                                                        {"--starts", "0x8"},
+                                                        {"--seed", "1e3"},
+                                                        {"--threads", "+"},
+                                                        {"--baseline-prony", "5"}}) {
+    r = tmlab({"discover", csv.string(), key, value, "--out", (dir_ / "n").string()});
+    EXPECT_EQ(r.status, 2) << key << " " << value << "\n" << r.output;
+    EXPECT_NE(r.output.find(key + " needs a whole number"), std::string::npos) << r.output;
+  }
+  r = tmlab(
+      {"discover", csv.string(), "--forward", "fe_rig", "--mesh", "6.5,3", "--out", (dir_ / "n").string()});
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--mesh CELLS needs a whole number"), std::string::npos) << r.output;
+  r = tmlab({"discover", csv.string(), "--poisson", "0x0.8p-1", "--out", (dir_ / "n").string()});
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "n"));
+}
+
+TEST_F(CliDiscover, AForceOfTheWrongSignIsRefusedNotExplainedAsDrift) {
+  // Issue 26: the phantom with its force negated was "explained" by force_drift. The check tmlab fit
+  // makes refuses it, before any result directory.
+  const fs::path csv = convert(), flipped = dir_ / "data" / "flipped.csv";
+  {
+    std::ifstream in(csv);
+    std::ofstream o(flipped);
+    bool header_seen = false;
+    for (std::string line; std::getline(in, line);) {
+      if (header_seen && !line.empty() && line[0] != '#') {
+        const std::size_t b = line.find(',', line.find(',') + 1) + 1;
+        line.insert(b, "-");
+        if (line.compare(b, 2, "--") == 0) line.erase(b, 2);
+      }
+      header_seen = header_seen || (!line.empty() && line[0] != '#');
+      o << line << "\n";
+    }
+    std::ofstream(dir_ / "data" / "flipped.json") << read_file(dir_ / "data" / "EF10_0T_A1.json");
+  }
+  const Result r = tmlab({"discover", flipped.string(), "--out", (dir_ / "d").string(), "--no-plots"});
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find(flipped.string() + ": test 1 (unconfined_compression): force must be positive in "
+                                             "compression"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("flip the sign of force_N"), std::string::npos) << r.output;
+  EXPECT_EQ(r.output.find("force_drift"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "d"));
 }
 
 }  // namespace

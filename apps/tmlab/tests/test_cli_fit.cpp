@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace {
 
@@ -209,6 +210,123 @@ TEST_F(CliFit, BadSpecsAndDataAreRefused) {
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find("the force is zero at every sample"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "z" / "summary.json"));
+}
+
+/// `csv` (tmlab-measured/1, force_N its third column) with the sign of every force flipped, written
+/// beside it as NAME_flipped.csv + .json; returns its path.
+fs::path flip_force(const fs::path& csv) {
+  const fs::path dir = csv.parent_path(), out = dir / (csv.stem().string() + "_flipped.csv");
+  std::ifstream in(csv);
+  std::ofstream o(out);
+  bool header_seen = false;
+  for (std::string line; std::getline(in, line);) {
+    const bool data = header_seen && !line.empty() && line[0] != '#';
+    header_seen = header_seen || (!line.empty() && line[0] != '#');
+    if (data) {
+      const std::size_t a = line.find(',') + 1, b = line.find(',', a) + 1;
+      line.insert(b, "-");
+      if (line.compare(b, 2, "--") == 0) line.erase(b, 2);
+    }
+    o << line << "\n";
+  }
+  std::ofstream(dir / (csv.stem().string() + "_flipped.json"))
+      << read_file(dir / (csv.stem().string() + ".json"));
+  return out;
+}
+
+TEST_F(CliFit, AForceOfTheWrongSignIsRefusedBeforeAnyResult) {
+  // Issue 26: compression data with a negative force crashed a St VK fit in the profile likelihood (SIGSEGV,
+  // a stale RUNNING) and with --no-profile "fitted" E = 3.5e-12 Pa.
+  const fs::path csv = flip_force(convert());
+  for (const bool profile : {true, false}) {
+    const fs::path out = dir_ / (profile ? "with_profile" : "no_profile");
+    std::vector<std::string> args = {"fit",   csv.string(), "--model",   "neo_hookean",
+                                     "--out", out.string(), "--no-plots"};
+    if (!profile) args.push_back("--no-profile");
+    const Result r = tmlab(args);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find(csv.string() + ": test 1 (unconfined_compression): force must be positive in "
+                                           "compression"),
+              std::string::npos)
+        << r.output;
+    EXPECT_NE(r.output.find("samples are negative; flip the sign of force_N"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out)) << r.output;  // refused before the result directory
+  }
+}
+
+TEST_F(CliFit, AValueGivenTwiceIsRefusedNamingBoth) {
+  const fs::path csv = convert();
+  const auto refused = [&](const std::vector<std::string>& extra, const std::string& what) {
+    std::vector<std::string> args = {"fit", csv.string(), "--out", (dir_ / "twice").string(), "--no-plots"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = tmlab(args);
+    EXPECT_EQ(r.status, 1) << r.output;
+    EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "twice")) << r.output;
+  };
+  refused({"--model", "neo_hookean,poisson=0.3", "--fix", "poisson=0.45"},
+          "'poisson' is fixed twice: 0.3 in --model 'neo_hookean,poisson=0.3' and 0.45 by --fix");
+  refused({"--model", "neo_hookean", "--fix", "poisson=0.45", "--fix", "poisson=0.4"},
+          "--fix poisson is given twice (0.45 and 0.4)");
+  refused({"--model", "neo_hookean,poisson=0.45,poisson=0.4"}, "'poisson' is fixed twice (0.45 and 0.4)");
+  refused({"--model", "neo_hookean", "--prior", "poisson=0.45:0.02", "--prior", "poisson=0.4:0.05"},
+          "two priors on 'poisson' (mean 0.45, sd 0.02 and mean 0.4, sd 0.05)");
+}
+
+TEST_F(CliFit, NumbersFollowTheStrictGrammarEverywhere) {
+  const fs::path csv = convert();
+  const auto refused = [&](const std::vector<std::string>& extra, int status, const std::string& what) {
+    std::vector<std::string> args = {"fit", csv.string(), "--out", (dir_ / "n").string(), "--no-plots"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = tmlab(args);
+    EXPECT_EQ(r.status, status) << r.output;
+    EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "n")) << r.output;
+  };
+  refused({"--model", "neo_hookean", "--fix", "poisson=0x0.8p-1"}, 2, "--fix poisson needs a number");
+  refused({"--model", "neo_hookean,poisson=0x0.8p-1"}, 1, "--model 'neo_hookean,poisson=0x0.8p-1'");
+  refused({"--model", "neo_hookean,young= 1.9e4"}, 1, "is not a number");
+  refused({"--model", "ogden:2.0"}, 1, "the number of Ogden terms must be a whole number");
+  refused({"--model", "neo_hookean", "--starts", " 12"}, 2, "--starts needs a whole number");
+  refused({"--model", "neo_hookean", "--starts", "12.0"}, 2, "--starts needs a whole number");
+  refused({"--model", "neo_hookean", "--local-runs", "0x3"}, 2, "--local-runs needs a whole number");
+  refused({"--model", "neo_hookean", "--seed", "1e3"}, 2, "--seed needs a whole number");
+  refused({"--model", "neo_hookean", "--forward", "fe_rig", "--mesh", "6,2.5"}, 2,
+          "--mesh LAYERS needs a whole number");
+  refused({"--model", "neo_hookean", "--noise", ".5"}, 2, "--noise needs a number");
+}
+
+TEST_F(CliFit, TheLocalRunsThatRanAreRecorded) {
+  const fs::path csv = convert();
+  const fs::path out = dir_ / "runs";
+  const Result r = tmlab({"fit", csv.string(), "--model", "neo_hookean", "--starts", "3", "--local-runs",
+                          "100", "--out", out.string(), "--no-plots", "--no-profile", "--quiet"});
+  ASSERT_EQ(r.status, 0) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "fit.json"));
+  EXPECT_EQ(j["global_stage"]["local_runs"], 3) << j["global_stage"];
+  EXPECT_EQ(j["global_stage"]["local_runs_requested"], 100) << j["global_stage"];
+  EXPECT_NE(j["notes"].dump().find("--local-runs 100 asked for more"), std::string::npos) << j["notes"];
+  EXPECT_NE(r.output.find("note: --local-runs 100 asked for more"), std::string::npos) << r.output;
+}
+
+TEST_F(CliFit, ResumeOfAFinishedFitSaysItFinished) {
+  const fs::path csv = convert();
+  const fs::path out = dir_ / "done";
+  const std::vector<std::string> args = {"fit",        csv.string(), "--model",      "neo_hookean", "--out",
+                                         out.string(), "--no-plots", "--no-profile", "--quiet"};
+  ASSERT_EQ(tmlab(args).status, 0);
+  const std::string summary = read_file(out / "summary.json");
+  std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  const Result r = tmlab(resume);
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("nothing to resume: " + out.string() +
+                          " holds a complete fit (summary.json); run without --resume to redo it"),
+            std::string::npos)
+      << r.output;
+  EXPECT_EQ(r.output.find("stopped before writing"), std::string::npos) << r.output;
+  EXPECT_EQ(read_file(out / "summary.json"), summary);  // the result is left as it was
+  EXPECT_FALSE(fs::exists(out / "RUNNING"));
 }
 
 }  // namespace

@@ -75,6 +75,14 @@ TEST_F(CliHereditary, BadInputIsRefusedWithAClearMessage) {
   EXPECT_EQ(p.status, 1) << p.output;
   EXPECT_NE(p.output.find("missing.json"), std::string::npos) << p.output;
   EXPECT_FALSE(fs::exists(dir_ / "hereditary" / "summary.json"));  // a failed run never looks complete
+  // Issue 26: --seed is a whole number under the one grammar ("2.0" and "1e3" used to be taken).
+  for (const char* seed : {"2.0", "1e3", "0x10", "-1"}) {
+    const Result s = run(std::string("hereditary --quick --no-liver --histories sine --no-plots --seed ") +
+                         seed + " --results '" + (dir_ / "seed").string() + "'");
+    EXPECT_EQ(s.status, 2) << seed << "\n" << s.output;
+    EXPECT_NE(s.output.find("--seed needs a whole number"), std::string::npos) << s.output;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "seed"));
 }
 
 }  // namespace

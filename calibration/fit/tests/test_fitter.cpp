@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <csignal>
@@ -449,6 +450,100 @@ TEST(Fitter, AFitStoppedInsideAUnitResumesFromItsLastFinishedUnit) {
   resumed.resume.restored = &last;
   expect_same_fit(fit(make_surrogate_problem(d, parse_model_spec("mooney_rivlin,poisson=0.49")), resumed),
                   full);
+}
+
+// Issue 26: a force of the wrong sign for its test. The data problem refuses it (the shared sign
+// check); the engine itself, handed such forces anyway, must not read out of range when every
+// relative standard error is NaN (the profile likelihood picked "the worst" by comparisons a NaN
+// never wins, and indexed one past the free parameters).
+measured::DataSet flipped_compression() {
+  measured::DataSet d = testing::compression_data(0.3, 61);
+  std::vector<double> f = truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}});
+  for (double& v : f) v = -v;
+  testing::set_forces(d, f);
+  return d;
+}
+
+TEST(Fitter, AForceOfTheWrongSignIsRefusedBeforeFitting) {
+  try {
+    (void)make_surrogate_problem(flipped_compression(), parse_model_spec("neo_hookean"));
+    FAIL() << "no refusal";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("force must be positive in compression"), std::string::npos) << m;
+    EXPECT_NE(m.find("60 of 61 samples are negative"), std::string::npos) << m;
+  }
+}
+
+TEST(Fitter, NaNStandardErrorsDoNotBreakTheProfileLikelihood) {
+  for (const char* spec : {"stvk", "neo_hookean", "mooney_rivlin,poisson=0.49"}) {
+    measured::DataSet d = flipped_compression();
+    for (double& f : d.tests[0].force_N) f = -f;  // right sign for the problem's checks ...
+    Problem pr = make_surrogate_problem(d, parse_model_spec(spec));
+    for (double& f : pr.data.force) f = -f;  // ... then wrong for the engine
+    FitOptions o;
+    o.starts = 4;
+    const FitResult r = fit(pr, o);
+    ASSERT_FALSE(r.profile.parameter.empty()) << spec;
+    EXPECT_NE(std::find(r.free_names.begin(), r.free_names.end(), r.profile.parameter), r.free_names.end())
+        << spec << ": " << r.profile.parameter;
+    EXPECT_EQ(r.profile.points.size(), 11u) << spec;
+  }
+}
+
+TEST(Fitter, AParameterFixedTwiceOrATestWeightedTwiceIsRefusedWithBothValues) {
+  measured::DataSet d = testing::compression_data(0.3, 31);
+  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  const auto message = [&](const std::string& spec, const std::vector<std::pair<std::string, double>>& fixes,
+                           const std::vector<std::pair<std::string, double>>& weights) {
+    try {
+      (void)make_surrogate_problem(d, parse_model_spec(spec), fixes, weights);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  std::string m = message("neo_hookean,poisson=0.3", {{"poisson", 0.45}}, {});
+  EXPECT_NE(m.find("'poisson' is fixed twice: 0.3 in --model 'neo_hookean,poisson=0.3' and 0.45 by --fix"),
+            std::string::npos)
+      << m;
+  m = message("neo_hookean", {{"poisson", 0.45}, {"poisson", 0.4}}, {});
+  EXPECT_NE(m.find("--fix poisson is given twice (0.45 and 0.4)"), std::string::npos) << m;
+  m = message("neo_hookean", {}, {{"", 2.0}, {"", 3.0}});
+  EXPECT_NE(m.find("--weight names test '' twice (2 and 3)"), std::string::npos) << m;
+  EXPECT_EQ(message("neo_hookean,poisson=0.3", {{"young", 30000.0}}, {{"", 2.0}}), "");
+}
+
+TEST(Fitter, TwoPriorsOnOneParameterAreRefused) {
+  measured::DataSet d = testing::compression_data(0.3, 31);
+  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  Problem pr = make_surrogate_problem(d, parse_model_spec("neo_hookean"));
+  pr.noise_sigma = 0.01;
+  pr.priors = {{"poisson", 0.45, 0.02}, {"young", 3e4, 1e3}};
+  EXPECT_NO_THROW(check_priors(pr));
+  pr.priors.push_back({"poisson", 0.4, 0.05});
+  try {
+    check_priors(pr);
+    FAIL() << "no refusal";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find("two priors on 'poisson' (mean 0.45, sd 0.02 and mean 0.4, sd 0.05)"),
+        std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(fit(pr, FitOptions{}), Error);
+}
+
+TEST(Fitter, TheLocalRunsThatRanAreCounted) {
+  measured::DataSet d = testing::compression_data(0.3, 31);
+  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  FitOptions o;
+  o.starts = 3;
+  o.local_runs = 100;
+  o.profile = false;
+  EXPECT_EQ(fit(make_surrogate_problem(d, parse_model_spec("neo_hookean")), o).local_runs, 3);
+  o.local_runs = 2;
+  EXPECT_EQ(fit(make_surrogate_problem(d, parse_model_spec("neo_hookean")), o).local_runs, 2);
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace tmlab::fit {
 namespace {
@@ -30,6 +31,34 @@ TEST(ModelSpec, RefusesBadSpecsNamingThePart) {
     parse_model_spec("rubber");
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("unknown law 'rubber'"), std::string::npos);
+  }
+}
+
+TEST(ModelSpec, NumbersFollowTheOneStrictGrammar) {
+  // Issue 26: std::stod took hex floats, leading blanks and ".5"; the SPEC now reads numbers as
+  // every option and CSV field does (core/base/number.hpp).
+  for (const char* bad : {"stvk,poisson=0x0.8p-1", "stvk,poisson= 0.3", "stvk,poisson=.3", "stvk,poisson=3.",
+                          "stvk,poisson=0.3 ", "stvk,young=inf", "stvk,young=1e400", "ogden: 2", "ogden:2.0",
+                          "stvk+prony:0x2", "stvk+prony:10", "ogden:02x"}) {
+    try {
+      (void)parse_model_spec(bad);
+      ADD_FAILURE() << "accepted: " << bad;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("--model '"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_EQ(parse_model_spec("stvk,poisson=4.5e-1").fixed[0].second, 0.45);
+  EXPECT_EQ(parse_model_spec("stvk,young=+2E4").fixed[0].second, 20000.0);
+  EXPECT_EQ(parse_model_spec("ogden:3+prony:9").prony_terms, 9);
+}
+
+TEST(ModelSpec, ANameFixedTwiceIsRefusedWithBothValues) {
+  try {
+    (void)parse_model_spec("stvk,poisson=0.3,young=1e4,poisson=0.45");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("'poisson' is fixed twice (0.3 and 0.45)"), std::string::npos)
+        << e.what();
   }
 }
 
