@@ -2,7 +2,9 @@
 #include "core/results/checkpoint.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/format.hpp"
 #include "core/base/interrupt.hpp"
+#include "core/base/number.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/run_output.hpp"
 
@@ -242,25 +244,26 @@ std::string fingerprint_mismatch(const nlohmann::json& stored, const nlohmann::j
 // --- schedule --------------------------------------------------------------------------------------
 
 CheckpointSchedule CheckpointSchedule::parse(const std::string& text) {
-  const std::string bad =
-      "--checkpoint-every '" + text + "': give a number of steps (100), a wall time (30s, 5min) or 'off'";
+  const std::string bad = "--checkpoint-every '" + printable(text, 60) +
+                          "': give a number of steps (100), a wall time (30s, 5min) or 'off'";
   if (text == "off") return {0, 0.0};
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    throw Error(bad);
-  }
-  const std::string unit = text.substr(used);
-  if (!(v > 0.0) || !std::isfinite(v)) throw Error(bad);
+  // The number under tmlab's one grammar (core/base/number.hpp), then the unit.
+  std::string unit;
+  if (text.size() > 3 && text.compare(text.size() - 3, 3, "min") == 0)
+    unit = "min";
+  else if (text.size() > 1 && text.back() == 's')
+    unit = "s";
+  const std::string number = text.substr(0, text.size() - unit.size());
+  std::string why;
   if (unit.empty()) {
-    if (v != std::floor(v) || v > 1e12) throw Error(bad);
-    return {static_cast<long>(v), 0.0};
+    std::int64_t n = 0;
+    if (!parse_whole(number, 1, 1000000000000LL, n, why)) throw Error(bad + " (" + why + ")");
+    return {static_cast<long>(n), 0.0};
   }
-  if (unit == "s") return {0, v};
-  if (unit == "min") return {0, 60.0 * v};
-  throw Error(bad);
+  double v = 0.0;
+  if (!parse_decimal(number, v, why)) throw Error(bad + " (" + why + ")");
+  if (!(v > 0.0)) throw Error(bad + " (the time must be positive)");
+  return {0, unit == "min" ? 60.0 * v : v};
 }
 
 std::string CheckpointSchedule::describe() const {

@@ -107,9 +107,12 @@ TEST(CheckpointScheduleTest, ParsesStepsTimesAndOff) {
   EXPECT_EQ(CheckpointSchedule::parse("25").every_seconds, 0.0);
   EXPECT_EQ(CheckpointSchedule::parse("30s").every_seconds, 30.0);
   EXPECT_EQ(CheckpointSchedule::parse("2min").every_seconds, 120.0);
+  EXPECT_EQ(CheckpointSchedule::parse("1.5min").every_seconds, 90.0);
+  EXPECT_EQ(CheckpointSchedule::parse("0.5s").every_seconds, 0.5);
   EXPECT_EQ(CheckpointSchedule::parse("off").describe(), "only on a stop request");
   EXPECT_EQ(CheckpointSchedule::parse("5").describe(), "every 5 steps");
-  for (const char* bad : {"", "0", "-3", "2.5", "10h", "s", "nan"})
+  for (const char* bad :
+       {"", "0", "-3", "2.5", "10h", "s", "nan", "0x10", " 5", "5 ", ".5s", "1e3", "2.5", "+", "s", "min"})
     EXPECT_THROW(CheckpointSchedule::parse(bad), tmlab::Error) << bad;
   const tmlab::CheckpointClock by_steps(CheckpointSchedule::parse("5"));
   EXPECT_TRUE(by_steps.due(10));
