@@ -47,10 +47,10 @@ class Outcome:
         return self.raw.decode("utf-8", "replace")
 
     def first_line(self) -> str:
-        for line in self.out.splitlines():
-            if "error" in line.lower() or "refus" in line.lower():
-                return line.strip()
-        lines = [l.strip() for l in self.out.splitlines() if l.strip()]
+        lines = [l.strip() for l in self.out.splitlines() if l.strip() and "see 'tmlab help'" not in l]
+        for line in lines:
+            if "error" in line.lower() or "refus" in line.lower() or ": --" in line:
+                return line
         return lines[-1] if lines else ""
 
 
@@ -311,8 +311,8 @@ class Case:
     issue: str = ""  # the issue-26 item it covers ("bad 1", "weak: ...", "good: ...", "property")
 
 
-def fit_args(csv: Path, out: Path, *extra: str) -> List[str]:
-    return ["fit", str(csv), "--model", "neo_hookean", "--starts", "2", "--local-runs", "1", "--no-profile",
+def fit_args(csv: Path, out: Path, *extra: str, starts: str = "2") -> List[str]:
+    return ["fit", str(csv), "--model", "neo_hookean", "--starts", starts, "--local-runs", "1", "--no-profile",
             "--no-plots", "--quiet", "--out", str(out)] + list(extra)
 
 
@@ -715,7 +715,7 @@ def make_cases() -> List[Case]:
             (lambda port: lambda ctx, s: ["realtime", "liver-poke", "--serve", "--port", port, "--duration", "1"])(port),
             lambda ctx, s, o: refused(o, "--port"), "weak: strict numbers")
     add("W-starts-hex", "fit --starts 0x10", s_tiny,
-        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out") + ["--starts", "0x10"],
+        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out", starts="0x10"),
         lambda ctx, s, o: refused(o, "--starts"), "weak: strict numbers")
     add("W-nul-in-field", "a NUL byte in a CSV field", s_csv_field("12\x0034"),
         lambda ctx, s: ["data", "show", s["csv"], "--no-plots", "--out", ctx.dir / "show"],
@@ -942,7 +942,10 @@ def make_cases() -> List[Case]:
         lambda ctx, s: ["fit", s["csv"], "--model", "rubber", "--out", ctx.dir / "out"],
         lambda ctx, s, o: refused(o, "rubber"), "named input")
     add("N-fit-starts-zero", "fit --starts 0", s_tiny,
-        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out") + ["--starts", "0"],
+        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out", starts="0"),
+        lambda ctx, s, o: refused(o, "--starts"), "named input")
+    add("N-option-twice", "fit --starts 2 ... --starts 3 (the same option twice)", s_tiny,
+        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out", "--starts", "3"),
         lambda ctx, s, o: refused(o, "--starts"), "named input")
     add("N-fit-threads-text", "fit --threads many", s_tiny,
         lambda ctx, s: fit_args(s["csv"], ctx.dir / "out", "--threads", "many"),
