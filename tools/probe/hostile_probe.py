@@ -41,15 +41,20 @@ class Outcome:
     rc: Optional[int]  # exit status; -N when signal N ended it; None when it hung (killed)
     raw: bytes = b""  # stdout + stderr
     seconds: float = 0.0
+    case_dir: str = ""  # the case's folder: shown as <case> so that its name never matches a rule's word
 
     @property
     def out(self) -> str:
-        return self.raw.decode("utf-8", "replace")
+        text = self.raw.decode("utf-8", "replace")
+        return text.replace(self.case_dir, "<case>") if self.case_dir else text
 
     def first_line(self) -> str:
         lines = [l.strip() for l in self.out.splitlines() if l.strip() and "see 'tmlab help'" not in l]
         for line in lines:
-            if "error" in line.lower() or "refus" in line.lower() or ": --" in line:
+            if line.startswith("tmlab") and ("error" in line or ": --" in line or "refus" in line):
+                return line
+        for line in lines:
+            if "error:" in line.lower() or "refus" in line.lower():
                 return line
         return lines[-1] if lines else ""
 
@@ -87,11 +92,11 @@ class Ctx:
                              preexec_fn=limits if limit_memory else None)
         try:
             raw, _ = p.communicate(timeout=timeout)
-            return Outcome(p.returncode, raw, time.monotonic() - t0)
+            return Outcome(p.returncode, raw, time.monotonic() - t0, str(self.dir))
         except subprocess.TimeoutExpired:
             os.killpg(p.pid, signal.SIGKILL)
             raw, _ = p.communicate()
-            return Outcome(None, raw, time.monotonic() - t0)
+            return Outcome(None, raw, time.monotonic() - t0, str(self.dir))
 
     def signalled(self, args: List[str], wait_for: Path, sig: int, bound: float = 60,
                   env: Optional[Dict[str, str]] = None, delay: float = 0.0) -> Outcome:
@@ -118,7 +123,7 @@ class Ctx:
                 seconds = time.monotonic() - t1
             else:
                 rc, seconds = p.returncode, 0.0
-        return Outcome(rc, log.read_bytes(), seconds)
+        return Outcome(rc, log.read_bytes(), seconds, str(self.dir))
 
     # -- shared inputs --------------------------------------------------------------------------
     def raw_phantom(self) -> Path:
@@ -214,6 +219,8 @@ def crashed(o: Outcome) -> Optional[Tuple[str, str]]:
         return BAD, "hung (killed after the time limit)"
     if o.rc < 0:
         return BAD, "killed by signal %d" % -o.rc
+    if o.rc in (128 + signal.SIGSEGV, 128 + signal.SIGABRT, 128 + signal.SIGBUS, 128 + signal.SIGFPE):
+        return BAD, "crashed (%s)" % signal.Signals(o.rc - 128).name
     if o.rc > 2 and o.rc not in (130, 143):
         return BAD, "exit %d" % o.rc
     if "internal error" in o.out:
@@ -357,7 +364,7 @@ def s_crafted_manifest(ctx):
     (ctx.dir / "victim.txt").write_text("outside\n")
     (v / "manifest.json").write_text(json.dumps({"files": ["../victim.txt", "/etc/hostname"]}))
     (v / "summary.json").write_text(json.dumps({"status": "complete", "files": ["../victim.txt"]}))
-    return protect(ctx, {"csv": tiny(ctx.dir / "d")}, ctx.dir / "victim.txt")
+    return protect(ctx, {"csv": tiny(ctx.dir / "d")}, ctx.dir / "victim.txt", v)
 
 
 def s_previous_plus_user_file(ctx):
@@ -411,9 +418,10 @@ def s_cwd(ctx):
 
 # -- bad 7: a full disk -----------------------------------------------------------------------------
 
-def full_disk(ctx: Ctx, args_for: Callable[[Path], List[str]], size: int = 131072) -> Outcome:
-    """Runs tmlab with its output on a `size`-byte tmpfs mounted at ctx.dir/disk in a private mount
-    namespace (unshare; this script re-invoked as the helper, an argument vector throughout)."""
+def full_disk(ctx: Ctx, args_for: Callable[[Path], List[str]], size: int = 131072, fill: bool = True) -> Outcome:
+    """Runs tmlab with its output on a `size`-byte tmpfs, filled to two free pages by a file of
+    someone's, mounted at ctx.dir/disk in a private mount namespace (unshare; this script re-invoked
+    as the helper, an argument vector throughout)."""
     mnt = ctx.dir / "disk"
     mnt.mkdir()
     unshare = shutil.which("unshare")
@@ -422,7 +430,8 @@ def full_disk(ctx: Ctx, args_for: Callable[[Path], List[str]], size: int = 13107
     prefix = [unshare, "--mount", "--propagation", "private"]
     if os.geteuid() != 0:
         prefix[1:1] = ["--user", "--map-root-user"]
-    prefix += ["--", sys.executable, os.path.abspath(__file__), "--full-disk-helper", str(mnt), str(size), "--"]
+    prefix += ["--", sys.executable, os.path.abspath(__file__), "--full-disk-helper", str(mnt), str(size),
+               "fill" if fill else "nofill", "--"]
     return ctx.run(args_for(mnt), prefix=prefix)
 
 
@@ -433,16 +442,24 @@ def full_disk_rule(result: Callable[[Ctx], Path]):
         c = crashed(o)
         if c:
             return c
-        d = result(ctx)
-        if find(ctx.dir, "RUNNING"):
-            return BAD, "RUNNING left after the process ended (no FAILED)"
+        # The tmpfs is gone with its namespace: the helper left what was on it in disk.state.json.
+        st = json.loads((ctx.dir / "disk.state.json").read_text())
+        rel = os.path.relpath(result(ctx), ctx.dir / "disk")
+        files = {f for f in st["files"] if f == rel or f.startswith(rel + "/")}
+        if rel + "/RUNNING" in files:
+            return BAD, "RUNNING left after the process ended%s: %s" % (
+                "" if rel + "/FAILED" in files else " (no FAILED)", o.first_line())
+        if "filler.bin" not in st["files"] or st.get("filler_changed"):
+            return BAD, "data loss: the file filling the disk was removed or changed"
         if o.rc == 0:
-            return (GOOD, "fits in the small disk: complete") if not complete(d) else (BAD, "exit 0, incomplete")
+            missing = [m for m in ("summary.json", ".tmlab-result") if rel + "/" + m not in files]
+            return (GOOD, "fits on the small disk: complete") if not missing else (
+                BAD if "summary.json" in missing else WEAK, "exit 0 on a full disk without " + ", ".join(missing))
         if "HDF5-DIAG" in o.out:
             return WEAK, "FAILED, but HDF5 error-stack noise on stderr"
-        if not (d / "FAILED").exists():
+        if rel + "/FAILED" not in files:
             return WEAK, "exit %d without FAILED: %s" % (o.rc, o.first_line())
-        if "space" not in (d / "FAILED").read_text(errors="replace").lower():
+        if "space" not in st["failed"].get(rel + "/FAILED", "").lower():
             return WEAK, "FAILED without naming the full disk"
         return GOOD, "FAILED with the reason: " + o.first_line()
 
@@ -652,16 +669,39 @@ def make_cases() -> List[Case]:
         s_raw_phantom(lambda l: l, same_folder=True), lambda ctx, s: ["data", "convert", s["raw"], "--out", s["out"]],
         lambda ctx, s, o: refused_keeping(o, s, "A1.csv"), "bad 4")
     # ---- bad 5 ----
-    add("B5-fit-wrong-sign", "fit on data whose force has the wrong sign", lambda ctx: s_tiny(ctx, sign=-1),
-        lambda ctx, s: ["fit", s["csv"], "--model", "neo_hookean", "--starts", "4", "--no-plots", "--quiet", "--out",
-                        ctx.dir / "out"],
-        lambda ctx, s, o: (BAD, "stale RUNNING") if find(ctx.dir, "RUNNING") else refused(o, "sign"), "bad 5")
-    add("B5-fit-wrong-sign-no-profile", "the same with --no-profile", lambda ctx: s_tiny(ctx, sign=-1),
-        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out"),
-        lambda ctx, s, o: (BAD, "silently wrong: a fit of wrong-sign data reported as complete")
-        if o.rc == 0 else refused(o, "sign"), "bad 5")
-    add("B5-discover-wrong-sign", "discover on the wrong-sign data", lambda ctx: s_tiny(ctx, sign=-1),
-        lambda ctx, s: disc_args(s["csv"], ctx.dir / "out"),
+    def s_phantom_negated(ctx):
+        csv = ctx.copy_phantom("neg")
+        lines = csv.read_text().splitlines()
+        head = lines[0].split(",")
+        k = head.index("force_N")
+        out = [lines[0]]
+        for l in lines[1:]:
+            f = l.split(",")
+            if f[k].startswith("-"):
+                f[k] = f[k][1:]
+            elif f[k].strip() not in ("0", "0.0"):
+                f[k] = "-" + f[k].lstrip("+")
+            out.append(",".join(f))
+        csv.write_text("\n".join(out) + "\n")
+        return {"csv": csv}
+
+    def wrong_sign_rule(ctx, s, o):
+        if find(ctx.dir, "RUNNING"):
+            return BAD, "stale RUNNING" + (" after a crash" if crashed(o) else "")
+        if o.rc == 0:
+            return BAD, "silently wrong: a fit of wrong-sign data reported as complete"
+        return refused(o, "sign")
+
+    add("B5-fit-wrong-sign", "fit on the phantom with its force negated (the wrong sign convention)",
+        s_phantom_negated, lambda ctx, s: ["fit", s["csv"], "--model", "neo_hookean", "--no-plots", "--quiet", "--out",
+                                           ctx.dir / "out"], wrong_sign_rule, "bad 5")
+    add("B5-fit-wrong-sign-no-profile", "the same with --no-profile", s_phantom_negated,
+        lambda ctx, s: ["fit", s["csv"], "--model", "neo_hookean", "--no-profile", "--no-plots", "--quiet", "--out",
+                        ctx.dir / "out"], wrong_sign_rule, "bad 5")
+    add("B5-fit-wrong-sign-tiny", "fit on a tiny set whose force has the wrong sign", lambda ctx: s_tiny(ctx, sign=-1),
+        lambda ctx, s: fit_args(s["csv"], ctx.dir / "out"), wrong_sign_rule, "bad 5")
+    add("B5-discover-wrong-sign", "discover on the phantom with its force negated", s_phantom_negated,
+        lambda ctx, s: disc_args(s["csv"], ctx.dir / "out", "--max-samples", "150"),
         lambda ctx, s, o: (BAD, "silently wrong: explained as an effect, exit 0")
         if o.rc == 0 else refused(o, "sign"), "bad 5")
     # ---- bad 6 ----
@@ -673,12 +713,19 @@ def make_cases() -> List[Case]:
                 ctx.dir / "res" / "realtime" / "RUNNING", sig)))(sig),
             signal_rule(lambda ctx, s: ctx.dir / "res" / "realtime", sig), "bad 6")
     # ---- bad 7 ----
-    add("B7-full-disk-fit", "fit --out on a 128 KiB tmpfs", lambda ctx: s_tiny(ctx),
+    add("B7-full-disk-fit", "fit --out on a full tmpfs (128 KiB, filled by someone's file)", lambda ctx: s_tiny(ctx),
         lambda ctx, s: (lambda: full_disk(ctx, lambda m: fit_args(s["csv"], m / "out"))),
         full_disk_rule(lambda ctx: ctx.dir / "disk" / "out"), "bad 7")
-    add("B7-full-disk-run", "run --results on a 64 KiB tmpfs", lambda ctx: {},
-        lambda ctx, s: (lambda: full_disk(ctx, lambda m: run_args(m), 65536)),
+    add("B7-full-disk-run", "run --results on a full tmpfs", lambda ctx: {},
+        lambda ctx, s: (lambda: full_disk(ctx, lambda m: run_args(m))),
         full_disk_rule(lambda ctx: ctx.dir / "disk" / "cube-uniaxial"), "bad 7")
+    add("B7-full-disk-run-64k", "run --results on an empty 64 KiB tmpfs (runs out while writing HDF5)",
+        lambda ctx: {}, lambda ctx, s: (lambda: full_disk(ctx, lambda m: run_args(m), 65536, fill=False)),
+        full_disk_rule(lambda ctx: ctx.dir / "disk" / "cube-uniaxial"), "bad 7")
+    add("B7-full-disk-hereditary", "hereditary --quick --results on a full tmpfs (HDF5 output)", lambda ctx: {},
+        lambda ctx, s: (lambda: full_disk(ctx, lambda m: ["hereditary", "--quick", "--no-liver", "--histories",
+                                                          "ramp_hold", "--no-plots", "--results", str(m)])),
+        full_disk_rule(lambda ctx: ctx.dir / "disk" / "hereditary"), "bad 7")
     # ---- weak bullets ----
     def deep_json(ctx):
         csv = tiny(ctx.dir / "d")
@@ -772,8 +819,8 @@ def make_cases() -> List[Case]:
             return refused(o, "--local-runs")
         j = json.loads((ctx.dir / "out" / "fit.json").read_text())
         got = json.dumps(j)
-        rec = j.get("local_runs", j.get("options", {}).get("local_runs"))
-        return (WEAK, "fit.json records local_runs %s although 12 ran" % rec) if '"local_runs": 100' in got \
+        rec = j.get("global_stage", {}).get("local_runs", j.get("local_runs"))
+        return (WEAK, "fit.json records local_runs %s although at most 12 ran" % rec) if '"local_runs": 100' in got \
             else (GOOD, "records %s" % rec)
 
     add("W-local-runs-100", "--local-runs 100 with --starts 12", s_tiny,
@@ -844,7 +891,7 @@ def make_cases() -> List[Case]:
             return c
         if o.rc != 0 and "reference" in o.out and "not built" in o.out:
             return WEAK, "not tried: the deal.II reference is not built"
-        dirs = sorted(p.name for p in (ctx.dir / "res").iterdir())
+        dirs = sorted(p.name for p in (ctx.dir / "res").iterdir() if "compare" in p.name)
         if len(dirs) == 1:
             return WEAK, "both write %s/: the second replaced the first" % dirs[0]
         return GOOD, "separate folders: " + ", ".join(dirs)
@@ -1010,12 +1057,29 @@ def run_case(ctx: Ctx, case: Case) -> dict:
 
 def full_disk_helper(argv: List[str]) -> int:
     """Inside the private mount namespace: mount the tmpfs, run the command, report its status."""
-    mnt, size, rest = argv[0], argv[1], argv[3:]
+    mnt, size, fill, rest = argv[0], argv[1], argv[2] == "fill", argv[4:]
     m = subprocess.run(["mount", "-t", "tmpfs", "-o", "size=" + size, "tmpfs", mnt])
     if m.returncode != 0:
         print("cannot mount a tmpfs on " + mnt, flush=True)
         return 3
+    # Someone's file fills the disk to two free pages: the quick results would fit in 128 KiB.
+    st = os.statvfs(mnt)
+    filler = b"x" * (max(0, st.f_bavail * st.f_frsize - 8192) if fill else 0)
+    with open(os.path.join(mnt, "filler.bin"), "wb") as f:
+        f.write(filler)
     p = subprocess.run(rest)
+    state = {"files": [], "failed": {}, "filler_changed": False}
+    for dirpath, dirnames, filenames in os.walk(mnt):
+        for n in dirnames + filenames:
+            full = os.path.join(dirpath, n)
+            r = os.path.relpath(full, mnt)
+            state["files"].append(r)
+            if n == "FAILED":
+                state["failed"][r] = open(full, errors="replace").read()[:2000]
+    if os.path.exists(os.path.join(mnt, "filler.bin")):
+        state["filler_changed"] = open(os.path.join(mnt, "filler.bin"), "rb").read() != filler
+    with open(mnt.rstrip("/") + ".state.json", "w") as f:
+        json.dump(state, f)
     subprocess.run(["umount", "-l", mnt])
     return p.returncode if p.returncode >= 0 else 128 - p.returncode
 

@@ -50,7 +50,8 @@ enum class Condition {
   PreviousWithForeign,  ///< a complete result to which the user added a file
   PreviousInterrupted,  ///< a result stopped by SIGINT after its first checkpoint
   CraftedMarker,        ///< a .tmlab-result listing ../victim.txt and an absolute path
-  FullDisk,             ///< a 128 KiB tmpfs
+  FullDisk,             ///< a 128 KiB tmpfs filled by someone's file to two free pages
+  SmallDisk,            ///< an empty 64 KiB tmpfs: the disk fills in the middle of the writes (HDF5)
   Home,                 ///< $HOME (a scratch one)            [--out commands only]
   Root,                 ///< `/`                              [--out commands only]
   Ancestor,             ///< `..` of the working directory    [--out commands only]
@@ -80,6 +81,8 @@ std::string name_of(Condition c) {
       return "CraftedMarker";
     case Condition::FullDisk:
       return "FullDisk";
+    case Condition::SmallDisk:
+      return "SmallDisk";
     case Condition::Home:
       return "Home";
     case Condition::Root:
@@ -400,9 +403,10 @@ void check_outcome(const Placement& p, Condition cond, const Result& r, const Sn
                                                        << r.output;
       break;
     case Expect::FailedOrRefused:
-      EXPECT_TRUE(failed || refused) << "exit " << r.status
-                                     << "; neither FAILED with the reason nor refused:\n"
-                                     << r.output;
+      EXPECT_TRUE(failed || refused || complete)
+          << "exit " << r.status << "; neither FAILED with the reason, nor refused, nor complete ("
+          << incomplete(p.result) << "):\n"
+          << r.output;
       EXPECT_EQ(r.output.find("HDF5-DIAG"), std::string::npos) << r.output;
       break;
   }
@@ -477,14 +481,16 @@ Placement ResultDirProperty::place(Condition cond, std::optional<PrivateTmpfs>& 
               .dump());
       p.expect = Expect::Refused;
       break;
-    case Condition::FullDisk: {
+    case Condition::FullDisk:
+    case Condition::SmallDisk: {
       const fs::path mnt = world_ / "disk";
-      disk.emplace(mnt, 128u << 10);
+      disk.emplace(mnt, cond == Condition::FullDisk ? 128u << 10 : 64u << 10);
       if (!disk->problem().empty()) {
         skip_ = disk->problem();
         return p;
       }
-      fill_but_one_page(mnt / "filler.bin");  // someone's file: the quick results would fit in 128 KiB
+      if (cond == Condition::FullDisk)
+        fill_but_one_page(mnt / "filler.bin");  // someone's file: the quick results would fit in 128 KiB
       p.result = mnt / (own_folder ? "out" : cmd_.sub);
       p.out = out_for(p.result);
       p.expect = Expect::FailedOrRefused;
