@@ -513,7 +513,7 @@ def resume_case(kind: str, sig: int):
         o = ctx.run(args(ctx, ref))
         if o.rc != 0:
             raise RuntimeError("uninterrupted run failed: " + o.out[-400:])
-        a = args(ctx, cut) + ["--checkpoint-every", "1"]
+        a = args(ctx, cut) + ["--checkpoint-every", "200" if kind == "run" else "1"]
         if sig == signal.SIGKILL:
             res = cut / "cantilever-explicit" if kind == "run" else cut
             o = ctx.signalled(a, res / ".incomplete" / "checkpoint.h5", signal.SIGKILL, delay=0.5)
@@ -540,7 +540,8 @@ def resume_case(kind: str, sig: int):
                 return WEAK, "resumed, but %s differs from the uninterrupted run's" % name
         elif not (s["cut"] / "cantilever-explicit" / "summary.json").exists():
             return BAD, "resumed without a complete result"
-        return GOOD, "resumed (%s) to the uninterrupted result" % signal.Signals(sig).name
+        return GOOD, "resumed (%s) to %s" % (signal.Signals(sig).name,
+                                             "the uninterrupted result" if name else "a complete result")
 
     return setup, command, rule
 
@@ -607,9 +608,8 @@ def no_cleanup(ctx, s):
     return s
 
 
-def make_cases() -> List[Case]:
-    C = []
-    add = lambda *a, **k: C.append(Case(*a, **k))
+def bad_cases(add) -> None:
+    """The 7 bad items of issue 26."""
     # ---- bad 1 ----
     add("B1-foreign-manifest-fit", "fit --out V, V holds someone's manifest.json and thesis.tex", s_foreign_fit,
         lambda ctx, s: fit_args(s["csv"], ctx.dir / "V"),
@@ -726,7 +726,10 @@ def make_cases() -> List[Case]:
         lambda ctx, s: (lambda: full_disk(ctx, lambda m: ["hereditary", "--quick", "--no-liver", "--histories",
                                                           "ramp_hold", "--no-plots", "--results", str(m)])),
         full_disk_rule(lambda ctx: ctx.dir / "disk" / "hereditary"), "bad 7")
-    # ---- weak bullets ----
+
+
+def weak_cases(add) -> None:
+    """The weak bullets of issue 26 on data, numbers, messages and fit, each as its own case."""
     def deep_json(ctx):
         csv = tiny(ctx.dir / "d")
         meta = json.loads(csv.with_suffix(".json").read_text())
@@ -855,6 +858,10 @@ def make_cases() -> List[Case]:
 
     add("W-discover-clean-ramp", "discover on one noise-free ramp", lambda ctx: s_tiny(ctx, ripple=False),
         lambda ctx, s: disc_args(s["csv"], ctx.dir / "out"), discover_clean_rule, "weak: discover on a clean ramp")
+
+
+def weak_cases_rig_compare_realtime(add) -> None:
+    """The weak bullets of issue 26 on rig, compare and realtime, each as its own case."""
     for rid, mat, word in (("E-negative", '{"E": -1, "nu": 0.45, "density": 1000}', "E"),
                            ("unknown-key", '{"E": 3000, "nu": 0.45, "density": 1000, "colour": 1}', "colour"),
                            ("ogden-alpha0", '{"law": "ogden", "mu": [3000], "alpha": [0], "nu": 0.45, "density": 1000}',
@@ -914,7 +921,11 @@ def make_cases() -> List[Case]:
         lambda ctx, s: ["data", "show", s["csv"], "--no-plots", "--out", ctx.dir / "show"],
         lambda ctx, s, o: (GOOD, "accepted") if o.rc == 0 else (WEAK, "refused: " + o.first_line()),
         "weak: platens without bottom")
-    # ---- good behaviours: resume after SIGINT / SIGTERM / SIGKILL ----
+
+
+def good_and_property_cases(add) -> None:
+    """The good behaviours issue 26 names (resume after SIGINT / SIGTERM / SIGKILL) and the
+    result-directory property on fit, run and realtime."""
     for kind, sig in (("fit", signal.SIGINT), ("discover", signal.SIGTERM), ("run", signal.SIGKILL)):
         st, cm, ru = resume_case(kind, sig)
         add("G-resume-%s-%s" % (kind, signal.Signals(sig).name), "%s stopped by %s, then --resume"
@@ -978,7 +989,10 @@ def make_cases() -> List[Case]:
         lambda ctx, s: run_args(ctx.dir / "r'$(touch X)';touch Y;'"),
         lambda ctx, s, o: (BAD, "a shell ran") if (ctx.dir / "X").exists() or (ctx.dir / "Y").exists() or Path("X").exists()
         else result_rule("r")(ctx, {"r": ctx.dir / "r'$(touch X)';touch Y;'" / "cube-uniaxial"}, o), "property")
-    # ---- plain bad input, named ----
+
+
+def named_input_cases(add) -> None:
+    """Plain bad input that must be refused naming the file, key or option."""
     add("N-fit-missing-file", "fit on a file that does not exist", lambda ctx: {},
         lambda ctx, s: fit_args(ctx.dir / "nope.csv", ctx.dir / "out"),
         lambda ctx, s, o: refused(o, "nope.csv"), "named input")
@@ -1025,7 +1039,19 @@ def make_cases() -> List[Case]:
         lambda ctx, s, o: refused(o, "force_N"), "named input")
     add("N-mesh-info-missing", "mesh info on a missing file", lambda ctx: {},
         lambda ctx, s: ["mesh", "info", ctx.dir / "none.msh"], lambda ctx, s, o: refused(o, "none.msh"), "named input")
-    return C
+
+
+def make_cases() -> List[Case]:
+    """The table: every case, in the order of the report."""
+    cases: List[Case] = []
+
+    def add(*a, **k):
+        cases.append(Case(*a, **k))
+
+    for section in (bad_cases, weak_cases, weak_cases_rig_compare_realtime, good_and_property_cases,
+                    named_input_cases):
+        section(add)
+    return cases
 
 
 # ---------------------------------------------------------------------------------------------------
