@@ -2,15 +2,18 @@
 // output in each of the conditions a user meets (an empty folder; a folder holding someone's files,
 // a foreign manifest.json among them; a symlink to a folder, also on another file system; `.`; ""; a
 // previous complete result, one with a file added, an interrupted one; a crafted ownership marker; a
-// full disk; for the commands whose --out names the result itself also $HOME, `/` and an ancestor of
-// the working directory) must
+// full disk (a 128 KiB tmpfs filled by someone's file) and a small one (an empty 64 KiB tmpfs that
+// fills while HDF5 writes); for the commands whose --out names the result itself also $HOME, `/` and
+// an ancestor of the working directory) must
 //   1. never remove or change a file tmlab did not write (names and content hashes of the whole
 //      scratch world, the result's siblings and the symlink targets included, before and after), and
 //   2. end in exactly one of: a complete result (exit 0, summary.json and a .tmlab-result marker
 //      listing every file, no RUNNING / FAILED / INTERRUPTED / .incomplete, no .NAME.final /
 //      .NAME.old beside it); a refusal before computing (exit 1, the rule named, nothing created or
 //      changed); or, on a full disk, FAILED with the reason (exit 1, no summary.json, no HDF5-DIAG
-//      noise). Never a RUNNING marker after the process ended.
+//      noise; a result that fits may also be complete). Never a RUNNING marker after the process ended.
+// The tmpfs are mounted in a private mount namespace of the test process (cli_test_support.hpp);
+// where that is impossible the disk conditions are skipped with the reason.
 // The table of commands x conditions below is the property; each pair is one test. Commands run
 // with their quickest options; those that cannot be made quick (bench, paper, workprecision) get
 // fewer conditions (see fewer()).
