@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 
+#include "core/base/format.hpp"
 #include "core/base/number.hpp"
 
 #include <algorithm>
@@ -14,9 +15,12 @@
 namespace tmlab::cli {
 
 std::string Parsed::get(const std::string& key, const std::string& fallback) const {
-  for (const auto& o : options)
-    if (o.first == key) return o.second;
-  return fallback;
+  const std::vector<std::string> given = all(key);
+  if (given.size() > 1)
+    throw UsageError("option " + key + " is given " + std::to_string(given.size()) + " times ('" +
+                     printable(given[0], 60) + "' and '" + printable(given[1], 60) +
+                     "'): give it once (only --fix, --weight, --prior, --case and --label repeat)");
+  return given.empty() ? fallback : given.front();
 }
 
 bool Parsed::has(const std::string& key) const {

@@ -11,6 +11,8 @@ namespace tmlab::cli {
 struct Parsed {
   std::vector<std::string> positional;
   std::vector<std::pair<std::string, std::string>> options;
+  /// The value of an option given at most once; UsageError when it is given more than once (a
+  /// repeatable option is read with all()).
   std::string get(const std::string& key, const std::string& fallback = "") const;
   bool has(const std::string& key) const;
   /// Every value given for a repeatable option, in order.

@@ -3,6 +3,7 @@
 #include "tensormass/bench/bench_suite.hpp"
 
 #include "core/base/error.hpp"
+#include "core/base/interrupt.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/bench/machine_limits.hpp"
@@ -64,6 +65,7 @@ struct Timing {
 
 /// Times fn by Google Benchmark (at least one call, min_time seconds of wall time).
 Timing measure_ns(const std::function<void()>& fn, double min_time) {
+  check_interrupt("bench: stopped between two measurements");  // SIGINT/SIGTERM: a safe point
   benchmark::ClearRegisteredBenchmarks();
   benchmark::RegisterBenchmark("tmlab_bench",
                                [&fn](benchmark::State& st) {
@@ -510,6 +512,7 @@ void contact_step_records(const BenchOptions& o, json& records) {
     records.push_back(r);
   };
   for (const auto& c : contact_cells(o.quick)) {
+    check_interrupt("bench: stopped before the contact records");
     const int tets = 6 * c[0] * c[1] * c[2];
     const MeshCase m = cube("contact_" + std::to_string(tets), c[0], c[1], c[2]);
     if (o.log) *o.log << "tmlab bench: " << m.name << " (contact steps)\n";
@@ -570,6 +573,7 @@ json run_bench(const BenchOptions& o) {
   };
   for (const auto& [mesh_name, make] : cases) {
     if (!selected(mesh_name)) continue;
+    check_interrupt("bench: stopped before the " + mesh_name + " records");
     const MeshCase m = make();
     if (o.log) *o.log << "tmlab bench: " << m.name << " (" << m.mesh.num_tets() << " tets)\n";
     meshes.push_back({{"name", m.name}, {"tets", m.mesh.num_tets()}, {"nodes", m.mesh.num_points()}});
