@@ -72,6 +72,7 @@ TEST(FeRig, FrictionlessPlatensGiveTheHomogeneousClosedForm) {
 TEST(FeRig, TensionForceIsNegative) {
   ms::DataSet d = block_compression(0.1, 1.0);
   d.meta.test = ms::TestType::uniaxial_tension;
+  d.meta.sample.bottom.reset();  // tension grips: the platens, bonded
   d.meta.sample.platens = ms::Interface::bonded;
   for (double& u : d.tests[0].displacement_m) u = -u;
   const auto model = make_fe_rig_model(d, parse_model_spec("neo_hookean"), coarse());
