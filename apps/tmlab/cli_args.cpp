@@ -42,6 +42,11 @@ Parsed parse(const std::vector<std::string>& args, const std::vector<std::string
     if (a.rfind("--", 0) == 0) {
       if (std::find(with_value.begin(), with_value.end(), a) != with_value.end()) {
         if (i + 1 >= args.size()) throw UsageError("option " + a + " needs a value");
+        if (args[i + 1].empty())
+          throw UsageError("option " + a + " has an empty value" +
+                           (a == "--out" || a == "--results"
+                                ? std::string(": a result needs a folder of its own (e.g. results/NAME)")
+                                : std::string()));
         p.options.emplace_back(a, args[++i]);
       } else if (std::find(flags.begin(), flags.end(), a) != flags.end()) {
         p.options.emplace_back(a, "");

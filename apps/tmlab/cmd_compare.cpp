@@ -66,33 +66,34 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   opt.command_line = split_words(command_line);
   opt.plots = false;
   opt.log = &std::cerr;
-  CaseConfig tm_cfg = cfg;
-  // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.
-  tm_cfg.model = cfg.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
-  std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
-  const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
-  tmlab::RunResult b;
-  if (against == "reference") {
-    std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
-    b = run_model(cfg, opt, "reference", degree, time_integration);
-  } else {
-    CaseConfig o = cfg;
-    o.name = cfg.name + "-tl_oracle";
-    o.model = CaseModel::TlOracle;
-    std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
-    b = tm::run_case(o, opt);
-  }
-  ComparisonSeries series;
-  nlohmann::json cmp = compare_results(a.dir, b.dir, &series);
-  cmp["case"] = cfg.name;
-  cmp["a"] = a.dir;
-  cmp["b"] = b.dir;
-  cmp["against"] = against;
-  // The comparison is a result of its own, written through the same protocol as every run (staged,
+  // The comparison is a result of its own, taken before either model runs (a folder it may not write
+  // into is refused before computing) and written through the same protocol as every run (staged,
   // summary.json last, one writer, FAILED/INTERRUPTED on failure): <results>/<case>-compare/ against
   // the reference, <results>/<case>-compare-tl_oracle/ against the oracle, so neither replaces the other.
   RunOutput out(fs::path(opt.results_root) / compare_dir_name(cfg.name, against), &std::cerr);
   try {
+    CaseConfig tm_cfg = cfg;
+    // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.
+    tm_cfg.model = cfg.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
+    std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
+    const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
+    tmlab::RunResult b;
+    if (against == "reference") {
+      std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
+      b = run_model(cfg, opt, "reference", degree, time_integration);
+    } else {
+      CaseConfig o = cfg;
+      o.name = cfg.name + "-tl_oracle";
+      o.model = CaseModel::TlOracle;
+      std::cerr << "tmlab compare: total-Lagrangian oracle run\n";
+      b = tm::run_case(o, opt);
+    }
+    ComparisonSeries series;
+    nlohmann::json cmp = compare_results(a.dir, b.dir, &series);
+    cmp["case"] = cfg.name;
+    cmp["a"] = a.dir;
+    cmp["b"] = b.dir;
+    cmp["against"] = against;
     ManifestInput mi;
     mi.command_line = opt.command_line;
     mi.config = {{"case", effective_case_json(cfg)},     {"against", against}, {"degree", degree},

@@ -121,7 +121,7 @@ std::vector<Command> commands() {
        },
        std::vector<std::string>{"--checkpoint-every", "1"}},
       // compare has no checkpoints: no interrupted result.
-      {"compare", "cube-uniaxial-compare",
+      {"compare", "cube-uniaxial-compare-tl_oracle",
        [](const fs::path&, const std::string& o) -> std::vector<std::string> {
          return {"compare", "cube-uniaxial", "--against", "tl_oracle", "--results", o};
        },
@@ -383,8 +383,10 @@ std::vector<std::string> refusal_words(Condition c, const fs::path& result) {
 void check_outcome(const Placement& p, Condition cond, const Result& r, const Snapshot& before,
                    const Snapshot& after) {
   const bool complete = r.status == 0 && incomplete(p.result).empty();
-  const bool refused =
-      r.status == 1 && lost_or_changed(before, after).empty() && created(before, after).empty();
+  // A refusal is an error (exit 1) or a usage error (exit 2, e.g. an empty --out), named, before
+  // anything is created or changed.
+  const bool refused = (r.status == 1 || r.status == 2) && lost_or_changed(before, after).empty() &&
+                       created(before, after).empty();
   const bool failed = r.status == 1 && fs::exists(p.result / "FAILED") &&
                       !read_file(p.result / "FAILED").empty() && !fs::exists(p.result / "summary.json");
   switch (p.expect) {
