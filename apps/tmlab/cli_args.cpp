@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 
+#include "core/base/error.hpp"
 #include "core/base/number.hpp"
 
 #include <algorithm>
@@ -78,6 +79,15 @@ std::vector<std::string> split_words(const std::string& s) {
   std::vector<std::string> w;
   for (std::string x; in >> x;) w.push_back(x);
   return w;
+}
+
+CheckpointSchedule checkpoint_schedule(const Parsed& p) {
+  try {
+    return p.has("--checkpoint-every") ? CheckpointSchedule::parse(p.get("--checkpoint-every"))
+                                       : CheckpointSchedule{};
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
 }
 
 }  // namespace tmlab::cli

@@ -1,6 +1,8 @@
 // Argument parsing shared by the tmlab sub-commands (cli_args.cpp).
 #pragma once
 
+#include "core/results/checkpoint.hpp"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -32,5 +34,9 @@ std::vector<std::string> split_list(const std::string& s);
 
 /// Whitespace-separated words (the command line as a list, for manifests).
 std::vector<std::string> split_words(const std::string& s);
+
+/// --checkpoint-every of a command that finishes in units (default: every 60 s of wall time, and
+/// always at a stop request); UsageError naming the accepted forms.
+CheckpointSchedule checkpoint_schedule(const Parsed& p);
 
 }  // namespace tmlab::cli
