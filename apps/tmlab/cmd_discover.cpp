@@ -14,9 +14,6 @@
 #include "calibration/discover/discover_output.hpp"
 #include "calibration/discover/fe_refit.hpp"
 #include "core/base/error.hpp"
-#include "core/base/format.hpp"
-#include "core/base/interrupt.hpp"
-#include "core/base/process.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/run_protocol.hpp"
 #include "core/results/unit_checkpoint.hpp"
@@ -25,6 +22,7 @@
 
 #include <filesystem>
 #include <iostream>
+#include <tuple>
 
 namespace tmlab::cli {
 
@@ -39,10 +37,11 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
                                             (quick ? "benchmark-quick" : "benchmark");
   // A checkpoint after every finished set (docs/robustness.md); --resume reads it before the result
   // directory is touched.
+  const nlohmann::json selection = {{"quick", quick},
+                                    {"rig", p.has("--rig") ? p.get("--rig") : "all"},
+                                    {"only", p.has("--only") ? p.get("--only") : "all"}};
   nlohmann::json fingerprint = discover::options_fingerprint(o);
-  fingerprint["benchmark"] = {{"quick", quick},
-                              {"rig", p.has("--rig") ? p.get("--rig") : "all"},
-                              {"only", p.has("--only") ? p.get("--only") : "all"}};
+  fingerprint["benchmark"] = selection;
   discover::BenchmarkLog log;
   UnitListCheckpoint<discover::BenchmarkEntry> units(dir, "discover-benchmark", fingerprint,
                                                      checkpoint_schedule(p), discover::put_benchmark_entries,
@@ -56,15 +55,11 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
                 p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   ManifestInput mi;
   mi.command_line = split_words(command_line);
-  mi.config = {{"quick", quick},
-               {"rig", p.has("--rig") ? p.get("--rig") : "all"},
-               {"only", p.has("--only") ? p.get("--only") : "all"},
-               {"seed", o.seed},
-               {"starts", o.starts},
-               {"threads", o.threads}};
+  mi.config = selection;
+  mi.config.update({{"seed", o.seed}, {"starts", o.starts}, {"threads", o.threads}});
   run_with_protocol(
       out, mi,
-      [&]() -> nlohmann::json {
+      [&] {
         auto sets = discover::benchmark_sets(quick);
         // Only the sets of the rigs named (e.g. to rerun the indentation sets alone), then only
         // those whose truth is named (e.g. to rerun one effect's sets).
@@ -81,10 +76,7 @@ int run_benchmark_command(const Parsed& p, const discover::Options& o, const std
         out.write_json("benchmark.json", discover::to_json(b));
         discover::write_confusion_csv(out.file("confusion_matrix.csv"), b);
         discover::print_benchmark_report(std::cout, b);
-        return {{"diagonal_fraction", b.diagonal_fraction},
-                {"noise_only_false_positives", b.noise_false_positives},
-                {"outside_library_flagged", b.outside_flagged},
-                {"median_error_reduction", b.median_error_reduction}};
+        return discover::summary_json(b);
       },
       protocol_checkpoint(units.file()));
   std::cout << "written: " << out.dir().string() << "/ (benchmark.json, confusion_matrix.csv)\n";
@@ -106,13 +98,7 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
   }
   // A checkpoint after every fit of the loop (and of the FE refits) (docs/robustness.md); --resume
   // reads it before the result directory is touched.
-  nlohmann::json fingerprint = discover::options_fingerprint(o);
-  fingerprint["forward"] = forward;
-  if (forward == "fe_rig")
-    fingerprint["fe_rig"] = {{"mesh", {fe.mesh.cells, fe.mesh.layers}},
-                             {"substeps", fe.substeps},
-                             {"iterations", fe.max_iterations},
-                             {"max_samples", fe.max_samples}};
+  nlohmann::json fingerprint = discover::discovery_fingerprint(o, forward, fe);
   fingerprint["data"] = {{"csv", file_hash(csv)}, {"metadata", file_hash(measured::metadata_path(csv))}};
   discover::FitLog log;
   UnitListCheckpoint<discover::FitOutcome> units(dir, "discover", fingerprint, checkpoint_schedule(p),
@@ -127,24 +113,12 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
                 p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   ManifestInput mi;
   mi.command_line = split_words(command_line);
-  mi.config = {{"poisson", o.poisson},
-               {"fix_poisson", o.fix_poisson},
-               {"max_samples", o.max_samples},
-               {"rounds", o.max_rounds},
-               {"starts", o.starts},
-               {"threads", o.threads},
-               {"seed", o.seed},
-               {"effects", o.effects},
-               {"bic_threshold", o.bic_threshold},
-               {"held_out_ratio", o.held_out_ratio},
-               {"alpha", o.thresholds.alpha},
-               {"forward", forward}};
+  mi.config = discover::manifest_config(o, forward);
   mi.input_files = {csv, measured::metadata_path(csv)};
-  bool plots_ok = false;
   std::string plots = "skipped (--no-plots)";
   run_with_protocol(
       out, mi,
-      [&]() -> nlohmann::json {
+      [&] {
         const discover::Report r = discover::run(data, o);
         nlohmann::json j = discover::to_json(r);
         std::vector<discover::FeRefit> fe_refits;
@@ -155,25 +129,17 @@ int run_discover_command(const Parsed& p, discover::Options o, const std::string
         out.write_json("report.json", j);
         discover::write_discover_h5(out.file("discover.h5"), r, fe_refits);
         if (!p.has("--no-plots")) {
-          const ProcessStatus ps = run_python(
-              fs::path(tmlab_root()) / "calibration" / "discover" / "python" / "tmlab_discover_plot.py",
-              {out.staging_dir().string()}, ProcessOutput::discard());
-          plots_ok = ps.ok();
-          plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
-          if (!ps.ok()) std::cerr << "tmlab discover: plots " << plots << "\n";
+          plots = discover::write_discover_plots(out.staging_dir(), tmlab_root());
+          if (plots != "ok") std::cerr << "tmlab discover: plots " << plots << "\n";
         }
-        discover::write_report_html(out.file("index.html"), j, plots_ok);
+        discover::write_report_html(out.file("index.html"), j, plots == "ok");
         discover::print_discover_report(std::cout, r, fe_refits);
-        return {{"selected_effects", r.selected},
-                {"unexplained_structure", r.unexplained},
-                {"baseline_rms_N", r.baseline.fit.rms},
-                {"final_rms_N", r.final.fit.rms},
-                {"plots", plots}};
+        return discover::summary_json(r, plots);
       },
       protocol_checkpoint(units.file()));
   std::cout << "written: " << out.dir().string()
             << "/ (index.html, report.json, discover.h5, manifest.json, summary.json"
-            << (plots_ok ? ", discover_*.png" : "") << ")\n";
+            << (plots == "ok" ? ", discover_*.png" : "") << ")\n";
   return 0;
 }
 
@@ -218,13 +184,7 @@ int cmd_discover(const std::vector<std::string>& args, const std::string& comman
   if (forward != "closed_form" && forward != "fe_rig")
     throw UsageError("--forward must be closed_form or fe_rig (got '" + forward + "')");
   discover::FeRefitOptions fe;
-  if (p.has("--mesh")) {
-    const std::string m = p.get("--mesh");
-    const std::size_t comma = m.find(',');
-    if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
-    fe.mesh.cells = int(parse_whole("--mesh CELLS", m.substr(0, comma), 2, 400));
-    fe.mesh.layers = int(parse_whole("--mesh LAYERS", m.substr(comma + 1), 1, 400));
-  }
+  if (p.has("--mesh")) std::tie(fe.mesh.cells, fe.mesh.layers) = parse_cells_layers(p.get("--mesh"));
   fe.substeps = whole("--substeps", fe.substeps, 1, 100);
   fe.max_iterations = whole("--fe-iterations", fe.max_iterations, 1, 200);
   fe.max_samples = std::size_t(whole("--fe-max-samples", int(fe.max_samples), 20, 1000000));

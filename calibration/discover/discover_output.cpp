@@ -3,6 +3,7 @@
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
 
 #include <cstdio>
@@ -217,6 +218,54 @@ nlohmann::json options_fingerprint(const Options& o) {
           {"seed", o.seed},
           {"alpha", o.thresholds.alpha},
           {"effects", o.effects}};
+}
+
+nlohmann::json discovery_fingerprint(const Options& o, const std::string& forward, const FeRefitOptions& fe) {
+  nlohmann::json j = options_fingerprint(o);
+  j["forward"] = forward;
+  if (forward == "fe_rig")
+    j["fe_rig"] = {{"mesh", {fe.mesh.cells, fe.mesh.layers}},
+                   {"substeps", fe.substeps},
+                   {"iterations", fe.max_iterations},
+                   {"max_samples", fe.max_samples}};
+  return j;
+}
+
+nlohmann::json manifest_config(const Options& o, const std::string& forward) {
+  return {{"poisson", o.poisson},
+          {"fix_poisson", o.fix_poisson},
+          {"max_samples", o.max_samples},
+          {"rounds", o.max_rounds},
+          {"starts", o.starts},
+          {"threads", o.threads},
+          {"seed", o.seed},
+          {"effects", o.effects},
+          {"bic_threshold", o.bic_threshold},
+          {"held_out_ratio", o.held_out_ratio},
+          {"alpha", o.thresholds.alpha},
+          {"forward", forward}};
+}
+
+nlohmann::json summary_json(const Report& r, const std::string& plots) {
+  return {{"selected_effects", r.selected},
+          {"unexplained_structure", r.unexplained},
+          {"baseline_rms_N", r.baseline.fit.rms},
+          {"final_rms_N", r.final.fit.rms},
+          {"plots", plots}};
+}
+
+nlohmann::json summary_json(const BenchmarkResult& b) {
+  return {{"diagonal_fraction", b.diagonal_fraction},
+          {"noise_only_false_positives", b.noise_false_positives},
+          {"outside_library_flagged", b.outside_flagged},
+          {"median_error_reduction", b.median_error_reduction}};
+}
+
+std::string write_discover_plots(const fs::path& dir, const fs::path& tmlab_root) {
+  const ProcessStatus ps =
+      run_python(tmlab_root / "calibration" / "discover" / "python" / "tmlab_discover_plot.py",
+                 {dir.string()}, ProcessOutput::discard());
+  return ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
 }
 
 void write_discover_h5(const fs::path& path, const Report& r, const std::vector<FeRefit>& fe_refits) {

@@ -42,5 +42,19 @@ void print_benchmark_report(std::ostream& os, const BenchmarkResult& b);
 
 /// Every option of the loop that changes its result: part of what --resume must match.
 nlohmann::json options_fingerprint(const Options& o);
+/// The fingerprint of a discovery: options_fingerprint, the forward model (`forward`,
+/// "closed_form" or "fe_rig") and, with the FE rig, its options (the data's hashes are the caller's).
+nlohmann::json discovery_fingerprint(const Options& o, const std::string& forward, const FeRefitOptions& fe);
+/// The manifest's config block of a discovery: the options as the run used them.
+nlohmann::json manifest_config(const Options& o, const std::string& forward);
+
+/// summary.json's own block of a discovery (`plots`: "ok", "failed (why)", "skipped (--no-plots)").
+nlohmann::json summary_json(const Report& r, const std::string& plots);
+/// summary.json's own block of a benchmark.
+nlohmann::json summary_json(const BenchmarkResult& b);
+
+/// The plots of a discovery (calibration/discover/python/tmlab_discover_plot.py under `tmlab_root`,
+/// from report.json and discover.h5 in `dir`): "ok" or "failed (why)".
+std::string write_discover_plots(const std::filesystem::path& dir, const std::filesystem::path& tmlab_root);
 
 }  // namespace tmlab::discover

@@ -236,4 +236,29 @@ FitResult get_fit_result(const CheckpointData& d, const std::string& prefix) {
   return r;
 }
 
+// --- the file of one fit -----------------------------------------------------------------------
+
+FitCheckpoint::FitCheckpoint(const std::filesystem::path& dir, const nlohmann::json& fingerprint,
+                             const CheckpointSchedule& schedule)
+    : ck_(dir / result_dir::kStaging / "checkpoint.h5", "fit", fingerprint, schedule, [this] {
+        CheckpointData d;
+        put_fit_units(d, latest_);
+        return d;
+      }) {}
+
+void FitCheckpoint::restore(FitOptions& o, std::ostream& log) {
+  restored_ = get_fit_units(ck_.read());
+  ck_.resumed_from(describe(restored_));
+  o.resume.restored = &restored_;
+  log << "tmlab fit: resuming from " << ck_.path().string() << ": " << describe(restored_)
+      << " taken from it, the rest runs\n";
+}
+
+void FitCheckpoint::record(FitOptions& o) {
+  o.resume.unit_finished = [this](const FitUnits& u) {
+    latest_ = u;
+    ck_.unit_finished(describe(u));
+  };
+}
+
 }  // namespace tmlab::fit

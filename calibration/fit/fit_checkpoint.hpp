@@ -10,6 +10,12 @@
 
 #include "calibration/fit/fitter.hpp"
 #include "core/results/checkpoint.hpp"
+#include "core/results/unit_checkpoint.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <ostream>
 
 #include <string>
 
@@ -24,5 +30,26 @@ std::string describe(const FitUnits& u);
 /// A whole fit result under `prefix` (1-40 characters of the checkpoint's entry names).
 void put_fit_result(CheckpointData& d, const std::string& prefix, const FitResult& r);
 FitResult get_fit_result(const CheckpointData& d, const std::string& prefix);
+
+/// The checkpoint of one fit (`tmlab fit`, docs/robustness.md): <dir>/.incomplete/checkpoint.h5
+/// after the global stage, each local run and each profile point as `schedule` says (and at a stop).
+/// Not copyable or movable (its writer refers to the latest units).
+class FitCheckpoint {
+ public:
+  FitCheckpoint(const std::filesystem::path& dir, const nlohmann::json& fingerprint,
+                const CheckpointSchedule& schedule);
+  FitCheckpoint(const FitCheckpoint&) = delete;
+  FitCheckpoint& operator=(const FitCheckpoint&) = delete;
+  /// --resume: the units of the interrupted fit handed to `o` (taken instead of computed), said on
+  /// `log`. tmlab::Error when there is no checkpoint or it is of another configuration.
+  void restore(FitOptions& o, std::ostream& log);
+  /// Each unit `o`'s fit finishes is recorded (a checkpoint when one is due).
+  void record(FitOptions& o);
+  UnitCheckpoint& file() { return ck_; }
+
+ private:
+  FitUnits restored_, latest_;
+  UnitCheckpoint ck_;
+};
 
 }  // namespace tmlab::fit

@@ -5,6 +5,7 @@
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/process.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/json_number.hpp"
 
@@ -185,6 +186,41 @@ void print_fit_report(std::ostream& os, const FitResult& r, const Problem& probl
        << "): " << c.note << "\n";
   for (const auto& n : r.notes) os << "note: " << n << "\n";
   if (const std::string n = local_runs_note(r, o); !n.empty()) os << "note: " << n << "\n";
+}
+
+void print_fit_plan(std::ostream& os, const std::string& data_name, const ModelSpec& spec,
+                    const std::string& global, const std::string& which, const Problem& problem,
+                    const std::string& why_no_closed_form) {
+  os << "fit " << data_name << " with " << spec.text << " (" << problem.model->description() << ")\n";
+  if (problem.global_model)
+    os << "global stage (" << global << ") on the closed form: " << problem.global_model->description()
+       << "; local stage and every reported number: " << problem.model->name() << "\n";
+  else if (which == "fe_rig" && !why_no_closed_form.empty())
+    os << "global stage on the FE rig itself (no closed form: " << why_no_closed_form << ")\n";
+}
+
+std::string result_name(const std::string& data_name, const ModelSpec& spec) {
+  return data_name + "-" + spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
+         (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
+}
+
+nlohmann::json summary_json(const FitResult& r, const ModelSpec& spec, const std::string& plots) {
+  return {{"model", spec.text},
+          {"forward_model", r.model_name},
+          {"residual_rms_percent_of_peak", r.rms_percent_peak},
+          {"aic", r.aic},
+          {"bic", r.bic},
+          {"forward_solves", r.forward_solves},
+          {"global_stage", r.global_stage},
+          {"surrogate_solves", r.global_solves},
+          {"wall_seconds", r.wall_seconds},
+          {"plots", plots}};
+}
+
+std::string write_fit_plots(const fs::path& dir, const fs::path& tmlab_root, const std::string& title) {
+  const ProcessStatus ps = run_python(tmlab_root / "calibration" / "fit" / "python" / "tmlab_fit_plot.py",
+                                      {dir.string(), title}, ProcessOutput::discard());
+  return ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
 }
 
 Problem make_problem(const measured::DataSet& data, const ModelSpec& spec,

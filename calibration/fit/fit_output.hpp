@@ -42,6 +42,24 @@ void write_fit_h5(const std::filesystem::path& path, const measured::DataSet& da
 void print_fit_report(std::ostream& os, const FitResult& r, const Problem& problem,
                       const FitOptions& options);
 
+/// What the fit is about to do: the data, the SPEC and its forward model; the global stage (`global`,
+/// the --global word) on the closed form when the FE rig has one beside it, or on the FE rig itself
+/// and why (`which` "fe_rig", `why_no_closed_form` from make_problem).
+void print_fit_plan(std::ostream& os, const std::string& data_name, const ModelSpec& spec,
+                    const std::string& global, const std::string& which, const Problem& problem,
+                    const std::string& why_no_closed_form);
+
+/// The result name of a fit of `data_name` with `spec`: "<data>-<law>[N][-pronyM]".
+std::string result_name(const std::string& data_name, const ModelSpec& spec);
+
+/// summary.json's own block: the model, the forward model, residual, AIC/BIC, solves, `plots`.
+nlohmann::json summary_json(const FitResult& r, const ModelSpec& spec, const std::string& plots);
+
+/// The plots of a fit (calibration/fit/python/tmlab_fit_plot.py under `tmlab_root`) from fit.json
+/// and fit.h5 in `dir`, titled `title`: "ok" or "failed (why)".
+std::string write_fit_plots(const std::filesystem::path& dir, const std::filesystem::path& tmlab_root,
+                            const std::string& title);
+
 /// The forward model of `tmlab fit --forward WHICH`: "closed_form" (the data's closed-form
 /// surrogate), "fe_rig" (the FE rig, with the closed form as the global stage's model when there is
 /// one), "auto" (the closed form when it covers the data and the law, else the FE rig). Sets

@@ -135,3 +135,25 @@ TEST(DiscoverOutput, SelectSetsByRigAndTruth) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(DiscoverOutput, DiscoveryFingerprintManifestAndSummary) {
+  discover::Options o;
+  discover::FeRefitOptions fe;
+  const json closed = discover::discovery_fingerprint(o, "closed_form", fe);
+  EXPECT_EQ(closed["forward"], "closed_form");
+  EXPECT_FALSE(closed.contains("fe_rig"));  // FE options do not matter without the FE rig
+  const json a = discover::discovery_fingerprint(o, "fe_rig", fe);
+  fe.substeps += 1;
+  EXPECT_NE(discover::discovery_fingerprint(o, "fe_rig", fe), a);
+  EXPECT_EQ(discover::discovery_fingerprint(o, "closed_form", fe), closed);
+  const json m = discover::manifest_config(o, "closed_form");
+  EXPECT_EQ(m["forward"], "closed_form");
+  EXPECT_EQ(m["seed"], o.seed);
+  discover::BenchmarkResult b;
+  b.diagonal_fraction = 0.75;
+  EXPECT_EQ(discover::summary_json(b)["diagonal_fraction"], 0.75);
+}
+
+}  // namespace

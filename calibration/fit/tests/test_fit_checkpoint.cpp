@@ -11,7 +11,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <limits>
+#include <sstream>
 
 namespace {
 
@@ -203,6 +205,43 @@ TEST_F(FitCheckpointTest, InconsistentEntriesAreRefused) {
   EXPECT_THROW(fit::get_fit_result(e, "r"), tmlab::Error);
   e.put_text("r.meta", "{not json");
   EXPECT_THROW(fit::get_fit_result(e, "r"), tmlab::Error);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(FitCheckpointTest, FitCheckpointRecordsAndRestoresUnits) {
+  tmlab::CheckpointSchedule every;
+  every.every_steps = 1;
+  every.every_seconds = 0.0;
+  const nlohmann::json fingerprint = {{"model", "neo_hookean"}};
+  fit::FitOptions o;
+  std::filesystem::create_directories(dir_ / ".incomplete");  // the staging area RunOutput makes
+  {
+    fit::FitCheckpoint ck(dir_, fingerprint, every);
+    ck.record(o);
+    ASSERT_TRUE(o.resume.unit_finished);
+    fit::FitUnits u;
+    u.global_done = true;
+    u.candidates = {{0.5, 0.25}};
+    u.order = {0};
+    u.local_runs = {{{0.5, 0.125}, 1.0 / 3.0, 4, "small step", 9}};
+    o.resume.unit_finished(u);  // written: every unit
+    EXPECT_TRUE(std::filesystem::exists(ck.file().path()));
+  }
+  fit::FitOptions resumed;
+  fit::FitCheckpoint again(dir_, fingerprint, every);
+  std::ostringstream log;
+  again.restore(resumed, log);
+  ASSERT_NE(resumed.resume.restored, nullptr);
+  ASSERT_EQ(resumed.resume.restored->local_runs.size(), 1u);
+  EXPECT_EQ(resumed.resume.restored->local_runs[0].cost, 1.0 / 3.0);
+  EXPECT_NE(log.str().find("the global stage and 1 local run(s) taken from it"), std::string::npos)
+      << log.str();
+  fit::FitOptions other;
+  fit::FitCheckpoint changed(dir_, {{"model", "yeoh"}}, every);  // another configuration: refused
+  EXPECT_THROW(changed.restore(other, log), tmlab::Error);
 }
 
 }  // namespace

@@ -150,3 +150,32 @@ TEST(FitOutput, ForwardModelRule) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(FitOutput, ResultNameSummaryAndPlan) {
+  EXPECT_EQ(fit::result_name("EF10", fit::parse_model_spec("ogden:2+prony:1,poisson=0.49")),
+            "EF10-ogden2-prony1");
+  EXPECT_EQ(fit::result_name("EF10", fit::parse_model_spec("neo_hookean")), "EF10-neo_hookean");
+  const fit::FitResult r = sample_result();
+  const json s = fit::summary_json(r, fit::parse_model_spec("neo_hookean"), "ok");
+  EXPECT_EQ(s["forward_model"], "homogeneous_platen");
+  EXPECT_EQ(s["global_stage"], "siman");
+  EXPECT_EQ(s["plots"], "ok");
+  tmlab::measured::DataSet data = fit::testing::compression_data(0.1, 20);
+  std::vector<double> force;
+  for (const double d : data.tests[0].displacement_m) force.push_back(1e3 * d);
+  fit::testing::set_forces(data, force);
+  const auto spec = fit::parse_model_spec("neo_hookean,poisson=0.49");
+  std::string why;
+  const fit::Problem pr = fit::make_problem(data, spec, {}, {}, "closed_form", {}, why);
+  std::ostringstream os;
+  fit::print_fit_plan(os, "EF10", spec, "multistart", "closed_form", pr, why);
+  EXPECT_EQ(os.str(), "fit EF10 with neo_hookean,poisson=0.49 (" + pr.model->description() + ")\n");
+  std::ostringstream fe;
+  fit::print_fit_plan(fe, "EF10", spec, "multistart", "fe_rig", pr, "no closed form here");
+  EXPECT_NE(fe.str().find("global stage on the FE rig itself (no closed form: no closed form here)"),
+            std::string::npos);
+}
+
+}  // namespace
