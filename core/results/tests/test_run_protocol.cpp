@@ -79,7 +79,8 @@ TEST_F(RunProtocolTest, CompleteRunHasManifestSummaryAndNoCheckpoint) {
   ASSERT_TRUE(fs::exists(dir / "summary.json"));
   EXPECT_NE(slurp(dir / "summary.json").find("\"answer\": 42"), std::string::npos);
   EXPECT_NE(slurp(dir / "manifest.json").find("\"answer\": 42"), std::string::npos);
-  EXPECT_FALSE(fs::exists(dir / RunOutput::kStaging)) << "a complete result holds no checkpoint";
+  EXPECT_FALSE(fs::exists(dir / RunOutput::kStaging));
+  EXPECT_FALSE(fs::exists(dir / "checkpoint.h5")) << "a complete result holds no checkpoint";
   EXPECT_FALSE(fs::exists(dir / RunOutput::kFailed));
 }
 
