@@ -2,6 +2,7 @@
 
 #include "commands.hpp"
 
+#include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/number.hpp"
 
@@ -87,6 +88,22 @@ std::vector<std::string> split_words(const std::string& s) {
   std::vector<std::string> w;
   for (std::string x; in >> x;) w.push_back(x);
   return w;
+}
+
+std::pair<int, int> parse_cells_layers(const std::string& m) {
+  const std::size_t comma = m.find(',');
+  if (comma == std::string::npos) throw UsageError("--mesh needs CELLS,LAYERS, got '" + m + "'");
+  return {int(parse_whole("--mesh CELLS", m.substr(0, comma), 2, 400)),
+          int(parse_whole("--mesh LAYERS", m.substr(comma + 1), 1, 400))};
+}
+
+CheckpointSchedule checkpoint_schedule(const Parsed& p) {
+  try {
+    return p.has("--checkpoint-every") ? CheckpointSchedule::parse(p.get("--checkpoint-every"))
+                                       : CheckpointSchedule{};
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
 }
 
 }  // namespace tmlab::cli

@@ -1,6 +1,8 @@
 // Argument parsing shared by the tmlab sub-commands (cli_args.cpp).
 #pragma once
 
+#include "core/results/checkpoint.hpp"
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -34,5 +36,12 @@ std::vector<std::string> split_list(const std::string& s);
 
 /// Whitespace-separated words (the command line as a list, for manifests).
 std::vector<std::string> split_words(const std::string& s);
+
+/// --mesh CELLS,LAYERS of an FE-rig forward model (CELLS 2-400, LAYERS 1-400); UsageError otherwise.
+std::pair<int, int> parse_cells_layers(const std::string& value);
+
+/// --checkpoint-every of a command that finishes in units (default: every 60 s of wall time, and
+/// always at a stop request); UsageError naming the accepted forms.
+CheckpointSchedule checkpoint_schedule(const Parsed& p);
 
 }  // namespace tmlab::cli

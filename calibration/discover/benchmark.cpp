@@ -412,4 +412,15 @@ nlohmann::json to_json(const BenchmarkResult& b) {
   return j;
 }
 
+std::vector<SyntheticSet> select_sets(std::vector<SyntheticSet> sets, const std::string& rigs,
+                                      const std::string& truths) {
+  std::vector<SyntheticSet> kept;
+  const std::string r = "," + rigs + ",", t = "," + truths + ",";
+  for (auto& s : sets)
+    if ((rigs.empty() || r.find("," + to_string(s.rig) + ",") != std::string::npos) &&
+        (truths.empty() || t.find("," + s.truth + ",") != std::string::npos))
+      kept.push_back(std::move(s));
+  return kept;
+}
+
 }  // namespace tmlab::discover

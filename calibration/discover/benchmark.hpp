@@ -92,6 +92,12 @@ BenchmarkResult run_benchmark(const std::vector<SyntheticSet>& sets, const Optio
 
 nlohmann::json to_json(const BenchmarkResult& b);
 
+/// The sets of `sets` on one of `rigs` (comma-separated rig names, to_string(BenchmarkRig); "" keeps
+/// every rig) whose truth is one of `truths` (comma-separated; "" keeps every truth), in order.
+/// Empty when none is left (the caller says which option emptied it).
+std::vector<SyntheticSet> select_sets(std::vector<SyntheticSet> sets, const std::string& rigs,
+                                      const std::string& truths);
+
 /// True when `found` is the right answer for a library `truth`: exactly one effect, the truth, or
 /// (for a *_hyperelastic truth) one *_hyperelastic effect: the laws approximate each other over one
 /// strain range, so the family is scored, and the law within it reported in the matrix. A

@@ -3,6 +3,7 @@
 
 #include "calibration/closed_forms/indentation.hpp"
 #include "calibration/fit/fe_rig.hpp"
+#include "calibration/fit/fit_output.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/relaxation_bands.hpp"
 #include "calibration/fit/surrogates.hpp"
@@ -242,19 +243,11 @@ json run_fit(const FitJob& job, const PaperFitSettings& s, bool visco, std::ostr
     for (std::size_t i = 0; i < r.parameters.size(); ++i) {
       const fit::ParameterResult& p = r.parameters[i];
       const double truth = paper_truth(s, p.name);
-      const fit::Parameter& bounds = pr.parameters.at(i);
-      j["parameters"].push_back({{"name", p.name},
-                                 {"unit", p.unit},
-                                 {"value", p.value},
-                                 {"fixed", p.fixed},
-                                 {"standard_error", num(p.standard_error)},
-                                 {"interval95", {num(p.lower95), num(p.upper95)}},
-                                 {"identifiable", p.identifiable},
-                                 {"bounds", {num(bounds.lower), num(bounds.upper)}},
-                                 {"at_bound", fit::bound_reached(bounds, p.value)},
-                                 {"truth", num(truth)},
-                                 {"truth_inside_interval", !p.fixed && std::isfinite(truth) &&
-                                                               truth >= p.lower95 && truth <= p.upper95}});
+      json q = fit::parameter_json(p, &pr.parameters.at(i));  // as in fit.json
+      q["truth"] = num(truth);
+      q["truth_inside_interval"] =
+          !p.fixed && std::isfinite(truth) && truth >= p.lower95 && truth <= p.upper95;
+      j["parameters"].push_back(q);
     }
     j["model_force_N"] = r.prediction;
     j["residual_rms_N"] = r.rms;

@@ -1,42 +1,25 @@
-// The checkpoints of tmlab fit and tmlab discover: see fit_checkpoint.hpp.
-#include "fit_checkpoint.hpp"
+// The checkpoint entries of a fit: see fit_checkpoint.hpp.
+#include "calibration/fit/fit_checkpoint.hpp"
 
 #include "core/base/error.hpp"
-#include "core/results/run_output.hpp"
+#include "core/results/unit_checkpoint.hpp"
 
-#include <cstdio>
+#include <cstdint>
 #include <utility>
 
-namespace tmlab::cli {
+namespace tmlab::fit {
 
-namespace fs = std::filesystem;
 using nlohmann::json;
 
 namespace {
 
-/// JSON text of the non-numeric part of a unit (invalid UTF-8 replaced rather than refused).
-std::string text_of(const json& j) { return j.dump(-1, ' ', false, json::error_handler_t::replace); }
-
-json parse_text(const CheckpointData& d, const std::string& name) {
-  try {
-    return json::parse(d.text(name));
-  } catch (const json::exception& e) {
-    throw Error(d.source() + ": unreadable entry '" + name + "' (" + e.what() + "); run without --resume");
-  }
-}
-
 std::vector<std::int64_t> as_ints(const std::vector<std::size_t>& v) { return {v.begin(), v.end()}; }
-
-/// `what` of the entry `name` unless `ok`: a checkpoint whose parts do not fit together.
-void require(bool ok, const CheckpointData& d, const std::string& name) {
-  if (!ok) throw Error(d.source() + ": inconsistent entry '" + name + "'; run without --resume");
-}
 
 }  // namespace
 
 // --- fit units --------------------------------------------------------------------------------------
 
-void put_fit_units(CheckpointData& d, const fit::FitUnits& u) {
+void put_fit_units(CheckpointData& d, const FitUnits& u) {
   const std::size_t p = u.candidates.empty() ? 0 : u.candidates[0].size();
   d.put("units", std::vector<std::int64_t>{u.global_done ? 1 : 0, std::int64_t(u.local_runs.size()),
                                            std::int64_t(u.profile.size()), std::int64_t(p),
@@ -62,7 +45,7 @@ void put_fit_units(CheckpointData& d, const fit::FitUnits& u) {
   d.put("local.cost", cost);
   d.put("local.iterations", iterations);
   d.put("local.solves", solves);
-  d.put_text("local.reasons", text_of(reasons));
+  d.put_text("local.reasons", unit_text(reasons));
   std::vector<double> sse;
   std::vector<std::int64_t> psolves;
   for (const auto& q : u.profile) {
@@ -73,46 +56,46 @@ void put_fit_units(CheckpointData& d, const fit::FitUnits& u) {
   d.put("profile.solves", psolves);
 }
 
-fit::FitUnits get_fit_units(const CheckpointData& d) {
-  fit::FitUnits u;
+FitUnits get_fit_units(const CheckpointData& d) {
+  FitUnits u;
   const auto& n = d.ints("units");
-  require(n.size() == 5 && n[1] >= 0 && n[2] >= 0 && n[3] >= 0 && n[4] >= 0, d, "units");
+  require_consistent(n.size() == 5 && n[1] >= 0 && n[2] >= 0 && n[3] >= 0 && n[4] >= 0, d, "units");
   const auto runs = std::size_t(n[1]), points = std::size_t(n[2]), p = std::size_t(n[3]),
              starts = std::size_t(n[4]);
   u.global_done = n[0] != 0;
   const auto& cand = d.doubles("global.candidates");
-  require(cand.size() == p * starts, d, "global.candidates");
+  require_consistent(cand.size() == p * starts, d, "global.candidates");
   for (std::size_t c = 0; c < starts; ++c)
     u.candidates.emplace_back(cand.begin() + long(c * p), cand.begin() + long((c + 1) * p));
   for (const std::int64_t o : d.ints("global.order")) {
-    require(o >= 0 && std::size_t(o) < starts, d, "global.order");
+    require_consistent(o >= 0 && std::size_t(o) < starts, d, "global.order");
     u.order.push_back(std::size_t(o));
   }
   u.start_costs = d.doubles("global.start_costs");
   u.global_costs = d.doubles("global.global_costs");
   const auto& gs = d.ints("global.solves");
-  require(gs.size() == 2, d, "global.solves");
+  require_consistent(gs.size() == 2, d, "global.solves");
   u.solves = gs[0];
   u.global_solves = gs[1];
   const auto& t = d.doubles("local.t");
   const auto& cost = d.doubles("local.cost");
   const auto& it = d.ints("local.iterations");
   const auto& ls = d.ints("local.solves");
-  const json reasons = parse_text(d, "local.reasons");
-  require(t.size() == runs * p && cost.size() == runs && it.size() == runs && ls.size() == runs &&
-              reasons.is_array() && reasons.size() == runs,
-          d, "local");
+  const json reasons = read_unit_text(d, "local.reasons");
+  require_consistent(t.size() == runs * p && cost.size() == runs && it.size() == runs && ls.size() == runs &&
+                         reasons.is_array() && reasons.size() == runs,
+                     d, "local");
   for (std::size_t r = 0; r < runs; ++r)
     u.local_runs.push_back({std::vector<double>(t.begin() + long(r * p), t.begin() + long((r + 1) * p)),
                             cost[r], int(it[r]), reasons[r].get<std::string>(), ls[r]});
   const auto& sse = d.doubles("profile.sse");
   const auto& ps = d.ints("profile.solves");
-  require(sse.size() == points && ps.size() == points, d, "profile");
+  require_consistent(sse.size() == points && ps.size() == points, d, "profile");
   for (std::size_t k = 0; k < points; ++k) u.profile.push_back({sse[k], ps[k]});
   return u;
 }
 
-std::string describe(const fit::FitUnits& u) {
+std::string describe(const FitUnits& u) {
   if (!u.global_done) return "nothing";
   std::string s = "the global stage";
   if (!u.local_runs.empty())
@@ -121,16 +104,9 @@ std::string describe(const fit::FitUnits& u) {
   return s;
 }
 
-void refuse_resume_of_complete(const std::filesystem::path& dir, const std::string& what) {
-  std::error_code ec;
-  if (std::filesystem::exists(dir / "summary.json", ec))
-    throw Error("nothing to resume: " + dir.string() + " holds a complete " + what +
-                " (summary.json); run without --resume to redo it");
-}
-
 // --- fit results ------------------------------------------------------------------------------------
 
-void put_fit_result(CheckpointData& d, const std::string& prefix, const fit::FitResult& r) {
+void put_fit_result(CheckpointData& d, const std::string& prefix, const FitResult& r) {
   json m = {{"model_name", r.model_name},
             {"model_description", r.model_description},
             {"cost_name", r.cost_name},
@@ -172,7 +148,7 @@ void put_fit_result(CheckpointData& d, const std::string& prefix, const fit::Fit
     m["confounded"].push_back({{"a", c.a}, {"b", c.b}, {"note", c.note}});
     confounded.push_back(c.correlation);
   }
-  d.put_text(prefix + ".meta", text_of(m));
+  d.put_text(prefix + ".meta", unit_text(m));
   d.put(prefix + ".scalars",
         std::vector<double>{r.cost, r.sse, r.rms, r.rms_percent_peak, r.aic, r.bic, r.prior_cost,
                             r.noise_sigma, r.wall_seconds, r.profile.lower95, r.profile.upper95});
@@ -185,9 +161,9 @@ void put_fit_result(CheckpointData& d, const std::string& prefix, const fit::Fit
   d.put(prefix + ".confounded", confounded);
 }
 
-fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix) {
-  fit::FitResult r;
-  const json m = parse_text(d, prefix + ".meta");
+FitResult get_fit_result(const CheckpointData& d, const std::string& prefix) {
+  FitResult r;
+  const json m = read_unit_text(d, prefix + ".meta");
   try {
     r.model_name = m.at("model_name").get<std::string>();
     r.model_description = m.at("model_description").get<std::string>();
@@ -208,10 +184,10 @@ fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix
     r.profile.lower_found = m.at("profile").at("lower_found").get<bool>();
     r.profile.upper_found = m.at("profile").at("upper_found").get<bool>();
     const auto& params = d.doubles(prefix + ".parameters");
-    require(params.size() == 4 * m.at("parameters").size(), d, prefix + ".parameters");
+    require_consistent(params.size() == 4 * m.at("parameters").size(), d, prefix + ".parameters");
     std::size_t i = 0;
     for (const auto& q : m.at("parameters")) {
-      fit::ParameterResult p;
+      ParameterResult p;
       p.name = q.at("name").get<std::string>();
       p.unit = q.at("unit").get<std::string>();
       p.fixed = q.at("fixed").get<bool>();
@@ -224,14 +200,14 @@ fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix
       r.parameters.push_back(p);
     }
     const auto& conf = d.doubles(prefix + ".confounded");
-    require(conf.size() == m.at("confounded").size(), d, prefix + ".confounded");
+    require_consistent(conf.size() == m.at("confounded").size(), d, prefix + ".confounded");
     i = 0;
     for (const auto& c : m.at("confounded"))
       r.confounded.push_back({c.at("a").get<std::string>(), c.at("b").get<std::string>(), conf[i++],
                               c.at("note").get<std::string>()});
     const auto cs = m.at("correlation_size").get<std::size_t>();
     const auto& corr = d.doubles(prefix + ".correlation");
-    require(corr.size() == cs * cs, d, prefix + ".correlation");
+    require_consistent(corr.size() == cs * cs, d, prefix + ".correlation");
     for (std::size_t a = 0; a < cs; ++a)
       r.correlation.emplace_back(corr.begin() + long(a * cs), corr.begin() + long((a + 1) * cs));
   } catch (const json::exception& e) {
@@ -239,7 +215,7 @@ fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix
                 "); run without --resume");
   }
   const auto& s = d.doubles(prefix + ".scalars");
-  require(s.size() == 11, d, prefix + ".scalars");
+  require_consistent(s.size() == 11, d, prefix + ".scalars");
   r.cost = s[0];
   r.sse = s[1];
   r.rms = s[2];
@@ -255,136 +231,34 @@ fit::FitResult get_fit_result(const CheckpointData& d, const std::string& prefix
   r.global_costs = d.doubles(prefix + ".global_costs");
   r.prediction = d.doubles(prefix + ".prediction");
   const auto& pr = d.doubles(prefix + ".profile");
-  require(pr.size() % 2 == 0, d, prefix + ".profile");
+  require_consistent(pr.size() % 2 == 0, d, prefix + ".profile");
   for (std::size_t k = 0; k < pr.size(); k += 2) r.profile.points.push_back({pr[k], pr[k + 1]});
   return r;
 }
 
-// --- discover ---------------------------------------------------------------------------------------
+// --- the file of one fit -----------------------------------------------------------------------
 
-void put_fit_outcomes(CheckpointData& d, const std::vector<discover::FitOutcome>& v) {
-  d.put_int("fits", std::int64_t(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string prefix = "fit." + std::to_string(i);
-    if (v[i].failed)
-      d.put_text(prefix + ".error", v[i].error);
-    else
-      put_fit_result(d, prefix, v[i].result);
-  }
+FitCheckpoint::FitCheckpoint(const std::filesystem::path& dir, const nlohmann::json& fingerprint,
+                             const CheckpointSchedule& schedule)
+    : ck_(dir / result_dir::kStaging / "checkpoint.h5", "fit", fingerprint, schedule, [this] {
+        CheckpointData d;
+        put_fit_units(d, latest_);
+        return d;
+      }) {}
+
+void FitCheckpoint::restore(FitOptions& o, std::ostream& log) {
+  restored_ = get_fit_units(ck_.read());
+  ck_.resumed_from(describe(restored_));
+  o.resume.restored = &restored_;
+  log << "tmlab fit: resuming from " << ck_.path().string() << ": " << describe(restored_)
+      << " taken from it, the rest runs\n";
 }
 
-std::vector<discover::FitOutcome> get_fit_outcomes(const CheckpointData& d) {
-  const std::int64_t n = d.integer("fits");
-  require(n >= 0, d, "fits");
-  std::vector<discover::FitOutcome> v(static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const std::string prefix = "fit." + std::to_string(i);
-    if (d.has(prefix + ".error")) {
-      v[i].failed = true;
-      v[i].error = d.text(prefix + ".error");
-    } else {
-      v[i].result = get_fit_result(d, prefix);
-    }
-  }
-  return v;
+void FitCheckpoint::record(FitOptions& o) {
+  o.resume.unit_finished = [this](const FitUnits& u) {
+    latest_ = u;
+    ck_.unit_finished(describe(u));
+  };
 }
 
-void put_benchmark_entries(CheckpointData& d, const std::vector<discover::BenchmarkEntry>& v) {
-  d.put_int("sets", std::int64_t(v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const discover::BenchmarkEntry& e = v[i];
-    const std::string prefix = "set." + std::to_string(i);
-    d.put_text(prefix + ".meta", text_of({{"name", e.name},
-                                          {"truth", e.truth},
-                                          {"rig", e.rig},
-                                          {"kind", int(e.kind)},
-                                          {"found", e.found},
-                                          {"unexplained", e.unexplained},
-                                          {"signature", e.signature},
-                                          {"correct", e.correct}}));
-    d.put(prefix + ".numbers", std::vector<double>{e.rms_before, e.rms_after, e.peak, e.seconds});
-  }
-}
-
-std::vector<discover::BenchmarkEntry> get_benchmark_entries(const CheckpointData& d) {
-  const std::int64_t n = d.integer("sets");
-  require(n >= 0, d, "sets");
-  std::vector<discover::BenchmarkEntry> v(static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    discover::BenchmarkEntry& e = v[i];
-    const std::string prefix = "set." + std::to_string(i);
-    const json m = parse_text(d, prefix + ".meta");
-    try {
-      e.name = m.at("name").get<std::string>();
-      e.truth = m.at("truth").get<std::string>();
-      e.rig = m.at("rig").get<std::string>();
-      const int kind = m.at("kind").get<int>();
-      require(kind >= 0 && kind <= 2, d, prefix + ".meta");
-      e.kind = static_cast<discover::Truth>(kind);
-      e.found = m.at("found").get<std::vector<std::string>>();
-      e.unexplained = m.at("unexplained").get<bool>();
-      e.signature = m.at("signature").get<std::string>();
-      e.correct = m.at("correct").get<bool>();
-    } catch (const json::exception& ex) {
-      throw Error(d.source() + ": unreadable entry '" + prefix + ".meta' (" + ex.what() +
-                  "); run without --resume");
-    }
-    const auto& x = d.doubles(prefix + ".numbers");
-    require(x.size() == 4, d, prefix + ".numbers");
-    e.rms_before = x[0];
-    e.rms_after = x[1];
-    e.peak = x[2];
-    e.seconds = x[3];
-  }
-  return v;
-}
-
-std::string file_hash(const fs::path& path) {
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(fnv1a64_file(path)));
-  return hex;
-}
-
-// --- the file ---------------------------------------------------------------------------------------
-
-UnitCheckpoint::UnitCheckpoint(fs::path path, std::string kind, json fingerprint, CheckpointSchedule schedule,
-                               std::function<CheckpointData()> snapshot)
-    : path_(std::move(path)),
-      kind_(std::move(kind)),
-      fingerprint_(std::move(fingerprint)),
-      clock_(schedule),
-      snapshot_(std::move(snapshot)) {}
-
-CheckpointData UnitCheckpoint::read() const { return read_checkpoint(path_, kind_, fingerprint_); }
-
-void UnitCheckpoint::unit_finished(const std::string& what) {
-  ++units_;
-  pending_ = true;
-  latest_ = what;
-  if (pending_interrupt() != 0 || clock_.due(units_)) write();
-}
-
-void UnitCheckpoint::write() {
-  write_checkpoint(path_, kind_, fingerprint_, snapshot_());
-  clock_.mark();
-  pending_ = false;
-  written_ = latest_;
-}
-
-Interrupted UnitCheckpoint::stopped(const Interrupted& e) {
-  std::string failed;
-  if (pending_) try {
-      write();
-    } catch (const Error& w) {
-      failed = " (the checkpoint of the latest units could not be written: " + std::string(w.what()) + ")";
-    }
-  if (written_.empty())
-    return Interrupted(e.signal(), std::string(e.what()) +
-                                       "; no checkpoint was written (nothing had finished)" + failed +
-                                       ": run again without --resume");
-  return Interrupted(e.signal(), std::string(e.what()) + "; checkpoint after " + written_ + " in " +
-                                     path_.string() + failed +
-                                     ": continue with the same command and --resume");
-}
-
-}  // namespace tmlab::cli
+}  // namespace tmlab::fit
