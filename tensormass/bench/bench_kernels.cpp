@@ -1,6 +1,8 @@
 // Kernel benchmarks: internal force of the TL oracle, the relative tensor-mass form, Picinbono's
 // absolute mesh-level storage; tensor-mass tangent action and in-place tangent assembly. Kuhn-split
 // cubes of 3,072 / 24,576 / 196,608 tets. Counter "time/tet" = seconds per tet (ns shown as "n").
+// The viscoelastic cost table (docs/theory/viscoelasticity.md "Cost"): trial force, tangent and
+// begin+commit of each history option against the elastic tensor-mass model, 10,368 tets.
 // Contact surface detection (docs/contact.md): the boundary extraction, the grid's build and its
 // per-iteration refit on cubes of 24,576 / 105,456 / 196,608 tets.
 #include "core/mesh/gmsh_reader.hpp"
@@ -153,6 +155,83 @@ void BM_ViscoObjectiveForce(benchmark::State& state) {
   visco_force_bench(state, ViscoelasticOptions::History::Pk2);
 }
 
+// ---- viscoelastic cost table (docs/theory/viscoelasticity.md "Cost", errata "Flaws" 4) ----
+// 12^3-cell box (10,368 tets), three Prony terms, a smooth u with a small perturbation. range(0):
+// 0 the elastic TensorMassStVK, 1 nodal_force, 2 pk2 full, 3 pk2 deviatoric (all midpoint).
+
+struct CostSetup {
+  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(0.01), 12, 12, 12);
+  StVenantKirchhoff mat = StVenantKirchhoff::from_young_poisson(5e3, 0.4);
+  PronySeries prony = PronySeries::from_long_term({0.5, 0.3, 0.2}, {0.1, 1.0, 10.0});
+  VecX u;
+  CostSetup() : u(3 * mesh.num_points()) {
+    for (Index i = 0; i < mesh.num_points(); ++i) {
+      const Vec3& x = mesh.points[static_cast<std::size_t>(i)];
+      const Vec3 wiggle(std::sin(12.9898 * i), std::sin(12.9898 * i + 78.233 + 0.5 * i),
+                        std::sin(12.9898 * i + 156.466 + i));
+      u.segment<3>(3 * i) = 0.05 * Vec3(x.y(), x.z(), x.x()) + 1e-5 * wiggle;
+    }
+  }
+};
+
+/// The model of range(0) after one committed step, in a fresh trial step (nullptr: elastic).
+std::unique_ptr<ViscoelasticStVK> cost_visco(const CostSetup& c, std::int64_t kind, bool bookkeeping) {
+  if (kind == 0) return nullptr;
+  ViscoelasticOptions o;
+  o.history = kind == 1 ? ViscoelasticOptions::History::NodalForce : ViscoelasticOptions::History::Pk2;
+  o.integration = ViscoelasticOptions::Integration::Midpoint;
+  o.relaxation =
+      kind == 3 ? ViscoelasticOptions::Relaxation::Deviatoric : ViscoelasticOptions::Relaxation::Full;
+  o.energy_bookkeeping = bookkeeping;
+  auto m = std::make_unique<ViscoelasticStVK>(c.mesh, c.mat, c.prony, o);
+  m->begin_step(0.01);
+  m->commit_step(c.u);
+  m->begin_step(0.01);
+  return m;
+}
+
+void BM_ViscoCostForce(benchmark::State& state) {
+  const CostSetup c;
+  const TensorMassStVK elastic(c.mesh, c.mat);
+  const auto visco = cost_visco(c, state.range(0), true);
+  const ElasticModel& model = visco ? static_cast<const ElasticModel&>(*visco) : elastic;
+  VecX f;
+  for (auto _ : state) {
+    model.internal_force(c.u, f);
+    benchmark::DoNotOptimize(f.data());
+    benchmark::ClobberMemory();
+  }
+  set_counters(state, c.mesh.num_tets());
+}
+
+void BM_ViscoCostTangent(benchmark::State& state) {
+  const CostSetup c;
+  const TensorMassStVK elastic(c.mesh, c.mat);
+  const auto visco = cost_visco(c, state.range(0), true);
+  const ElasticModel& model = visco ? static_cast<const ElasticModel&>(*visco) : elastic;
+  SpMat K;
+  model.tangent(c.u, K);  // the pattern; the loop measures refills
+  for (auto _ : state) {
+    model.tangent(c.u, K);
+    benchmark::DoNotOptimize(K.valuePtr());
+  }
+  set_counters(state, c.mesh.num_tets());
+}
+
+/// begin_step + commit_step; range(1): energy bookkeeping on (1) or off (0).
+void BM_ViscoCostBeginCommit(benchmark::State& state) {
+  const CostSetup c;
+  const auto visco = cost_visco(c, state.range(0), state.range(1) != 0);
+  for (auto _ : state) {
+    visco->begin_step(0.01);
+    visco->commit_step(c.u);
+    benchmark::ClobberMemory();
+  }
+  set_counters(state, c.mesh.num_tets());
+  state.counters["history_doubles"] =
+      static_cast<double>(visco->committed_history().size() + visco->committed_driver().size());
+}
+
 /// The contact surface of a deformed cube: extracted once (boundary faces, tributary areas).
 void BM_ContactSurfaceExtract(benchmark::State& state) {
   const Setup s = make_setup(static_cast<int>(state.range(0)));
@@ -282,6 +361,9 @@ BENCHMARK(BM_OracleForce) TM_SIZES;
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
 BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;
 BENCHMARK(BM_TensorMassForce) TM_SIZES;
+BENCHMARK(BM_ViscoCostForce)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ViscoCostTangent)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ViscoCostBeginCommit)->ArgsProduct({{1, 2, 3}, {1, 0}})->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_TensorMassEnergy) TM_SIZES;
 BENCHMARK(BM_PicinbonoAbsoluteForce) TM_SIZES;
 BENCHMARK(BM_OracleTangentApply) TM_SIZES;

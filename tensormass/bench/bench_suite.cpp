@@ -1,5 +1,10 @@
 // The measurements of tmlab bench; what each record means is in bench_suite.hpp, the flop and
 // byte counts are derived in docs/performance.md ("Counting").
+// Tests: the mesh selection (bench_mesh_names, check_bench_meshes) in tests/test_bench_suite.cpp;
+// run_bench itself end to end, since it measures through Google Benchmark for seconds: ctest
+// test_cli_bench (apps/tmlab/tests/test_cli_bench.cpp) runs `tmlab bench --quick` and checks every
+// record field of the documented schema, the contact ladder's records, and --meshes selecting the
+// measured meshes; test_bench_report checks the report written from such a document.
 #include "tensormass/bench/bench_suite.hpp"
 
 #include "core/base/error.hpp"

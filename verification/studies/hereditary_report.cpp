@@ -1,3 +1,10 @@
+// Tested end to end, not by a unit test of its own: write_hereditary_study is the whole study (every
+// sweep and the liver runs) and its result is files. ctest test_cli_hereditary
+// (apps/tmlab/tests/test_cli_hereditary.cpp) runs `tmlab hereditary --quick` and checks every file
+// this writes (hereditary.h5 datasets, hereditary.md, the PNGs), the summary's orders, amplification
+// and liver blocks, and bad parameters; test_cli_resume (CliStudyResume.InterruptedStudiesResume)
+// interrupts it at its checkpoints and resumes it to the uninterrupted result. The numerics it calls
+// are unit-tested in tests/test_hereditary_study.cpp.
 #include "verification/studies/hereditary_report.hpp"
 
 #include "core/base/interrupt.hpp"

@@ -5,9 +5,17 @@
 //     Dirichlet data on the whole boundary): L2 and H1 errors converge at the rates k+1 and k of
 //     P1 and P2 (the finest P2 level is labelled slow);
 //   * the triangulation built from tmlab's mesh (vertex i = node i, cell c = tet c) is the one
-//     deal.II's own GridIn::read_msh builds from the same file.
+//     deal.II's own GridIn::read_msh builds from the same file;
+//   * the IDA form (ida_dae.hpp): the initial state is a zero residual, and the Newton matrix's
+//     solve inverts the central differences of the residual, dF/dy + alpha dF/dy';
+//   * the contact terms (contact.hpp): the residual is the derivative of the contact potential and
+//     the 3x3 blocks that of the residual (central differences), on a sphere pressed into a block.
+// (The same files end to end: test_reference_ida, test_reference_runner.)
 #include "core/mesh/gmsh_reader.hpp"
+#include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "reference_fem/dealii/contact.hpp"
+#include "reference_fem/dealii/ida_dae.hpp"
 #include "reference_fem/dealii/solid.hpp"
 
 #include <deal.II/base/function.h>
@@ -15,6 +23,7 @@
 #include <deal.II/dofs/dof_tools.h>
 #include <deal.II/grid/grid_generator.h>
 #include <deal.II/grid/grid_in.h>
+#include <deal.II/lac/affine_constraints.h>
 #include <deal.II/numerics/vector_tools.h>
 
 #include <gtest/gtest.h>
@@ -22,6 +31,7 @@
 #include <cmath>
 #include <fstream>
 #include <random>
+#include <set>
 
 namespace tmlab::ref {
 namespace {
@@ -229,6 +239,155 @@ TEST(ReferenceSolid, TriangulationFromTmlabMeshIsTheOneGridInReads) {
       EXPECT_EQ(a->vertex_index(v), b->vertex_index(v)) << "cell " << a->index();
   // And vertex i is node i of the tmlab mesh (the same order, so displacement.h5 columns match).
   for (unsigned i = 0; i < ours.n_vertices(); ++i) EXPECT_EQ(ours.get_vertices()[i], pts[i]);
+}
+
+// ---- the IDA form ---------------------------------------------------------------------------------
+
+TEST(ReferenceIdaDae, NewtonMatrixSolveInvertsTheResidualsDerivative) {
+  Triangulation<3> coarse;
+  make_cube(coarse, true, 2);
+  const PronySeries prony = PronySeries::make(PronyConvention::LongTerm, {0.8, 0.3}, {0.1, 1.0},
+                                              PronyIntegration::Midpoint, PronyRelaxation::Full);
+  Solid s(MPI_COMM_SELF, coarse, Discretisation{true, 1}, Material::make("neo_hookean", 1000.0, 0.35), prony,
+          NewtonParameters{});
+  // x = 0 clamped; x = 1 pulled along x by a ramp (prescribed values that move); gravity-like load.
+  const int clamp = s.add_condition("clamp", TimeFunction::constant(1.0));
+  const int pull = s.add_condition("pull", TimeFunction::ramp(0.0, 1.0));
+  std::map<global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(s.mapping(), s.dof_handler(), support);
+  std::set<global_dof_index> prescribed;
+  std::vector<global_dof_index> dofs(s.fe().n_dofs_per_cell());
+  for (const auto& cell : s.dof_handler().active_cell_iterators()) {
+    cell->get_dof_indices(dofs);
+    for (unsigned i = 0; i < dofs.size(); ++i) {
+      const double x = support.at(dofs[i])[0];
+      const unsigned c = s.fe().system_to_component_index(i).first;
+      if (x < 1e-12) s.prescribe(dofs[i], c, clamp, 0.0);
+      if (x > 1.0 - 1e-12 && c == 0) s.prescribe(dofs[i], c, pull, 0.05);
+      if (x < 1e-12 || (x > 1.0 - 1e-12 && c == 0)) prescribed.insert(dofs[i]);
+    }
+  }
+  const int load = s.add_load_function(TimeFunction::ramp(0.0, 1.0));
+  s.add_body_force([](const Point<3>&) { return Tensor<1, 3>({0.0, 0.0, -200.0}); }, load);
+  s.finalize_setup();
+  QuasiStaticDae dae(s);
+  ASSERT_EQ(dae.size(),
+            dae.n_dofs() + std::size_t(6 * 2) * s.triangulation().n_active_cells() * s.quadrature().size());
+
+  // At rest, t = 0, no rates: every row of F is zero.
+  Vector<double> y = dae.initial_state(), yp(dae.size()), r(dae.size());
+  ASSERT_EQ(dae.residual(0.0, y, yp, r), 0);
+  EXPECT_LE(r.linfty_norm(), 1e-12);
+
+  // A strained state with history and rates, mid-ramp.
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  for (unsigned i = 0; i < dae.size(); ++i) {
+    y[i] = i < dae.n_dofs() ? 0.02 * d(rng) : 20.0 * d(rng);  // m; Pa
+    yp[i] = i < dae.n_dofs() ? 0.0 : 50.0 * d(rng);
+  }
+  const double t = 0.5, alpha = 20.0;
+  ASSERT_EQ(dae.setup_jacobian(t, y, alpha), 0);
+  Vector<double> b(dae.size()), x(dae.size());
+  for (unsigned i = 0; i < dae.size(); ++i)
+    b[i] = prescribed.count(i) ? 0.0 : (i < dae.n_dofs() ? 1.0 : 100.0) * d(rng);
+  ASSERT_EQ(dae.solve_with_jacobian(b, x), 0);
+  const double h = 1e-6 / x.linfty_norm();
+  Vector<double> yh(y), yph(yp), rp(dae.size()), rm(dae.size());
+  yh.add(h, x);
+  yph.add(alpha * h, x);
+  ASSERT_EQ(dae.residual(t, yh, yph, rp), 0);
+  yh = y;
+  yh.add(-h, x);
+  yph = yp;
+  yph.add(-alpha * h, x);
+  ASSERT_EQ(dae.residual(t, yh, yph, rm), 0);
+  Vector<double> jx(rp);
+  jx -= rm;
+  jx /= 2 * h;  // (dF/dy + alpha dF/dy') x by central differences
+  jx -= b;
+  const double e = jx.l2_norm() / b.l2_norm();
+  EXPECT_LE(e, 1e-6);
+  std::printf("[ measured ] IDA Newton matrix: |J (J^-1 b) - b| / |b| = %.2e\n", e);
+}
+
+// ---- contact terms --------------------------------------------------------------------------------
+
+TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
+  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(1.0), 4, 4, 4);  // a node at the top centre
+  std::vector<Point<3>> pts;
+  for (const auto& p : mesh.points) pts.emplace_back(p.x(), p.y(), p.z());
+  std::vector<std::array<unsigned, 4>> tets;
+  for (const auto& t : mesh.tets)
+    tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
+  Triangulation<3> coarse;
+  build_tet_triangulation(pts, tets, coarse);
+  Solid s(MPI_COMM_SELF, coarse, Discretisation{true, 1}, Material::make("stvk", 1000.0, 0.35), std::nullopt,
+          NewtonParameters{});
+  s.finalize_setup();
+  const auto vmap = coarse_vertex_map(s, coarse);
+  const std::size_t n = mesh.points.size();
+  std::vector<std::array<global_dof_index, 3>> node_dofs(n);
+  for (const auto& cell : s.dof_handler().active_cell_iterators())
+    for (unsigned v = 0; v < cell->n_vertices(); ++v)
+      for (unsigned c = 0; c < 3; ++c)
+        node_dofs[vmap[cell->active_cell_index()][v]][c] = cell->vertex_dof_index(v, c);
+  ContactSpec spec;
+  spec.enabled = true;
+  spec.stiffness = 1e3;
+  ContactBodySpec ball;
+  ball.name = "ball";
+  ball.key = "contact.bodies[0]";
+  ball.shape = ContactShape::Sphere;
+  ball.reference = Vec3(0.5, 0.5, 1.3);  // touching the top face at t = 0
+  ball.radius = 0.3;
+  ball.displacement = Vec3(0.0, 0.0, -0.2);
+  ball.function = TimeFunction::ramp(0.0, 1.0);
+  spec.bodies = {ball};
+  NodalContact contact(spec, "case.json", mesh, node_dofs, std::vector<char>(n, 1), MPI_COMM_SELF);
+  contact.start(s, 0.0, 1.0, std::vector<double>(3 * n, 0.0));
+  contact.begin_increment();
+
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), w(u), r(u), rp(u), rm(u),
+      rhs(u), Kv(u);
+  for (auto i : s.locally_owned_dofs()) {
+    u[i] = 1e-3 * d(rng);
+    v[i] = d(rng);
+  }
+  u.compress(VectorOperation::insert);
+  v.compress(VectorOperation::insert);
+  const double t = 1.0;  // the ball 0.2 into the block: the middle nodes of the top face are active
+  TrilinosWrappers::SparseMatrix K;
+  {
+    TrilinosWrappers::MPI::Vector r0;
+    s.residual_and_tangent(u, 0.0, 0.0, r0, &K);  // the pattern
+    K = 0.0;
+  }
+  AffineConstraints<double> none;
+  none.close();
+  contact.add_terms(u, t, r, &none, &K, &rhs);
+  ASSERT_GT(r.l2_norm(), 0.0) << "no vertex in contact";
+  const double h = 1e-7;
+  w = u;
+  w.add(h, v);
+  const double ep = contact.energy(w, t);
+  contact.add_terms(w, t, rp, nullptr, nullptr, nullptr);
+  w = u;
+  w.add(-h, v);
+  const double em = contact.energy(w, t);
+  contact.add_terms(w, t, rm, nullptr, nullptr, nullptr);
+  const double dphi = (ep - em) / (2 * h);
+  EXPECT_NEAR(dphi, r * v, 1e-6 * std::abs(r * v));  // r = dPhi/du
+  K.vmult(Kv, v);
+  TrilinosWrappers::MPI::Vector fd(rp);
+  fd -= rm;
+  fd /= 2 * h;
+  fd -= Kv;
+  const double e = fd.l2_norm() / Kv.l2_norm();
+  EXPECT_LE(e, 1e-5);  // K = d r / du
+  std::printf("[ measured ] reference contact tangent vs central differences: %.2e\n", e);
 }
 
 }  // namespace

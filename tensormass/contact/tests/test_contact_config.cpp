@@ -1,5 +1,5 @@
 // The `contact` section in the contact module's terms (core parses it, contact_settings converts):
-// a full section converts into the bodies and options; bad input is refused naming the key.
+// a full section converts into the bodies and options, each body named by file and key.
 #include "tensormass/contact/contact_config.hpp"
 
 #include "core/base/error.hpp"
@@ -23,16 +23,6 @@ json good_section() {
     ]})");
 }
 
-void expect_error(const json& section, const std::string& needle) {
-  try {
-    parse_contact_section(section, "case.json");
-    FAIL() << "accepted: " << section.dump();
-  } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-    EXPECT_NE(std::string(e.what()).find("case.json"), std::string::npos) << e.what();
-  }
-}
-
 TEST(ContactConfig, ParsesAFullSection) {
   const ContactSettings s = parse_contact_section(good_section(), "case.json");
   EXPECT_EQ(s.options.method, ContactMethod::AugmentedLagrangian);
@@ -52,49 +42,26 @@ TEST(ContactConfig, ParsesAFullSection) {
   EXPECT_EQ(s.keys[2], "contact.bodies[2]");
 }
 
-TEST(ContactConfig, BadInputNamesTheKey) {
-  json j = good_section();
-  j["bodies"][0]["radius"] = -1.0;
-  expect_error(j, "contact.bodies[0].radius");
-  j = good_section();
-  j["bodies"][1]["typo"] = 1;
-  expect_error(j, "typo");
-  j = good_section();
-  j["bodies"][2]["type"] = "cone";
-  expect_error(j, "contact.bodies[2].type");
-  j = good_section();
-  j["bodies"][2]["normal"] = json::array({0, 0, 0});
-  expect_error(j, "contact.bodies[2].normal");
-  j = good_section();
-  j["bodies"][1]["edge_radius"] = 0.004;
-  expect_error(j, "contact.bodies[1].edge_radius");
-  j = good_section();
-  j["bodies"][1]["center"] = json::array({0, 0});
-  expect_error(j, "contact.bodies[1].center");
-  j = good_section();
-  j["bodies"][1]["name"] = "indenter";
-  expect_error(j, "contact.bodies[1].name");
-  j = good_section();
-  j["bodies"][0]["mode"] = "sticky";
-  expect_error(j, "contact.bodies[0].mode");
-  j = good_section();
-  j["method"] = "lagrange";
-  expect_error(j, "contact.method");
-  j = good_section();
-  j["gap_tol"] = -1.0;
-  expect_error(j, "contact.gap_tol");
-  j = good_section();
-  j["max_outer_iterations"] = 0;
-  expect_error(j, "contact.max_outer_iterations");
-  j = good_section();
-  j["bodies"] = json::array();
-  expect_error(j, "contact.bodies");
-  j = good_section();
-  j.erase("bodies");
-  expect_error(j, "contact.bodies");
-  j = good_section();
-  j["bodies"][0]["function"] = json{{"type", "nope"}};
-  expect_error(j, "contact.bodies[0].function");
+// The section's errors (every bad key, named with file and key) are tested once, beside the
+// parser: core/config/tests/test_contact_spec.cpp (ContactSpec.BadInputNamesTheKey). Here only what
+// the conversion adds: each body's origin for messages, and RigidBody::validate() on a spec that did
+// not come from the parser.
+TEST(ContactConfig, EachBodyIsNamedByFileAndKey) {
+  const ContactSettings s = parse_contact_section(good_section(), "case.json");
+  ASSERT_EQ(s.bodies.size(), 3u);
+  EXPECT_EQ(s.bodies[1].origin, "case.json: key 'contact.bodies[1]'");
+}
+
+TEST(ContactConfig, AnInvalidSpecIsRefusedNamingItsOrigin) {
+  ContactSpec spec = parse_contact_spec(good_section(), "case.json");
+  spec.bodies[0].radius = -1.0;  // past the parser: only RigidBody::validate() can catch it
+  try {
+    contact_settings(spec, "case.json");
+    FAIL() << "accepted a negative radius";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("case.json: key 'contact.bodies[0]'"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
