@@ -31,6 +31,12 @@ struct Thresholds {
   /// against (noise-free or smoothed data: a fit to noisy data cannot go much below the noise, so
   /// the "noise level" is the curve's own curvature), and the loop selects nothing (discover.hpp).
   double below_noise = 0.5;
+  /// A noise level below this fraction of the peak force is round-off (data written exactly, e.g.
+  /// synthetic curves): with no measurable noise there is nothing to weigh a candidate against, and
+  /// the loop selects nothing, whatever the residual (an exact linear ramp has noise level 0 and a
+  /// St VK residual: a drift linear in time, which on one ramp is linear in displacement, would be
+  /// "very strong" evidence of a law the loop has not tried).
+  double noise_floor = 1e-6;
 };
 
 struct Diagnostic {

@@ -485,11 +485,21 @@ std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
   return accepted;
 }
 
-/// Why nothing is selected when `cur`'s residual lies below th.below_noise x the data's noise level
-/// (noise-free data: a BIC with the residual as its own noise scale makes any candidate that bends
-/// the curve toward a smooth residual look very strong evidence); "" otherwise.
+/// Why nothing is selected when the data's noise level is round-off (below th.noise_floor of the peak
+/// force) or `cur`'s residual lies below th.below_noise x that level (noise-free data: a BIC with the
+/// residual as its own noise scale makes any candidate that bends the curve toward a smooth residual
+/// look very strong evidence); "" otherwise.
 std::string below_noise(const Fitted& cur, const Thresholds& th) {
   const double sigma = cur.study.noise_sigma;
+  const double peak = cur.fit.rms_percent_peak > 0.0 ? 100.0 * cur.fit.rms / cur.fit.rms_percent_peak : 0.0;
+  if (peak > 0.0 && !(sigma >= th.noise_floor * peak))
+    return "the data's noise level (" + significant(sigma, 4) +
+           " N, from second differences of the force) is " + "below " + significant(th.noise_floor, 2) +
+           " of the peak force (" + significant(peak, 4) +
+           " N): the data carry no measurable noise (exact or synthetic data) to weigh a candidate "
+           "against, " +
+           "so no effect is selected; the residual (RMS " + significant(cur.fit.rms, 4) +
+           " N) and its structure are reported";
   if (!(sigma > 0.0) || !(cur.fit.rms < th.below_noise * sigma)) return "";
   return "the residual (RMS " + significant(cur.fit.rms, 4) + " N) is below " +
          significant(th.below_noise, 2) + " x the data's noise level (" + significant(sigma, 4) +

@@ -315,7 +315,7 @@ void validate_mesh_size(const RigSpec& s) {
   refuse(s, "cells, layers",
          "cells " + std::to_string(s.cells) + " and layers " + std::to_string(s.layers) + " give " + formula +
              ": " + grouped(size.nodes) + " nodes and " + grouped(size.tets) + " tets (about " +
-             memory(size.generator_bytes() + size.gmsh_bytes()) + " to generate and a " +
+             memory(size.generator_bytes() + size.gmsh_bytes()) + " of memory to generate and a " +
              memory(size.gmsh_bytes()) + " mesh file); the limit is " + grouped(kMaxRigTets) +
              " tets (the largest mesh tmlab's benchmarks run is 2.4M tets, and a static contact run "
              "costs far more per tet): give fewer cells or layers");

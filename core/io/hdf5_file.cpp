@@ -6,6 +6,8 @@
 #include <hdf5.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <functional>
 #include <numeric>
@@ -61,6 +63,14 @@ Error h5_error(const std::string& file, const std::string& object, const std::st
   std::string msg = file;
   if (!object.empty()) msg += ": " + object;
   msg += ": " + what;
+  // A system error (a full disk above all) first, in words, before HDF5's long frames are cut.
+  for (const std::string& f : frames) {
+    const auto at = f.find("errno = ");
+    if (at == std::string::npos) continue;
+    const int code = std::atoi(f.c_str() + at + 8);
+    if (code > 0) msg += ": " + std::string(std::strerror(code));
+    break;
+  }
   // The innermost frame is the most specific reason (e.g. "errno = 2, ... No such file").
   if (frames.size() == 1) msg += " (HDF5: " + squash(frames.front()) + ")";
   if (frames.size() > 1) msg += " (HDF5: " + squash(frames.front() + ": " + frames.back()) + ")";

@@ -746,7 +746,9 @@ def weak_cases(add) -> None:
                                       "sample": {"shape": "cylinder", "radius_m": 0.025, "height_m": 0.03,
                                                  "bottom": "frictionless", "platens": "frictionless"}}),
         lambda ctx, s: fit_args(s["csv"], ctx.dir / "out"),
-        lambda ctx, s, o: refused(o, "100") if o.rc != 0 else (GOOD, "accepted (the name is a note)"),
+        # The length rule must come first and name its limit (the character rule did before).
+        lambda ctx, s, o: refused(o, "300 characters long: at most") if o.rc != 0
+        else (GOOD, "accepted (the name is a note)"),
         "weak: 300-character name")
     add("W-long-name-case", "run a case whose name has 300 characters",
         lambda ctx: {"case": (lambda p: (p.write_text(json.dumps(dict(json.loads(strip_comments(
@@ -841,7 +843,8 @@ def weak_cases(add) -> None:
         lambda ctx, s: fit_args(s["csv"], ctx.dir / "out", "--resume"),
         lambda ctx, s, o: (WEAK, "says: " + o.first_line()) if "stopped before writing one" in o.out
         else (BAD, "the complete fit was lost") if not (ctx.dir / "out" / "summary.json").exists()
-        else refused(o, "finish") if o.rc != 0 else (GOOD, "nothing to resume: " + o.first_line()),
+        else refused(o, "nothing to resume", "complete") if o.rc != 0
+        else (GOOD, "nothing to resume: " + o.first_line()),
         "weak: --resume on a finished fit")
 
     def discover_clean_rule(ctx, s, o):

@@ -268,5 +268,34 @@ TEST(Discover, ANoiseFreeRampSelectsNothing) {
   EXPECT_GT(b.fit.rms, 0.8 * b.study.noise_sigma) << b.fit.rms << " " << b.study.noise_sigma;
 }
 
+TEST(Discover, AnExactLinearRampSelectsNothing) {
+  // The hostile probe's case (issue 26): a cylinder compressed to 10 % along an exactly linear curve,
+  // written to 9 digits. Its noise level is round-off and the St VK baseline's residual is far above
+  // it, so the residual rule above does not fire; before, force_drift was accepted (time is
+  // proportional to displacement on one ramp, so a drift stands in for the missing law).
+  measured::DataSet d;
+  d.meta.name = "linear_ramp";
+  d.meta.test = measured::TestType::unconfined_compression;
+  d.meta.sample.shape = measured::SampleShape::cylinder;
+  d.meta.sample.radius_m = 0.025;
+  d.meta.sample.height_m = 0.03;
+  d.meta.sample.platens = measured::Interface::frictionless;
+  measured::Test t;
+  const double area = 3.141592653589793 * 0.025 * 0.025;
+  for (int i = 0; i < 40; ++i) {
+    const double u = 0.003 * i / 39.0;
+    t.time_s.push_back(0.45 * i);
+    t.displacement_m.push_back(u);
+    t.force_N.push_back(20000.0 * area * u / 0.03);
+  }
+  d.tests.push_back(t);
+  Options o;
+  const Report r = run(d, o);
+  std::string steps;
+  for (const auto& s : r.steps) steps += s.effect + (s.accepted ? " accepted: " : ": ") + s.reason + "\n";
+  EXPECT_TRUE(r.selected.empty()) << steps << r.stop_reason;
+  EXPECT_NE(r.stop_reason.find("no measurable noise"), std::string::npos) << r.stop_reason;
+}
+
 }  // namespace
 }  // namespace tmlab::discover
