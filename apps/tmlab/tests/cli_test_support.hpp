@@ -74,24 +74,6 @@ inline Result run_argv(const std::vector<std::string>& args, const std::filesyst
   return r;
 }
 
-/// Starts `tmlab args...` in the background (argument vector, no shell); output to `log`.
-inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
-  ::setenv("TMLAB_ROOT", TMLAB_SOURCE_DIR, 1);
-  std::vector<std::string> argv{TMLAB_CLI};
-  argv.insert(argv.end(), args.begin(), args.end());
-  std::vector<char*> c;
-  for (auto& a : argv) c.push_back(a.data());
-  c.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = -1;
-  EXPECT_EQ(::posix_spawn(&pid, c[0], &fa, nullptr, c.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&fa);
-  return pid;
-}
-
 /// Waits (up to 5 minutes: the machine may be busy) until `p` exists.
 inline bool wait_for(const std::filesystem::path& p) {
   for (int i = 0; i < 3000; ++i) {
@@ -191,6 +173,11 @@ inline pid_t spawn_in(const std::vector<std::string>& args, const std::filesyste
   EXPECT_EQ(::posix_spawn(&pid, c[0], &fa, nullptr, c.data(), environ), 0);
   posix_spawn_file_actions_destroy(&fa);
   return pid;
+}
+
+/// Starts `tmlab args...` in the background (argument vector, no shell); output to `log`.
+inline pid_t spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
+  return spawn_in(args, log, {});
 }
 
 /// Waits up to `seconds` for `pid` to end: its exit status, -signal when a signal ended it, or

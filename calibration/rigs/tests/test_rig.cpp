@@ -239,7 +239,7 @@ TEST(RigValidation, MeshTooLargeIsRefusedFromItsSize) {
       std::string::npos)
       << e;
   EXPECT_NE(e.find(": 64,481,201 nodes and 384,000,000 tets (about "), std::string::npos) << e;
-  EXPECT_NE(e.find("GB to generate"), std::string::npos) << e;
+  EXPECT_NE(e.find("GB of memory to generate"), std::string::npos) << e;
   EXPECT_NE(e.find("the limit is 2,000,000 tets"), std::string::npos) << e;
   EXPECT_NE(e.find("give fewer cells or layers"), std::string::npos) << e;
   s.test = RigTest::UnconfinedCompression;
