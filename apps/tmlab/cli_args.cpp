@@ -19,8 +19,7 @@ std::string Parsed::get(const std::string& key, const std::string& fallback) con
   const std::vector<std::string> given = all(key);
   if (given.size() > 1)
     throw UsageError("option " + key + " is given " + std::to_string(given.size()) + " times ('" +
-                     printable(given[0], 60) + "' and '" + printable(given[1], 60) +
-                     "'): give it once (only --fix, --weight, --prior, --case and --label repeat)");
+                     printable(given[0], 60) + "' and '" + printable(given[1], 60) + "'): give it once");
   return given.empty() ? fallback : given.front();
 }
 

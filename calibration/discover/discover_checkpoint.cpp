@@ -65,7 +65,7 @@ std::vector<BenchmarkEntry> get_benchmark_entries(const CheckpointData& d) {
     BenchmarkEntry& e = v[i];
     const std::string prefix = "set." + std::to_string(i);
     const json m = read_unit_text(d, prefix + ".meta");
-    try {
+    read_unit_fields(d, prefix + ".meta", [&] {
       e.name = m.at("name").get<std::string>();
       e.truth = m.at("truth").get<std::string>();
       e.rig = m.at("rig").get<std::string>();
@@ -76,10 +76,7 @@ std::vector<BenchmarkEntry> get_benchmark_entries(const CheckpointData& d) {
       e.unexplained = m.at("unexplained").get<bool>();
       e.signature = m.at("signature").get<std::string>();
       e.correct = m.at("correct").get<bool>();
-    } catch (const json::exception& ex) {
-      throw Error(d.source() + ": unreadable entry '" + prefix + ".meta' (" + ex.what() +
-                  "); run without --resume");
-    }
+    });
     const auto& x = d.doubles(prefix + ".numbers");
     require_consistent(x.size() == 4, d, prefix + ".numbers");
     e.rms_before = x[0];

@@ -164,7 +164,7 @@ void put_fit_result(CheckpointData& d, const std::string& prefix, const FitResul
 FitResult get_fit_result(const CheckpointData& d, const std::string& prefix) {
   FitResult r;
   const json m = read_unit_text(d, prefix + ".meta");
-  try {
+  read_unit_fields(d, prefix + ".meta", [&] {
     r.model_name = m.at("model_name").get<std::string>();
     r.model_description = m.at("model_description").get<std::string>();
     r.cost_name = m.at("cost_name").get<std::string>();
@@ -210,10 +210,7 @@ FitResult get_fit_result(const CheckpointData& d, const std::string& prefix) {
     require_consistent(corr.size() == cs * cs, d, prefix + ".correlation");
     for (std::size_t a = 0; a < cs; ++a)
       r.correlation.emplace_back(corr.begin() + long(a * cs), corr.begin() + long((a + 1) * cs));
-  } catch (const json::exception& e) {
-    throw Error(d.source() + ": unreadable entry '" + prefix + ".meta' (" + e.what() +
-                "); run without --resume");
-  }
+  });
   const auto& s = d.doubles(prefix + ".scalars");
   require_consistent(s.size() == 11, d, prefix + ".scalars");
   r.cost = s[0];

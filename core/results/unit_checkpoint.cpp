@@ -32,8 +32,12 @@ nlohmann::json read_unit_text(const CheckpointData& d, const std::string& name) 
   try {
     return nlohmann::json::parse(d.text(name));
   } catch (const nlohmann::json::exception& e) {
-    throw Error(d.source() + ": unreadable entry '" + name + "' (" + e.what() + "); run without --resume");
+    throw unreadable_entry(d, name, e.what());
   }
+}
+
+Error unreadable_entry(const CheckpointData& d, const std::string& name, const std::string& why) {
+  return Error(d.source() + ": unreadable entry '" + name + "' (" + why + "); run without --resume");
 }
 
 void require_consistent(bool ok, const CheckpointData& d, const std::string& name) {

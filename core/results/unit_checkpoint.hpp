@@ -5,6 +5,8 @@
 // tmlab-checkpoint/1) and what an INTERRUPTED marker says about it.
 #pragma once
 
+#include "core/base/error.hpp"
+
 #include "core/base/interrupt.hpp"
 #include "core/results/checkpoint.hpp"
 #include "core/results/result_dir.hpp"
@@ -36,6 +38,18 @@ nlohmann::json read_unit_text(const CheckpointData& d, const std::string& name);
 /// tmlab::Error "FILE: inconsistent entry 'NAME'; run without --resume" unless `ok`: a checkpoint
 /// whose parts do not fit together.
 void require_consistent(bool ok, const CheckpointData& d, const std::string& name);
+/// tmlab::Error "FILE: unreadable entry 'NAME' (WHY); run without --resume".
+Error unreadable_entry(const CheckpointData& d, const std::string& name, const std::string& why);
+/// Runs `read`, which takes the fields out of the JSON of text entry `name`: a missing or mistyped
+/// field is reported as that entry being unreadable (unreadable_entry).
+template <typename F>
+void read_unit_fields(const CheckpointData& d, const std::string& name, F&& read) {
+  try {
+    read();
+  } catch (const nlohmann::json::exception& e) {
+    throw unreadable_entry(d, name, e.what());
+  }
+}
 
 /// The checkpoint file of a command that finishes in units (<result dir>/.incomplete/checkpoint.h5):
 /// written after a unit when the schedule says so (--checkpoint-every: every N units or T seconds)
