@@ -5,7 +5,7 @@
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
 #include "core/mesh/mesh_ops.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 #include "tensormass/solvers/static_solver.hpp"
 #include "tensormass/system/external_loads.hpp"
 #include "tensormass/system/lumped_mass.hpp"

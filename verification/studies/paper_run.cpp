@@ -5,7 +5,7 @@
 #include "core/config/case_config.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/results/run_output.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 #include "verification/studies/study_plot.hpp"
 
 #include <fstream>

@@ -15,7 +15,7 @@
 #include "reference_fem/dealii/reference_runner.hpp"
 #include "tensormass/contact/rigid_body.hpp"
 #include "tensormass/contact/surface_grid.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "tensormass/materials/law_factory.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
