@@ -133,7 +133,8 @@ RunResult run_case(const CaseConfig& cfg, const RunOptions& opt) {
                 opt.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   nlohmann::json summary;
   // The protocol writes manifest.json, runs this, removes the checkpoint and finalises with the
-  // summary; a stop becomes INTERRUPTED with where the checkpoint is, any other error FAILED.
+  // summary; a stop becomes INTERRUPTED with where the checkpoint is, any other error FAILED. The
+  // checkpoint goes once the plots are written too, so a stop while plotting can still resume.
   const auto compute = [&]() -> nlohmann::json {
     out.write_json("mesh_report.json", mesh_report_json(p.report));
     StepRecorder rec(p, out);
