@@ -7,11 +7,11 @@
 // measured meshes; test_bench_report checks the report written from such a document.
 #include "bench/bench_suite.hpp"
 
+#include "bench/machine_limits.hpp"
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
-#include "bench/machine_limits.hpp"
 #include "tensormass/contact/contact_implicit.hpp"
 #include "tensormass/contact/kinematic_contact.hpp"
 #include "tensormass/kernels/fast_force.hpp"

@@ -5,8 +5,8 @@
 #include "core/base/error.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
-#include "tensormass/materials/law_factory.hpp"
 #include "runner/case_runner.hpp"
+#include "tensormass/materials/law_factory.hpp"
 
 #include <gtest/gtest.h>
 

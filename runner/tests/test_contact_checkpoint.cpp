@@ -66,7 +66,8 @@ TEST(ContactCheckpoint, InconsistentOutputsAreRefused) {
     restore_contact_outputs(d, 1);
     FAIL() << "inconsistent contact outputs were accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("ck.h5: inconsistent contact outputs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ck.h5: inconsistent contact outputs"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -27,7 +27,8 @@ class ModelFactoryTest : public RunnerTestCase {
     j["material"] = material;
     cfg_ = config(j);
     mesh_ = make_box_mesh(Vec3(0, 0, 0), Vec3(kL, kL, kL), 2, 2, 2);
-    const StVenantKirchhoff stvk = StVenantKirchhoff::from_young_poisson(cfg_.material.young, cfg_.material.poisson);
+    const StVenantKirchhoff stvk =
+        StVenantKirchhoff::from_young_poisson(cfg_.material.young, cfg_.material.poisson);
     law_ = std::make_unique<Law>(make_law(cfg_.material.law, cfg_.material.parameters, "material"));
     visco_ = nullptr;
     return make_model(cfg_, mesh_, stvk, *law_, visco_);
@@ -44,7 +45,9 @@ class ModelFactoryTest : public RunnerTestCase {
   }
 
   static json stvk() { return {{"E", 10000.0}, {"nu", 0.3}, {"density", 1000.0}}; }
-  static json neo_hookean() { return {{"law", "neo_hookean"}, {"E", 10000.0}, {"nu", 0.3}, {"density", 1000.0}}; }
+  static json neo_hookean() {
+    return {{"law", "neo_hookean"}, {"E", 10000.0}, {"nu", 0.3}, {"density", 1000.0}};
+  }
   static json viscoelastic(json m) {
     m["viscoelastic"] = json::parse(R"({"prony": {"convention": "instantaneous",
                                                   "terms": [{"weight": 0.3, "tau": 0.5}]}})");

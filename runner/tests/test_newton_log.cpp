@@ -73,7 +73,8 @@ TEST(NewtonLog, InconsistentHistoryIsRefused) {
     back.restore(d);
     FAIL() << "an inconsistent history was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("ck.h5: inconsistent Newton history"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("ck.h5: inconsistent Newton history"), std::string::npos)
+        << e.what();
   }
 }
 

@@ -57,7 +57,8 @@ TEST_F(RunCheckpointTest, WrittenWhenDueAndRestoredExactly) {
   EXPECT_FALSE(fs::exists(file()));
   ck.after_step(2, rec, loop);
   ASSERT_TRUE(fs::exists(file()));
-  EXPECT_NE(ck.where().find("checkpoint after step 2 in " + file().string()), std::string::npos) << ck.where();
+  EXPECT_NE(ck.where().find("checkpoint after step 2 in " + file().string()), std::string::npos)
+      << ck.where();
   EXPECT_NE(ck.where().find("--resume"), std::string::npos);
 
   RunCheckpoint resumed(p, result(), options(0, true));
@@ -115,7 +116,8 @@ TEST_F(RunCheckpointTest, ACheckpointOfAnotherCaseIsRefused) {
     RunCheckpoint ck(q, result(), options(0, true));
     FAIL() << "a checkpoint of another case was accepted";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("the checkpoint is of another configuration"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("the checkpoint is of another configuration"), std::string::npos)
+        << e.what();
   }
 }
 

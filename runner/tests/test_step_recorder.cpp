@@ -46,7 +46,8 @@ TEST_F(StepRecorderTest, RecordsTheSeriesAndWritesTheFieldFiles) {
   EXPECT_NEAR(rec.external_work(), 2.0 * l / (l + 1.0) * t.last(series_names::kElasticEnergy),
               1e-9 * rec.external_work());
   rec.close();
-  for (const char* f : {"timeseries.h5", "displacement.h5", "fields.xdmf", "result.pvd", "vtu/step_00001.vtu"})
+  for (const char* f :
+       {"timeseries.h5", "displacement.h5", "fields.xdmf", "result.pvd", "vtu/step_00001.vtu"})
     EXPECT_TRUE(fs::exists(out.staging_dir() / f)) << f;
   H5File h5 = H5File::open_read((out.staging_dir() / "timeseries.h5").string());
   EXPECT_EQ(h5.read_double("/series/time").size(), 2u);

@@ -47,8 +47,8 @@ TEST_F(SteppingTest, StaticLoadSteps) {
   EXPECT_EQ(info["load_steps"], 4);
   EXPECT_GE(info["newton_iterations"].get<long>(), 4);
   EXPECT_EQ(info["newton"]["per_step"]["iterations"].size(), 4u);
-  EXPECT_EQ(n, 5u);       // t = 0 and 4 steps
-  EXPECT_EQ(frames, 3);   // t = 0, step 3 and the last step
+  EXPECT_EQ(n, 5u);      // t = 0 and 4 steps
+  EXPECT_EQ(frames, 3);  // t = 0, step 3 and the last step
   EXPECT_NEAR(last_probe_x_, 0.001, 1e-12);
 }
 
