@@ -1,4 +1,4 @@
-#include "verification/studies/liver_problem.hpp"
+#include "studies/common/liver_problem.hpp"
 
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"

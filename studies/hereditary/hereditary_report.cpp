@@ -5,7 +5,7 @@
 // and liver blocks, and bad parameters; test_cli_resume (CliStudyResume.InterruptedStudiesResume)
 // interrupts it at its checkpoints and resumes it to the uninterrupted result. The numerics it calls
 // are unit-tested in tests/test_hereditary_study.cpp.
-#include "verification/studies/hereditary_report.hpp"
+#include "studies/hereditary/hereditary_report.hpp"
 
 #include "core/base/interrupt.hpp"
 
@@ -14,7 +14,7 @@
 #include "core/config/config_reader.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/json_number.hpp"
-#include "verification/studies/study_plot.hpp"
+#include "studies/common/study_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -452,7 +452,7 @@ nlohmann::json write_hereditary_study(const HereditaryRunOptions& o, const std::
   h5.close();
   std::ofstream(dir / "hereditary.md") << md.str();
   if (o.plots) {
-    const ProcessStatus ps = draw_study_plot(o.tmlab_root, "tmlab_hereditary_plot.py", dir);
+    const ProcessStatus ps = draw_study_plot(o.tmlab_root, "hereditary", "tmlab_hereditary_plot.py", dir);
     if (!ps.ok()) throw Error("drawing the hereditary plots failed (" + ps.describe() + ")");
   }
   return summary;

@@ -6,7 +6,7 @@
 #pragma once
 
 #include "core/results/checkpoint.hpp"
-#include "verification/studies/hereditary_study.hpp"
+#include "studies/hereditary/hereditary_study.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,7 +25,7 @@ struct HereditaryRunOptions {
   /// The liver's history forms, each its own study: nodal_force (the seed's) and/or pk2.
   std::vector<std::string> liver_histories = {"nodal_force", "pk2"};
   std::string params_file;       ///< the paper parameter document (cases/paper/xu2011_liver.json)
-  std::string tmlab_root = ".";  ///< meshes/, verification/studies/python/
+  std::string tmlab_root = ".";  ///< meshes/, studies/<study>/python/
   std::string command_line;      ///< quoted in hereditary.md
   bool plots = true;
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)

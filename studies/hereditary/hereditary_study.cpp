@@ -1,18 +1,18 @@
-#include "verification/studies/hereditary_study.hpp"
+#include "studies/hereditary/hereditary_study.hpp"
 
 #include "core/base/format.hpp"
 
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "studies/common/liver_problem.hpp"
+#include "studies/paper/paper_experiments.hpp"
 #include "tensormass/runner/case_runner.hpp"
 #include "tensormass/solvers/static_solver.hpp"
 #include "tensormass/system/external_loads.hpp"
 #include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/system/mechanical_system.hpp"
 #include "tensormass/viscoelastic/hereditary_integral.hpp"
-#include "verification/studies/liver_problem.hpp"
-#include "verification/studies/paper_experiments.hpp"
 
 #include <algorithm>
 #include <cassert>

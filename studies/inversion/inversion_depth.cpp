@@ -1,5 +1,5 @@
 // The inversion depth of each law under the paper's sphere indentation (inversion_depth.hpp).
-#include "verification/studies/inversion_depth.hpp"
+#include "studies/inversion/inversion_depth.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"

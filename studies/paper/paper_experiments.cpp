@@ -1,4 +1,4 @@
-#include "verification/studies/paper_experiments.hpp"
+#include "studies/paper/paper_experiments.hpp"
 
 #include "core/results/series_names.hpp"
 

@@ -1,5 +1,5 @@
 // Section IV-A of Xu et al. 2011 redone with error bars (paper_fit.hpp explains the study).
-#include "verification/studies/paper_fit.hpp"
+#include "studies/paper/paper_fit.hpp"
 
 #include "calibration/closed_forms/indentation.hpp"
 #include "calibration/fit/fe_rig.hpp"
@@ -14,7 +14,7 @@
 #include "core/io/atomic_file.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
-#include "verification/studies/study_plot.hpp"
+#include "studies/common/study_plot.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -544,7 +544,7 @@ json run_paper_fit(const std::string& target, const PaperFitSettings& s, const P
                   {"usable_depth", usable["statement"]},
                   {"plots", "skipped (--no-plots)"}};
   if (o.plots) {
-    const ProcessStatus ps = draw_study_plot(o.tmlab_root, "tmlab_paper_fit_figure.py", dir);
+    const ProcessStatus ps = draw_study_plot(o.tmlab_root, "paper", "tmlab_paper_fit_figure.py", dir);
     if (!ps.ok()) throw Error("drawing " + figure + " failed (" + ps.describe() + ")");
     summary["plots"] = "ok";
   }

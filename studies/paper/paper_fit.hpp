@@ -26,7 +26,7 @@
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/rigs/rig.hpp"
 #include "core/mesh/mesh.hpp"
-#include "verification/studies/paper_fit_settings.hpp"
+#include "studies/paper/paper_fit_settings.hpp"
 
 #include <nlohmann/json.hpp>
 

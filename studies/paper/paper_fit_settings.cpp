@@ -1,4 +1,4 @@
-#include "verification/studies/paper_fit_settings.hpp"
+#include "studies/paper/paper_fit_settings.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"

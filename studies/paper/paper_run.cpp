@@ -1,12 +1,12 @@
-#include "verification/studies/paper_run.hpp"
+#include "studies/paper/paper_run.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/config/case_config.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/results/run_output.hpp"
+#include "studies/common/study_plot.hpp"
 #include "tensormass/runner/case_runner.hpp"
-#include "verification/studies/study_plot.hpp"
 
 #include <fstream>
 #include <ostream>
@@ -48,7 +48,7 @@ RunResult run_one(const PaperFigure& fig, const PaperRun& run, std::size_t k, co
 
 /// Draws the figure; fig7 adds the energy table the drawing wrote to the summary.
 void draw(const PaperFigure& fig, const PaperRunOptions& o, const fs::path& dir, nlohmann::json& summary) {
-  const ProcessStatus ps = draw_study_plot(o.tmlab_root, "tmlab_paper_figure.py", dir);
+  const ProcessStatus ps = draw_study_plot(o.tmlab_root, "paper", "tmlab_paper_figure.py", dir);
   if (!ps.ok()) throw Error("drawing " + fig.name + " failed (" + ps.describe() + ")");
   summary["plots"] = "ok";
   if (fig.name == "fig7") {

@@ -5,7 +5,7 @@
 // arguments and owns the figure's result directory.
 #pragma once
 
-#include "verification/studies/paper_experiments.hpp"
+#include "studies/paper/paper_experiments.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -18,7 +18,7 @@ namespace tmlab::tm {
 
 struct PaperRunOptions {
   std::string params_file;                ///< the parameter document the figure was built from
-  std::string tmlab_root = ".";           ///< meshes/, verification/studies/python/
+  std::string tmlab_root = ".";           ///< meshes/, studies/<study>/python/
   std::vector<std::string> command_line;  ///< recorded in each run's manifest
   bool plots = true;                      ///< draw the figure
   /// Reuse the runs an interrupted figure finished (a complete result directory in `dir`).

@@ -1,5 +1,5 @@
 // Work-precision study (work_precision.hpp).
-#include "verification/studies/work_precision.hpp"
+#include "studies/workprecision/work_precision.hpp"
 
 #include "core/base/format.hpp"
 
@@ -11,11 +11,11 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "reference_fem/sundials/ode_references.hpp"
+#include "studies/common/liver_problem.hpp"
+#include "studies/common/study_plot.hpp"
 #include "tensormass/solvers/explicit_dynamics.hpp"
 #include "tensormass/solvers/implicit_dynamics.hpp"
 #include "tensormass/system/lumped_mass.hpp"
-#include "verification/studies/liver_problem.hpp"
-#include "verification/studies/study_plot.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -606,7 +606,7 @@ nlohmann::json write_work_precision(const std::vector<WorkPrecisionProblem>& pro
       << work_precision_table(problems);
   std::string plot_status = "skipped";
   if (plots) {
-    const ProcessStatus ps = draw_study_plot(tmlab_root, "tmlab_workprecision_plot.py", dir,
+    const ProcessStatus ps = draw_study_plot(tmlab_root, "workprecision", "tmlab_workprecision_plot.py", dir,
                                              ProcessOutput::to_file(dir / "plots.log"));
     plot_status = ps.ok() ? "ok" : "failed (see plots.log)";
     if (!ps.ok() && warn)

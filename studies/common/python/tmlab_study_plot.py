@@ -1,6 +1,7 @@
-"""Shared by the plotting scripts of the studies (tmlab_hereditary_plot.py, tmlab_paper_figure.py):
+"""Shared by the plotting scripts of the studies (studies/<study>/python/*.py):
 the command line (one result directory), the error exit, and the finishing of axes and figures.
-The scripts run as `python3 SCRIPT DIR`, so this module is found beside them.
+The scripts run as `python3 SCRIPT DIR` from studies/<study>/python/ and put this folder
+(studies/common/python/) first on sys.path to import it.
 """
 import os
 import sys

@@ -2,7 +2,7 @@
 // is the mesh, the long-term material, the Prony series in the long-term convention, the density and
 // a base holding exactly the selected nodes; bad documents are errors naming the file and key.
 #include "core/base/error.hpp"
-#include "verification/studies/liver_problem.hpp"
+#include "studies/common/liver_problem.hpp"
 
 #include <gtest/gtest.h>
 

@@ -14,12 +14,15 @@ Writes into DIR:
 Exit status 1 with a message naming the file or dataset when an input is missing.
 """
 import os
+import sys
 
 import h5py
 import matplotlib.pyplot as plt
 import numpy as np
-from tmlab_study_plot import fail as _fail
-from tmlab_study_plot import input_file, label_axes, save
+# tmlab_study_plot.py, the helpers the studies' scripts share, is in studies/common/python/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common", "python"))
+from tmlab_study_plot import fail as _fail  # noqa: E402
+from tmlab_study_plot import input_file, label_axes, save  # noqa: E402
 
 SCHEMES = ["midpoint", "exact_linear", "backward_euler"]
 COLORS = {"midpoint": "tab:red", "exact_linear": "tab:blue", "backward_euler": "tab:green"}

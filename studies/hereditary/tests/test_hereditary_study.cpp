@@ -5,7 +5,7 @@
 // reference, exact history along the path). Numbers quoted in docs/hereditary.md come from
 // `tmlab hereditary`; these tests print theirs.
 #include "core/base/error.hpp"
-#include "verification/studies/hereditary_study.hpp"
+#include "studies/hereditary/hereditary_study.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,10 +11,13 @@ Exit status 1 with a message naming the file when the input is missing or malfor
 """
 import json
 import os
+import sys
 
 import matplotlib.pyplot as plt
-from tmlab_study_plot import fail as _fail
-from tmlab_study_plot import input_file, label_axes, save
+# tmlab_study_plot.py, the helpers the studies' scripts share, is in studies/common/python/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common", "python"))
+from tmlab_study_plot import fail as _fail  # noqa: E402
+from tmlab_study_plot import input_file, label_axes, save  # noqa: E402
 
 STYLES = ["-", "--", ":", "-."]
 

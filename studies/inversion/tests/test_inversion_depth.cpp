@@ -3,7 +3,7 @@
 // compression: a tet inverts, or collapses past St VK's compression limit, at a finite depth;
 // neo-Hookean's energy grows without bound as J -> 0, so it reaches deeper or never inverts.
 #include "core/base/error.hpp"
-#include "verification/studies/inversion_depth.hpp"
+#include "studies/inversion/inversion_depth.hpp"
 
 #include <gtest/gtest.h>
 

@@ -11,12 +11,15 @@ Exit status 1 with a message naming the file when an input is missing.
 """
 import json
 import os
+import sys
 
 import h5py
 import matplotlib.pyplot as plt
 import numpy as np
-from tmlab_study_plot import fail as _fail
-from tmlab_study_plot import input_file
+# tmlab_study_plot.py, the helpers the studies' scripts share, is in studies/common/python/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common", "python"))
+from tmlab_study_plot import fail as _fail  # noqa: E402
+from tmlab_study_plot import input_file  # noqa: E402
 
 
 def fail(msg):

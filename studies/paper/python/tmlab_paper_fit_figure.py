@@ -10,6 +10,7 @@ a message naming the file when an input is missing.
 """
 import json
 import os
+import sys
 import textwrap
 
 import matplotlib
@@ -17,6 +18,8 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
+# tmlab_study_plot.py, the helpers the studies' scripts share, is in studies/common/python/.
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "common", "python"))
 from tmlab_study_plot import input_file, label_axes, save  # noqa: E402
 
 STYLE = {"stvk": "-", "neo_hookean": "--"}

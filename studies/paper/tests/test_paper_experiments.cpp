@@ -3,7 +3,7 @@
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
 #include "core/config/config_reader.hpp"
-#include "verification/studies/paper_experiments.hpp"
+#include "studies/paper/paper_experiments.hpp"
 
 #include <gtest/gtest.h>
 

@@ -10,7 +10,7 @@
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
 #include "core/testing/temp_dir.hpp"
-#include "verification/studies/paper_fit.hpp"
+#include "studies/paper/paper_fit.hpp"
 
 #include <gtest/gtest.h>
 

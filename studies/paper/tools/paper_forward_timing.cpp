@@ -1,5 +1,5 @@
 // paper_forward_timing: the cost of one forward FE solve of the Section IV-A rig (`tmlab paper
-// fig2|fig3|table1|table2`, verification/studies/paper_fit.cpp) at the generating parameters, for
+// fig2|fig3|table1|table2`, studies/paper/paper_fit.cpp) at the generating parameters, for
 // measuring where a fit's time goes (docs/paper-experiments.md, "Cost"). Not a `tmlab` command: a
 // developer tool.
 //
@@ -15,7 +15,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
-#include "verification/studies/paper_fit.hpp"
+#include "studies/paper/paper_fit.hpp"
 
 #include <chrono>
 #include <ctime>

@@ -3,7 +3,7 @@
 // markdown table hold what the study measured.
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
-#include "verification/studies/work_precision.hpp"
+#include "studies/workprecision/work_precision.hpp"
 
 #include <gtest/gtest.h>
 
