@@ -1,13 +1,13 @@
 // libFuzzer target: the parameter files of `tmlab paper` (--params FILE): the Section IV-A
-// identification settings (verification/studies/paper_fit_settings, with and without the "quick"
-// merge patch) and the liver figures fig5, fig6 and fig7 (verification/studies/paper_experiments
+// identification settings (studies/paper/paper_fit_settings, with and without the "quick"
+// merge patch) and the liver figures fig5, fig6 and fig7 (studies/paper/paper_experiments
 // paper_figure: the document checked strictly, each figure's runs built as case documents). Any input
 // must give settings or figures, or a tmlab::Error; settings read satisfy the documented ranges.
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
 #include "fuzz/fuzz_input.hpp"
-#include "verification/studies/paper_experiments.hpp"
-#include "verification/studies/paper_fit_settings.hpp"
+#include "studies/paper/paper_experiments.hpp"
+#include "studies/paper/paper_fit_settings.hpp"
 
 #include <cmath>
 #include <cstdlib>

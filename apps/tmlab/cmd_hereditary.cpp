@@ -1,6 +1,6 @@
 // tmlab hereditary: the Prony recursions (midpoint = the seed's eq. 20, exact_linear, backward_euler)
 // against the exact hereditary integral, on prescribed strain histories and on the liver relaxation
-// experiment (verification/studies/hereditary_report.hpp; docs/hereditary.md).
+// experiment (studies/hereditary/hereditary_report.hpp; docs/hereditary.md).
 // Writes <results>/hereditary/: hereditary.h5, hereditary.md (tables), PNG plots, manifest.json and
 // summary.json last (RunOutput protocol).
 #include "cli_args.hpp"
@@ -9,7 +9,7 @@
 #include "core/base/format.hpp"
 #include "core/constitutive/prony.hpp"
 #include "core/results/run_output.hpp"
-#include "verification/studies/hereditary_report.hpp"
+#include "studies/hereditary/hereditary_report.hpp"
 
 #include <cmath>
 #include <filesystem>

@@ -1,5 +1,5 @@
 // tmlab inversion: the depth at which each law first inverts a tet (or loses equilibrium) under the
-// paper's sphere indentation, on several meshes (verification/studies/inversion_depth.hpp;
+// paper's sphere indentation, on several meshes (studies/inversion/inversion_depth.hpp;
 // docs/contact.md, "Inversion depth of each law"). Writes <results>/inversion/: inversion.json,
 // inversion.md, inversion_depth.png, manifest.json and summary.json last (RunOutput protocol).
 #include "cli_args.hpp"
@@ -7,9 +7,9 @@
 
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
+#include "studies/common/study_plot.hpp"
+#include "studies/inversion/inversion_depth.hpp"
 #include "tensormass/materials/law_factory.hpp"
-#include "verification/studies/inversion_depth.hpp"
-#include "verification/studies/study_plot.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -82,7 +82,7 @@ int cmd_inversion(const std::vector<std::string>& args, const std::string& comma
     std::string plots = "skipped (--no-plots)";
     if (!p.has("--no-plots")) {
       const ProcessStatus ps =
-          tm::draw_study_plot(tmlab_root(), "tmlab_inversion_plot.py", out.staging_dir());
+          tm::draw_study_plot(tmlab_root(), "inversion", "tmlab_inversion_plot.py", out.staging_dir());
       plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";
       if (!ps.ok()) std::cerr << "tmlab inversion: plot " << plots << "\n";
     }

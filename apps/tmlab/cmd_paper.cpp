@@ -1,14 +1,14 @@
 // tmlab paper fig2|fig3|table1|table2: the identification of Xu et al. 2011, Section IV-A
-// (verification/studies/paper_fit.hpp); tmlab paper fig5|fig6|fig7: the liver experiments
-// (verification/studies/paper_run.hpp).
+// (studies/paper/paper_fit.hpp); tmlab paper fig5|fig6|fig7: the liver experiments
+// (studies/paper/paper_run.hpp).
 #include "commands.hpp"
 
 #include "cli_args.hpp"
 
 #include "core/config/config_reader.hpp"
 #include "core/results/run_output.hpp"
-#include "verification/studies/paper_fit.hpp"
-#include "verification/studies/paper_run.hpp"
+#include "studies/paper/paper_fit.hpp"
+#include "studies/paper/paper_run.hpp"
 
 #include <filesystem>
 #include <fstream>

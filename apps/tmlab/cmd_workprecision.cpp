@@ -1,5 +1,5 @@
 // tmlab workprecision: error against CPU time of the fixed-step viscoelastic tensor-mass solvers and
-// the SUNDIALS integrators (verification/studies/work_precision.hpp), written to results/workprecision/:
+// the SUNDIALS integrators (studies/workprecision/work_precision.hpp), written to results/workprecision/:
 // workprecision.h5, workprecision.md (the tables), workprecision_<problem>.png, manifest.json and
 // summary.json (last; core/results/run_output.hpp).
 #include "commands.hpp"
@@ -7,7 +7,7 @@
 #include "cli_args.hpp"
 
 #include "core/results/run_output.hpp"
-#include "verification/studies/work_precision.hpp"
+#include "studies/workprecision/work_precision.hpp"
 
 #include <filesystem>
 #include <iostream>

@@ -64,7 +64,7 @@ struct FeRigOptions {
   /// sqrt(5e-8) ~ 2e-4 (docs/identification.md, "Jacobian step of the FE rig").
   double jacobian_step = 1e-6;
   /// Builds each test's mesh instead of rigs::rig_mesh(spec) (e.g. a mesh graded for one study,
-  /// verification/studies/paper_fit.cpp). It must cover the rig's sample (the same extent) and name
+  /// studies/paper/paper_fit.cpp). It must cover the rig's sample (the same extent) and name
   /// the faces as rig_mesh does ("bottom", "top"), since the rig's boundary conditions select them.
   /// Empty: rigs::rig_mesh with `mesh`.
   std::function<Mesh(const rigs::RigSpec&)> mesh_builder;

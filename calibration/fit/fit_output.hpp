@@ -1,7 +1,7 @@
 // What a fit writes and says (issue 14; docs/identification.md): fit.json (to_json), fit.h5
 // (write_fit_h5), the report on standard output, and the forward-model rule of `tmlab fit
 // --forward` (make_problem: the closed form, the FE rig, or the closed form when it covers the data
-// and the law, else the FE rig). `tmlab fit` and the paper's identification (verification/studies)
+// and the law, else the FE rig). `tmlab fit` and the paper's identification (studies/paper)
 // use these; the fitting itself is fitter.hpp.
 #pragma once
 

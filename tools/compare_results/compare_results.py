@@ -1,7 +1,11 @@
-#!/usr/bin/env python3
+#!/usr/bin/python3
 """Compare two tmlab result trees number for number (the bit-for-bit check of a refactoring).
 
-usage: compare_results.py OLD_DIR NEW_DIR [--map OLD=NEW ...] [--quiet]
+usage: compare_results.py OLD_DIR NEW_DIR [--map OLD=NEW ...] [--root OLD=NEW ...]
+
+--map renames parts of file paths (a renamed result); --root replaces OLD by NEW in every string of
+the old tree before comparing (two checkouts in different folders). Needs h5py: run it with
+Debian's /usr/bin/python3 (python3-h5py).
 
 Walks OLD_DIR; for every file it finds the file of the same relative path under NEW_DIR (after the
 --map renames of path parts) and compares:
@@ -20,14 +24,15 @@ CLOCK_KEYS = {"wall_seconds", "cpu_seconds", "seconds", "wall_s", "cpu_s", "elap
               "git_dirty", "build", "compiler", "host", "hostname", "run_id", "command_line",
               "wall_time_s", "solve_seconds", "duration_s", "elapsed", "wall", "cpu", "runtime_s",
               "wall_clock_s", "assembly_seconds", "total_seconds", "created", "version"}
-CLOCK_WORDS = re.compile(r"(wall|cpu|seconds|elapsed|[0-9] s\b|UTC|T[0-9]{2}:[0-9]{2}|git|sha|date|time)", re.I)
-SKIP_FILES = {".tmlab-result", "manifest.json"}
+CLOCK_WORDS = re.compile(r"(^Command:|wall|cpu|seconds|elapsed|[0-9] s\b|UTC|T[0-9]{2}:[0-9]{2}|git|sha|date|time)", re.I)
+SKIP_FILES = {".tmlab-result", "manifest.json", "plots.log"}
+ROOTS = []
 
 
 def is_clock_key(k):
     k = str(k).lower()
     return k in CLOCK_KEYS or k.endswith("_seconds") or k.endswith("wall_s") or k.endswith("cpu_s") \
-        or k.startswith("wall") or k.startswith("cpu_") or "timing" in k
+        or k.startswith("wall") or k.startswith("cpu_") or "timing" in k or k.endswith("_utc")
 
 
 def cmp_json(a, b, where, out):
@@ -48,6 +53,9 @@ def cmp_json(a, b, where, out):
         for i, (x, y) in enumerate(zip(a, b)):
             cmp_json(x, y, f"{where}[{i}]", out)
     else:
+        if isinstance(a, str):
+            for o, n in ROOTS:
+                a = a.replace(o, n)
         if type(a) != type(b) or a != b:
             if isinstance(a, float) and isinstance(b, float) and a != a and b != b:
                 return
@@ -83,16 +91,49 @@ def cmp_h5(pa, pb, out):
                     continue
                 if k not in ob.attrs:
                     out.append(f"{n}@{k}: attribute missing in new")
-                elif repr(oa.attrs[k]) != repr(ob.attrs[k]):
+                elif root_fix(repr(oa.attrs[k])) != repr(ob.attrs[k]):
                     out.append(f"{n}@{k}: {oa.attrs[k]!r} -> {ob.attrs[k]!r}")
         for n in names_b:
             if n not in fa:
                 out.append(f"{n}: extra in new")
 
 
+def root_fix(s):
+    for o, n in ROOTS:
+        s = s.replace(o, n)
+    return s
+
+
+CLOCK_COLUMN = re.compile(r"(wall|cpu|seconds|time|\bms\b|\bs\b|speed|cost|per s|/s\b|overhead)", re.I)
+
+
+def drop_clock_columns(lines):
+    """Markdown tables: blank the cells of columns whose header names a clock (their values are times)."""
+    out, clock_cols = [], None
+    for i, l in enumerate(lines):
+        if l.startswith("|"):
+            cells = l.split("|")
+            if clock_cols is None:  # a header row
+                clock_cols = {j for j, c in enumerate(cells) if CLOCK_COLUMN.search(c)}
+            else:
+                cells = ["*" if j in clock_cols else c for j, c in enumerate(cells)]
+            out.append("|".join(cells))
+        else:
+            clock_cols = None
+            out.append(l)
+    return out
+
+
+def text_lines(path, fix):
+    lines = open(path, errors="replace").read().splitlines()
+    if path.endswith(".md"):
+        lines = drop_clock_columns(lines)
+    return [fix(l) for l in lines if not CLOCK_WORDS.search(l) or l.startswith("|")]
+
+
 def cmp_text(pa, pb, out):
-    la = [l for l in open(pa, errors="replace").read().splitlines() if not CLOCK_WORDS.search(l)]
-    lb = [l for l in open(pb, errors="replace").read().splitlines() if not CLOCK_WORDS.search(l)]
+    la = text_lines(pa, root_fix)
+    lb = text_lines(pb, lambda l: l)
     if la != lb:
         for i, (x, y) in enumerate(zip(la, lb)):
             if x != y:
@@ -110,6 +151,10 @@ def main():
         if a == "--map":
             old, new = argv[i + 1].split("=", 1)
             maps.append((old, new))
+            args.remove(argv[i + 1])
+        if a == "--root":
+            old, new = argv[i + 1].split("=", 1)
+            ROOTS.append((old, new))
             args.remove(argv[i + 1])
     quiet = "--quiet" in argv
     old_root, new_root = args[0], args[1]
