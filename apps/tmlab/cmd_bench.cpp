@@ -1,4 +1,4 @@
-// tmlab bench: every force kernel and whole solver step measured side by side (tensormass/bench/
+// tmlab bench: every force kernel and whole solver step measured side by side (bench/
 // bench_suite.hpp), with the machine's limits measured in the same run, written to results/bench/:
 // bench.json, bench.md, bench_ns_per_tet.png, bench_threads.png, manifest.json and summary.json
 // (last; core/results/run_output.hpp). docs/performance.md shows the latest table.
@@ -10,8 +10,8 @@
 #include "core/results/run_output.hpp"
 
 #ifdef TMLAB_HAVE_BENCH
-#include "tensormass/bench/bench_report.hpp"
-#include "tensormass/bench/bench_suite.hpp"
+#include "bench/bench_report.hpp"
+#include "bench/bench_suite.hpp"
 #endif
 
 #include <filesystem>

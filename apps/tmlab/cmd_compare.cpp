@@ -6,10 +6,11 @@
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/fast_model.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -74,7 +75,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   try {
     CaseConfig tm_cfg = cfg;
     // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.
-    tm_cfg.model = cfg.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
+    tm_cfg.model = fast_model_for(cfg.material.law);
     std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
     const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
     tmlab::RunResult b;

@@ -6,7 +6,7 @@
 
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
 #include "reference_fem/dealii/reference_runner.hpp"

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "core/config/case_config.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <stdexcept>
 #include <string>

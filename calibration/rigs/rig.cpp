@@ -322,7 +322,7 @@ void validate_mesh_size(const RigSpec& s) {
 }
 
 /// The material section and the model as `tmlab run` reads them (core/config's case-file parser),
-/// and the law-model pairing the runner accepts (tensormass/runner: St VK models run St VK only).
+/// and the law-model pairing the runner accepts (runner/: St VK models run St VK only).
 void validate_material(const RigSpec& s) {
   const std::optional<CaseModel> model = case_model_from_string(s.model);
   if (!model)

@@ -1,8 +1,8 @@
 // One run under the result protocol (issue 27): the manifest, the computation, the checkpoint
 // removed (a complete result holds none), summary.json last; on a stop request (tmlab::Interrupted)
 // INTERRUPTED with where the checkpoint is, on any other error FAILED, and the exception passed on.
-// Every command that computes into a RunOutput (tmlab fit, discover, discover --benchmark) runs
-// through it, so the order of these steps is written once.
+// Every command that computes into a RunOutput (tmlab run's run_case, fit, discover, discover
+// --benchmark) runs through it, so the order of these steps is written once.
 #pragma once
 
 #include "core/base/interrupt.hpp"

@@ -5,8 +5,8 @@
 #include "core/config/case_config.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/results/run_output.hpp"
+#include "runner/case_runner.hpp"
 #include "studies/common/study_plot.hpp"
-#include "tensormass/runner/case_runner.hpp"
 
 #include <fstream>
 #include <ostream>

@@ -35,7 +35,7 @@
 #include "core/io/hdf5_file.hpp"
 #include "core/results/series_names.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 #endif
 
 #include <Eigen/Dense>

@@ -9,8 +9,8 @@
 #include "core/base/format.hpp"
 #include "core/config/case_config.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "runner/case_runner.hpp"
 #include "tensormass/materials/law_factory.hpp"
-#include "tensormass/runner/case_runner.hpp"
 #include "verification/checks/builtin_checks.hpp"
 #include "verification/checks/check_support.hpp"
 

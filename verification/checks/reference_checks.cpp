@@ -31,11 +31,12 @@
 #include "core/base/error.hpp"
 #include "core/base/stopwatch.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/fast_model.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <Eigen/Core>
 
@@ -92,7 +93,7 @@ void quiet_output(CaseConfig& c) {
 /// The fast model's run of a case: tensor_mass for St VK (the paper's model), hyperelastic_tl (the
 /// F-based kernel) for the other laws, which tensor_mass does not have.
 tmlab::RunResult run_tensor_mass(const CheckContext& ctx, CaseConfig c) {
-  c.model = c.material.law == MaterialLaw::StVK ? CaseModel::TensorMass : CaseModel::HyperelasticTL;
+  c.model = fast_model_for(c.material.law);
   return tm::run_case(c, run_options(ctx));
 }
 

@@ -7,7 +7,7 @@
 #include "core/config/case_config.hpp"
 #include "core/mesh/mesh_quality.hpp"
 #include "core/mesh/sample_meshes.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -13,9 +13,9 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "reference_fem/dealii/contact_geometry.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
+#include "runner/case_runner.hpp"
 #include "tensormass/contact/rigid_body.hpp"
 #include "tensormass/contact/surface_grid.hpp"
-#include "tensormass/runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

@@ -778,7 +778,7 @@ TEST(ViscoelasticStVK, DynamicSolversDriveTheHistory) {
 }
 
 // The cost of a trial force, tangent and begin+commit relative to the elastic tensor-mass model
-// (errata "Flaws" 4) is measured by the benchmarks, not here: tensormass/bench/bench_kernels.cpp
+// (errata "Flaws" 4) is measured by the benchmarks, not here: bench/bench_kernels.cpp
 // (BM_ViscoSeedForce, BM_ViscoObjectiveForce, BM_ViscoTangent, BM_ViscoBeginCommit).
 
 // ------------------------------------------------------------------ options

@@ -1,7 +1,7 @@
 // The mesh selection of `tmlab bench` (bench_suite.hpp): the names --meshes accepts and what
 // check_bench_meshes refuses (an unknown name, listing the known ones; cube_2m without --large; a
 // cube --quick does not measure). run_bench itself is tested end to end by test_cli_bench.
-#include "tensormass/bench/bench_suite.hpp"
+#include "bench/bench_suite.hpp"
 
 #include "core/base/error.hpp"
 

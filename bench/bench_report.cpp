@@ -1,4 +1,4 @@
-#include "tensormass/bench/bench_report.hpp"
+#include "bench/bench_report.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
@@ -360,8 +360,7 @@ json write_bench_report(json bench, const std::filesystem::path& dir, bool plots
   }
   std::string plot_status = "skipped";
   if (plots) {
-    const auto script =
-        std::filesystem::path(tmlab_root) / "tensormass" / "bench" / "python" / "tmlab_bench_plot.py";
+    const auto script = std::filesystem::path(tmlab_root) / "bench" / "python" / "tmlab_bench_plot.py";
     const ProcessStatus st = run_python(script, {dir.string()});
     plot_status = st.ok() ? "ok" : st.describe();
     if (!st.ok() && log) *log << "tmlab bench: plots failed (" << st.describe() << ")\n";

@@ -5,7 +5,7 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

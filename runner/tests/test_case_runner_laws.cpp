@@ -5,8 +5,8 @@
 #include "core/base/error.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
+#include "runner/case_runner.hpp"
 #include "tensormass/materials/law_factory.hpp"
-#include "tensormass/runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

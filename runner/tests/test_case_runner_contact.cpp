@@ -9,7 +9,7 @@
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
 #include "core/testing/temp_dir.hpp"
-#include "tensormass/runner/case_runner.hpp"
+#include "runner/case_runner.hpp"
 
 #include <gtest/gtest.h>
 

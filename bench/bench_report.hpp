@@ -1,5 +1,5 @@
 // The report of tmlab bench: bench.json (the run_bench document plus the target ratios), bench.md
-// (tables and targets) and the PNG plots (tensormass/bench/python/tmlab_bench_plot.py: ns/tet
+// (tables and targets) and the PNG plots (bench/python/tmlab_bench_plot.py: ns/tet
 // against mesh size, speed-up against threads).
 #pragma once
 

@@ -3,8 +3,8 @@
 // measured", the largest mesh with a 1 ms contact step is interpolated (or extrapolated) from the
 // contact ladder, and the Markdown has one row per kernel variant. The suite itself runs in
 // test_cli_bench (tmlab bench --quick, schema only: timings are never asserted).
-#include "tensormass/bench/bench_report.hpp"
-#include "tensormass/bench/machine_limits.hpp"
+#include "bench/bench_report.hpp"
+#include "bench/machine_limits.hpp"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "tensormass/bench/machine_limits.hpp"
+#include "bench/machine_limits.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -5,13 +5,13 @@
 // test_cli_bench (apps/tmlab/tests/test_cli_bench.cpp) runs `tmlab bench --quick` and checks every
 // record field of the documented schema, the contact ladder's records, and --meshes selecting the
 // measured meshes; test_bench_report checks the report written from such a document.
-#include "tensormass/bench/bench_suite.hpp"
+#include "bench/bench_suite.hpp"
 
+#include "bench/machine_limits.hpp"
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
-#include "tensormass/bench/machine_limits.hpp"
 #include "tensormass/contact/contact_implicit.hpp"
 #include "tensormass/contact/kinematic_contact.hpp"
 #include "tensormass/kernels/fast_force.hpp"

@@ -1,0 +1,59 @@
+// The elastic model a case file asks for: see model_factory.hpp.
+#include "runner/model_factory.hpp"
+
+#include "core/base/error.hpp"
+#include "tensormass/kernels/hyperelastic_tl.hpp"
+#include "tensormass/kernels/tensor_mass.hpp"
+#include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/viscoelastic/prony_series.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law.hpp"
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
+
+namespace tmlab::tm::runner {
+
+std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
+                                         const StVenantKirchhoff& material, const Law& law,
+                                         const ViscoelasticBase*& visco) {
+  if (cfg.material.law != MaterialLaw::StVK && cfg.model != CaseModel::HyperelasticTL)
+    throw Error(
+        cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
+        (cfg.model == CaseModel::TensorMass ? "the paper's St Venant-Kirchhoff tensor-mass model"
+                                            : "the St Venant-Kirchhoff oracle") +
+        "; material.law '" + to_string(cfg.material.law) +
+        "' runs on the F-based kernel: set \"model\": \"hyperelastic_tl\" (or --model hyperelastic_tl)");
+  const ViscoelasticSpec& vs = cfg.material.viscoelastic;
+  if (vs.enabled) {
+    // Prony-series viscoelasticity; the law's parameters (material.E for St VK) are the long-term ones.
+    if (cfg.model == CaseModel::TlOracle)
+      throw Error(
+          cfg.file +
+          ": key 'model': the tl_oracle kernel is elastic only; use tensor_mass or hyperelastic_tl for "
+          "a viscoelastic material");
+    const PronySeries prony = vs.convention == PronyConvention::Instantaneous
+                                  ? PronySeries::from_instantaneous(vs.weights, vs.taus)
+                                  : PronySeries::from_long_term(vs.weights, vs.taus);
+    ViscoelasticOptions vo;
+    vo.history = vs.history;
+    vo.integration = vs.integration;
+    vo.relaxation = vs.relaxation;
+    if (cfg.model == CaseModel::HyperelasticTL) {
+      // The objective scheme on any law (history pk2, relaxation full; the class refuses the rest).
+      std::unique_ptr<ViscoelasticHyperelastic> vm;
+      try {
+        vm = std::make_unique<ViscoelasticHyperelastic>(mesh, law, prony, vo);
+      } catch (const Error& e) {
+        throw Error(cfg.file + ": key 'material.viscoelastic' (model hyperelastic_tl): " + e.what());
+      }
+      visco = vm.get();
+      return vm;
+    }
+    auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
+    visco = vm.get();
+    return vm;
+  }
+  if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
+  if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);
+  return std::make_unique<TensorMassStVK>(mesh, material);
+}
+
+}  // namespace tmlab::tm::runner

@@ -1,0 +1,37 @@
+// The Newton iteration history of a run, one entry per step: summary.json's "solver.newton" block
+// and its part of the run's checkpoint (runner/run_checkpoint.hpp).
+#pragma once
+
+#include "core/config/case_config.hpp"
+#include "core/results/checkpoint.hpp"
+#include "tensormass/solvers/newton.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <vector>
+
+namespace tmlab::tm::runner {
+
+/// The iteration history of a run, one entry per step, for summary.json ("solver.newton"):
+/// iterations, cut-backs, sub-increments, backtracks, the final |R| and its target, whether the
+/// step stopped at round-off, and the residual history of the last (sub-)increment.
+class NewtonLog {
+ public:
+  /// One step: `last` is the final (sub-)increment's solve.
+  void add(const NewtonResult& last, int iterations, int cutbacks, int sub_increments, bool at_roundoff);
+  /// The history as checkpoint entries "newton.*", and back (an inconsistent history throws
+  /// tmlab::Error naming the file).
+  void save(CheckpointData& d) const;
+  void restore(const CheckpointData& d);
+  /// `fallbacks`: the solves of a "cholmod" run that met a tangent that is not positive definite
+  /// and used LDL^T (since the start or the resume of the run; -1: not known).
+  nlohmann::json json(const SolverSpec& s, int fallbacks = -1) const;
+
+ private:
+  std::vector<int> iterations_, cutbacks_, sub_increments_, backtracks_;
+  std::vector<double> residual_, target_;
+  std::vector<bool> roundoff_;
+  std::vector<std::vector<double>> history_;
+};
+
+}  // namespace tmlab::tm::runner
