@@ -64,35 +64,33 @@ int cmd_mesh(const std::vector<std::string>& args) {
       std::cout << format_mesh_report(rep);
     return 0;
   }
-  if (sub == "check") {
-    if (repair) {
-      const int n = repair_orientation(mesh);
-      write_gmsh22(mesh, p.text("--repair"));
-      std::cout << "re-oriented " << n << " tets; wrote " << p.text("--repair") << "\n";
-    }
-    const MeshReport rep = analyse_mesh(mesh);
-    std::cout << format_mesh_report(rep);
-    if (mesh.num_points() == 0 || mesh.num_tets() == 0) {
-      std::cerr << "tmlab: error: " << p.positional[0] << ": the mesh has " << mesh.num_points()
-                << " nodes and " << mesh.num_tets()
-                << " tetrahedra: nothing to simulate (a volume mesh of linear tets, Gmsh type 4, "
-                << "is needed)\n";
-      return 1;
-    }
-    if (!rep.inverted.empty() || !rep.degenerate.empty()) {
-      std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
-                << rep.degenerate.size() << " degenerate tets";
-      if (!rep.inverted.empty())
-        std::cerr << " (first inverted: " << mesh.tet_name(rep.inverted.front()) << ")";
-      if (!rep.degenerate.empty())
-        std::cerr << " (first degenerate: " << mesh.tet_name(rep.degenerate.front()) << ")";
-      std::cerr << "\n";
-      return 1;
-    }
-    std::cout << "check: OK (no inverted or degenerate tets)\n";
-    return 0;
+  // mesh check
+  if (repair) {
+    const int n = repair_orientation(mesh);
+    write_gmsh22(mesh, p.text("--repair"));
+    std::cout << "re-oriented " << n << " tets; wrote " << p.text("--repair") << "\n";
   }
-  return 0;  // not reached: the sub-command was checked above
+  const MeshReport rep = analyse_mesh(mesh);
+  std::cout << format_mesh_report(rep);
+  if (mesh.num_points() == 0 || mesh.num_tets() == 0) {
+    std::cerr << "tmlab: error: " << p.positional[0] << ": the mesh has " << mesh.num_points()
+              << " nodes and " << mesh.num_tets()
+              << " tetrahedra: nothing to simulate (a volume mesh of linear tets, Gmsh type 4, "
+              << "is needed)\n";
+    return 1;
+  }
+  if (!rep.inverted.empty() || !rep.degenerate.empty()) {
+    std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
+              << rep.degenerate.size() << " degenerate tets";
+    if (!rep.inverted.empty())
+      std::cerr << " (first inverted: " << mesh.tet_name(rep.inverted.front()) << ")";
+    if (!rep.degenerate.empty())
+      std::cerr << " (first degenerate: " << mesh.tet_name(rep.degenerate.front()) << ")";
+    std::cerr << "\n";
+    return 1;
+  }
+  std::cout << "check: OK (no inverted or degenerate tets)\n";
+  return 0;
 }
 
 }  // namespace tmlab::cli

@@ -730,7 +730,7 @@ TEST_F(CliFitResume, InterruptedBenchmarkResumesToTheSameResult) {
   const auto r = run_argv(args, dir_ / "other.log");
   EXPECT_EQ(r.status, 1) << r.output;
   EXPECT_NE(r.output.find(
-                "benchmark.only: the checkpoint has \"noise_only,contact_offset\", this run \"noise_only\""),
+                "(only: the checkpoint has \"noise_only,contact_offset\", this run \"noise_only\""),
             std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(out / "INTERRUPTED"));
