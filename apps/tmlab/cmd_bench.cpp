@@ -5,6 +5,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
@@ -22,8 +23,7 @@ namespace tmlab::cli {
 namespace fs = std::filesystem;
 
 int cmd_bench(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p =
-      parse(args, {"--results", "--threads", "--min-time", "--meshes"}, {"--quick", "--large", "--no-plots"});
+  ParsedOptions p = parse(bench_spec(), args);
   if (!p.positional.empty())
     throw UsageError("bench takes no positional argument (got '" + p.positional[0] + "')");
 #ifndef TMLAB_HAVE_BENCH
@@ -32,39 +32,32 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
       "bench: this build has no benchmarks (configure with TMLAB_BUILD_BENCHMARKS=ON, the release preset)");
 #else
   tm::BenchOptions opt;
-  opt.quick = p.has("--quick");
-  opt.large = p.has("--large");
+  opt.quick = p.flag("--quick");
+  opt.large = p.flag("--large");
   if (opt.quick && opt.large) throw UsageError("--quick and --large exclude each other");
-  opt.max_threads = static_cast<int>(parse_whole("--threads", p.get("--threads", "2"), 1, 64));
-  opt.min_time = parse_double("--min-time", p.get("--min-time", opt.quick ? "0.002" : "0.2"));
-  if (!(opt.min_time > 0.0 && opt.min_time <= 60.0))
-    throw UsageError("--min-time must be in (0, 60] seconds");
-  if (p.has("--meshes")) {
-    opt.meshes = split_list(p.get("--meshes"));
-    if (opt.meshes.empty()) throw UsageError("--meshes needs at least one mesh name");
-  }
+  opt.max_threads = static_cast<int>(p.whole("--threads"));
+  p.set_default("--min-time", opt.quick ? "0.002" : "0.2");
+  opt.min_time = p.decimal("--min-time");
+  if (p.given("--meshes")) opt.meshes = p.text_list("--meshes");
   if (const std::string bad = tm::check_bench_meshes(opt); !bad.empty()) throw UsageError(bad);
   opt.tmlab_root = tmlab_root();
   opt.log = &std::cerr;
-  const fs::path dir = fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "bench";
+  const fs::path dir = fs::path(results_root(p)) / "bench";
   RunOutput out(dir);
   try {
-    const nlohmann::json config = {{"quick", opt.quick},
-                                   {"large", opt.large},
-                                   {"meshes", opt.meshes},
-                                   {"max_threads", opt.max_threads},
-                                   {"min_time", opt.min_time}};
+    nlohmann::json config = p.config(kManifest);
+    config["meshes"] = opt.meshes;  // the default set when --meshes is not given
     out.write_json("manifest.json", make_manifest({split_words(command_line),
                                                    config,
                                                    {fs::path(opt.tmlab_root) / "meshes" / "liver.msh"}}));
     nlohmann::json bench = tm::run_bench(opt);
     bench["command"] = command_line;
     const std::string md = tm::bench_markdown(bench);
-    out.finalize(tm::write_bench_report(std::move(bench), out.staging_dir(), !p.has("--no-plots"),
+    out.finalize(tm::write_bench_report(std::move(bench), out.staging_dir(), !p.flag("--no-plots"),
                                         opt.tmlab_root, &std::cerr));
     std::cout << md << "\nresults     " << dir.string()
-              << (p.has("--no-plots") ? "/ (bench.json, bench.md; no plots: --no-plots)\n"
-                                      : "/ (bench.json, bench.md, *.png)\n");
+              << (p.flag("--no-plots") ? "/ (bench.json, bench.md; no plots: --no-plots)\n"
+                                       : "/ (bench.json, bench.md, *.png)\n");
   } catch (const std::exception& e) {
     out.abandon(e);
     throw;

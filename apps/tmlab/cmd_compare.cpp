@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
@@ -45,25 +46,20 @@ std::string compare_dir_name(const std::string& case_name, const std::string& ag
 }  // namespace
 
 int cmd_compare(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results", "--against", "--degree", "--time-integration"}, {"--no-plots"});
+  const ParsedOptions p = parse(compare_spec(), args);
   if (p.positional.size() != 1) throw UsageError("compare needs exactly one case name or case file");
   const CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
-  const std::string against = p.get("--against", "reference");
-  if (against != "reference" && against != "tl_oracle")
-    throw UsageError("--against must be reference or tl_oracle");
-  const int degree =
-      p.has("--degree") ? static_cast<int>(parse_whole("--degree", p.get("--degree"), 1, 2)) : 1;
-  const std::string time_integration = p.get("--time-integration", "fixed_step");
-  if (time_integration != "fixed_step" && time_integration != "ida")
-    throw UsageError("--time-integration must be fixed_step or ida");
+  const std::string against = p.text("--against");
+  const int degree = p.text("--degree") == "2" ? 2 : 1;
+  const std::string time_integration = p.text("--time-integration");
   if (time_integration == "ida" && against != "reference")
     throw UsageError("--time-integration ida needs --against reference");
-  if (p.has("--degree") && against != "reference")
+  if (p.given("--degree") && against != "reference")
     throw UsageError("--degree (the reference's element degree) needs --against reference");
 
   tmlab::RunOptions opt;
   opt.tmlab_root = tmlab_root();
-  opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
+  opt.results_root = results_root(p);
   opt.command_line = split_words(command_line);
   opt.plots = false;
   opt.log = &std::cerr;
@@ -97,14 +93,14 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     cmp["against"] = against;
     ManifestInput mi;
     mi.command_line = opt.command_line;
-    mi.config = {{"case", effective_case_json(cfg)},     {"against", against}, {"degree", degree},
-                 {"time_integration", time_integration}, {"a", a.dir},         {"b", b.dir}};
+    mi.config = p.config(kManifest);
+    mi.config.update({{"case", effective_case_json(cfg)}, {"a", a.dir}, {"b", b.dir}});
     out.write_json("manifest.json", make_manifest(mi));
     out.write_json("compare.json", cmp);
     write_series_file(out.file("compare.h5"), comparison_table(series, 0.0));
     // Plot: the per-step relative differences on a log scale (round-off zeros floored at 1e-17).
     std::string plot_status = "skipped (--no-plots)";
-    if (!p.has("--no-plots")) {
+    if (!p.flag("--no-plots")) {
       write_series_file(out.file("timeseries.h5"), comparison_table(series, 1e-17));
       nlohmann::json plots = nlohmann::json::array(
           {{{"file", "compare_displacement.png"},
@@ -152,7 +148,7 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
                 << "\n";
     std::cout << "written: " << out.dir().string() << "/ (compare.json, compare.h5, summary.json"
               << (plot_status == "ok" ? ", *.png" : "") << ")\n";
-    if (plot_status != "ok" && !p.has("--no-plots"))
+    if (plot_status != "ok" && !p.flag("--no-plots"))
       std::cerr << "tmlab compare: plots " << plot_status << "\n";
   } catch (const std::exception& e) {
     out.abandon(e);

@@ -3,6 +3,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "calibration/data/measured_data.hpp"
 #include "calibration/data/phantom_converter.hpp"
@@ -68,15 +69,11 @@ class TempDir {
   fs::path path_;
 };
 
-int convert(const Parsed& p) {
+int convert(const ParsedOptions& p) {
   if (p.positional.size() != 1) throw UsageError("data convert needs exactly one input file");
-  if (!p.has("--out")) throw UsageError("data convert needs --out DIR");
+  if (!p.given("--out")) throw UsageError("data convert needs --out DIR");
   PhantomOptions opt;
-  const std::string platens = p.get("--platens", "frictionless");
-  if (platens == "bonded")
-    opt.platens = Interface::bonded;
-  else if (platens != "frictionless")
-    throw UsageError("--platens must be frictionless or bonded (got '" + printable(platens, 60) + "')");
+  if (p.text("--platens") == "bonded") opt.platens = Interface::bonded;
   const fs::path in = p.positional[0];
   const std::string text = read_input_file(in);  // a directory or a FIFO is named, never read
   if (!is_phantom_csv(text))
@@ -87,7 +84,7 @@ int convert(const Parsed& p) {
         "data set needs no conversion (docs/measured-data.md)");
   const DataSet d = convert_phantom_text(text, in.string(), opt);
   // Into a user's folder: never over the input, nothing already there without --overwrite.
-  const fs::path csv = write_data_set(d, p.get("--out"), {in}, p.has("--overwrite"));
+  const fs::path csv = write_data_set(d, p.text("--out"), {in}, p.flag("--overwrite"));
   std::cout << "converted " << in.string() << " (silicone phantom CSV, Dawood et al. 2026, CC BY 4.0)\n"
             << "  " << d.meta.name << ": " << describe(d.meta) << ", " << d.tests.front().size()
             << " samples\n"
@@ -95,19 +92,19 @@ int convert(const Parsed& p) {
   return 0;
 }
 
-int show(const Parsed& p) {
+int show(const ParsedOptions& p) {
   if (p.positional.size() != 1) throw UsageError("data show needs exactly one NAME.csv");
   const fs::path csv = p.positional[0];
   const DataSet d = read_data_set(csv);
   // The plot's target is checked before anything is shown or written: in a folder given with --out
   // a NAME.png already there is the user's (replaced only with --overwrite); in the default
   // results/data/NAME/ it is the previous plot. Never an input, in either.
-  const bool plot = !p.has("--no-plots");
-  const fs::path out =
-      p.has("--out") ? fs::path(p.get("--out")) : fs::path(tmlab_root()) / "results" / "data" / d.meta.name;
+  const bool plot = !p.flag("--no-plots");
+  const fs::path out = p.given("--out") ? fs::path(p.text("--out"))
+                                        : fs::path(tmlab_root()) / "results" / "data" / d.meta.name;
   const fs::path png = out / (d.meta.name + ".png");
   const std::vector<fs::path> inputs = {csv, metadata_path(csv)};
-  const bool overwrite = !p.has("--out") || p.has("--overwrite");
+  const bool overwrite = !p.given("--out") || p.flag("--overwrite");
   if (plot) check_output_files({png}, inputs, overwrite);
   std::cout << d.meta.name << ": " << describe(d.meta) << "\n";
   if (d.meta.temperature_C) std::cout << "temperature: " << significant(*d.meta.temperature_C, 4) << " C\n";
@@ -170,8 +167,8 @@ int cmd_data(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("data needs a sub-command: convert FILE --out DIR | show NAME.csv");
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
-  if (sub == "convert") return convert(parse(rest, {"--out", "--platens"}, {"--overwrite"}));
-  if (sub == "show") return show(parse(rest, {"--out"}, {"--no-plots", "--overwrite"}));
+  if (sub == "convert") return convert(parse(data_convert_spec(), rest));
+  if (sub == "show") return show(parse(data_show_spec(), rest));
   throw UsageError("unknown data sub-command '" + sub + "' (convert or show)");
 }
 

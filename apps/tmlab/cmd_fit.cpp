@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "fit_request.hpp"
 
 #include "calibration/data/measured_data.hpp"
@@ -29,7 +30,7 @@ namespace {
 
 /// The problem with the asked forward model, the priors and --noise; `why_closed_form` says why
 /// the closed form does not apply when the FE rig was chosen for that reason.
-fit::Problem build_problem(const Parsed& p, const measured::DataSet& data, const FitRequest& q,
+fit::Problem build_problem(const ParsedOptions& p, const measured::DataSet& data, const FitRequest& q,
                            std::string& why_closed_form) {
   fit::Problem problem =
       fit::make_problem(data, q.spec, q.fixes, q.weights, q.forward, q.fe, why_closed_form);
@@ -40,16 +41,13 @@ fit::Problem build_problem(const Parsed& p, const measured::DataSet& data, const
   if (q.band_floor > 0.0)      // tau_j in ordered bands of [floor x sampling interval, ceiling x duration]
     fit::band_relaxation_times(problem.parameters, q.spec,
                                fit::relaxation_range(data, q.band_floor, q.band_ceiling));
-  if (p.has("--noise")) {
-    problem.noise_sigma = parse_double("--noise", p.get("--noise"));
-    if (!(problem.noise_sigma > 0.0)) throw UsageError("--noise must be positive (N)");
-  }
+  if (p.given("--noise")) problem.noise_sigma = p.decimal("--noise");
   return problem;
 }
 
 /// --out, or results/fit/<data>-<law tag> (a name checked for the results folder).
-fs::path result_dir(const Parsed& p, const measured::DataSet& data, const fit::ModelSpec& spec) {
-  if (p.has("--out")) return p.get("--out");
+fs::path result_dir(const ParsedOptions& p, const measured::DataSet& data, const fit::ModelSpec& spec) {
+  if (p.given("--out")) return p.text("--out");
   const std::string name = fit::result_name(data.meta.name, spec);
   if (const std::string why = result_name_problem(name); !why.empty())
     throw Error("fit: result name: " + why);
@@ -59,13 +57,10 @@ fs::path result_dir(const Parsed& p, const measured::DataSet& data, const fit::M
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args,
-                         {"--model", "--out", "--fix", "--weight", "--cost", "--starts", "--threads",
-                          "--seed", "--forward", "--global", "--prior", "--noise", "--mesh", "--substeps",
-                          "--local-runs", "--siman-evaluations", "--checkpoint-every", "--relaxation-bands"},
-                         {"--geodesic", "--no-plots", "--no-profile", "--quiet", "--resume"});
+  const ParsedOptions p = parse(fit_spec(), args);
   if (p.positional.size() != 1) throw UsageError("fit needs exactly one DATA.csv");
-  if (!p.has("--model")) throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
+  if (!p.given("--model"))
+    throw UsageError("fit needs --model SPEC (e.g. neo_hookean, ogden:2,poisson=0.49)");
   const fs::path csv = p.positional[0];
   const measured::DataSet data = measured::read_data_set(csv);
   const FitRequest q = parse_fit_request(p);
@@ -78,17 +73,17 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   // leaves the interrupted fit as it was.
   fit::FitOptions options = q.options;
   fit::FitCheckpoint ck(dir, fit_fingerprint(p, q, csv), checkpoint_schedule(p));
-  if (p.has("--resume")) {
+  if (p.flag("--resume")) {
     refuse_resume_of_complete(dir, "fit");
     ck.restore(options, std::cout);
   }
   ck.record(options);
   fit::print_fit_plan(std::cout, data.meta.name, q.spec, q.global, q.forward, problem, why_closed_form);
   RunOutput out(dir, &std::cerr,
-                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+                p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   ManifestInput mi;
   mi.command_line = split_words(command_line);
-  mi.config = manifest_config(p, q);
+  mi.config = p.config(kManifest);
   mi.input_files = {csv, measured::metadata_path(csv)};
   std::string plots = "skipped (--no-plots)";
   run_with_protocol(
@@ -97,7 +92,7 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
         const fit::FitResult r = fit::fit(problem, options);
         out.write_json("fit.json", fit::to_json(r, problem, q.options, q.spec));
         fit::write_fit_h5(out.file("fit.h5"), data, r);
-        if (!p.has("--no-plots")) {
+        if (!p.flag("--no-plots")) {
           plots = fit::write_fit_plots(out.staging_dir(), tmlab_root(),
                                        data.meta.name + ": " + q.spec.text + " (" + r.model_name + ")");
           if (plots != "ok") std::cerr << "tmlab fit: plots " << plots << "\n";

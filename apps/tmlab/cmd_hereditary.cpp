@@ -4,6 +4,7 @@
 // Writes <results>/hereditary/: hereditary.h5, hereditary.md (tables), PNG plots, manifest.json and
 // summary.json last (RunOutput protocol).
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "commands.hpp"
 
 #include "core/base/format.hpp"
@@ -26,51 +27,38 @@ namespace fs = std::filesystem;
 }  // namespace
 
 int cmd_hereditary(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--histories", "--results", "--params", "--seed", "--liver-history"},
-                         {"--liver", "--no-liver", "--quick", "--no-plots", "--resume"});
+  ParsedOptions p = parse(hereditary_spec(), args);
   if (!p.positional.empty()) throw UsageError("hereditary takes no positional arguments");
-  if (p.has("--liver") && p.has("--no-liver")) throw UsageError("give --liver or --no-liver, not both");
+  if (p.flag("--liver") && p.flag("--no-liver")) throw UsageError("give --liver or --no-liver, not both");
   tm::HereditaryRunOptions o;
-  o.study.quick = p.has("--quick");
-  o.liver = !p.has("--no-liver");
-  const std::vector<std::string> groups = split_list(p.get("--histories", "ramp_hold,sine,random"));
-  if (groups.empty()) throw UsageError("--histories needs a comma-separated list (ramp_hold, sine, random)");
-  if (p.has("--seed")) {
-    o.study.seed = static_cast<std::uint64_t>(parse_whole("--seed", p.get("--seed"), 0, 9000000000000000LL));
-  }
+  o.study.quick = p.flag("--quick");
+  o.liver = !p.flag("--no-liver");
+  const std::vector<std::string> groups = p.text_list("--histories");
+  o.study.seed = static_cast<std::uint64_t>(p.whole("--seed"));
   o.histories = tm::study_histories(groups, o.study);
   // Quick runs only the seed's form (a pk2 liver step costs ~7x a nodal_force one).
-  // The history forms by core/constitutive's names (PronyHistory), parsed once; "both" is all of them.
-  const std::string lh = p.get("--liver-history", o.study.quick ? "nodal_force" : "both");
-  if (lh != "both") {
-    const std::optional<PronyHistory> h = prony_history_from_string(lh);
-    if (!h) {
-      std::vector<std::string> names = prony_history_names();
-      names.push_back("both");
-      throw UsageError("--liver-history must be " + choice_list(names, "") + " (got '" + lh + "')");
-    }
-    o.liver_histories = {to_string(*h)};
-  }
-  o.params_file =
-      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
+  // The history forms by core/constitutive's names (PronyHistory); "both" is all of them.
+  p.set_default("--liver-history", o.study.quick ? "nodal_force" : "both");
+  if (p.text("--liver-history") != "both")
+    o.liver_histories = {to_string(*prony_history_from_string(p.text("--liver-history")))};
+  p.set_default("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
+  o.params_file = p.text("--params");
   o.tmlab_root = tmlab_root();
   o.command_line = command_line;
-  o.plots = !p.has("--no-plots");
+  o.plots = !p.flag("--no-plots");
   o.log = [](const std::string& m) { std::cerr << "tmlab hereditary: " << m << "\n"; };
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "hereditary";
+  const fs::path dir = fs::path(results_root(p)) / "hereditary";
 
-  const nlohmann::json config = {{"histories", groups},    {"quick", o.study.quick},
-                                 {"liver", o.liver},       {"liver_history", o.liver_histories},
-                                 {"alpha", o.study.alpha}, {"tau", o.study.tau},
-                                 {"seed", o.study.seed},   {"params", o.params_file}};
+  // The options that change the result, and the study's own constants.
+  nlohmann::json config = p.config(kFingerprint);
+  config.update({{"alpha", o.study.alpha}, {"tau", o.study.tau}});
   // Checkpoint after every sweep and liver study (docs/robustness.md); --resume reads it before the
   // result directory is touched, so a refused resume leaves the interrupted study as it was.
   o.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
   o.fingerprint = config;
-  if (p.has("--resume")) o.resume = read_checkpoint(o.checkpoint, "hereditary", config);
+  if (p.flag("--resume")) o.resume = read_checkpoint(o.checkpoint, "hereditary", config);
   RunOutput out(dir, nullptr,
-                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+                p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     std::vector<fs::path> inputs;
     if (o.liver) inputs.push_back(o.params_file);

@@ -3,6 +3,7 @@
 // docs/contact.md, "Inversion depth of each law"). Writes <results>/inversion/: inversion.json,
 // inversion.md, inversion_depth.png, manifest.json and summary.json last (RunOutput protocol).
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
@@ -27,47 +28,39 @@ namespace fs = std::filesystem;
 }  // namespace
 
 int cmd_inversion(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--laws", "--cells", "--max-depth", "--increment", "--grading", "--results"},
-                         {"--quick", "--no-plots", "--resume"});
+  const ParsedOptions p = parse(inversion_spec(), args);
   if (!p.positional.empty()) throw UsageError("inversion takes no positional arguments");
   tm::InversionStudyOptions o;
-  if (p.has("--quick")) o.cells = {4};  // the test's mesh
-  if (p.has("--cells")) {
+  if (p.flag("--quick")) o.cells = {4};  // the test's mesh
+  if (p.given("--cells")) {
     o.cells.clear();
-    for (const std::string& c : split_list(p.get("--cells"))) {
-      o.cells.push_back(static_cast<int>(parse_whole("--cells", c, 2, 64)));
-    }
-    if (o.cells.empty()) throw UsageError("--cells needs a comma-separated list of integers");
+    for (const long long c : p.whole_list("--cells")) o.cells.push_back(static_cast<int>(c));
   }
-  if (p.has("--max-depth")) o.max_depth = parse_double("--max-depth", p.get("--max-depth"));
-  if (p.has("--increment")) o.increment = parse_double("--increment", p.get("--increment"));
-  if (p.has("--grading")) o.grading = parse_double("--grading", p.get("--grading"));
+  o.max_depth = p.decimal("--max-depth");
+  o.increment = p.decimal("--increment");
+  o.grading = p.decimal("--grading");
   const std::vector<tm::InversionLaw> all = tm::default_inversion_laws(o.young, o.poisson);
-  if (p.has("--laws")) {
-    for (const std::string& name : split_list(p.get("--laws"))) {
-      const auto it =
-          std::find_if(all.begin(), all.end(), [&](const tm::InversionLaw& l) { return l.name == name; });
-      if (it == all.end()) {
-        std::string names;
-        for (const tm::InversionLaw& l : all) names += (names.empty() ? "" : ", ") + l.name;
-        throw UsageError("--laws: unknown law '" + name + "' (known: " + names + ")");
-      }
-      o.laws.push_back(*it);
+  for (const std::string& name : p.text_list("--laws")) {
+    const auto it =
+        std::find_if(all.begin(), all.end(), [&](const tm::InversionLaw& l) { return l.name == name; });
+    if (it == all.end()) {
+      std::string names;
+      for (const tm::InversionLaw& l : all) names += (names.empty() ? "" : ", ") + l.name;
+      throw UsageError("--laws: unknown law '" + name + "' (known: " + names + ")");
     }
-    if (o.laws.empty()) throw UsageError("--laws needs a comma-separated list of laws");
+    o.laws.push_back(*it);
   }
   o.log = [](const std::string& m) { std::cerr << "tmlab inversion: " << m << "\n"; };
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "inversion";
+  const fs::path dir = fs::path(results_root(p)) / "inversion";
 
   // Checkpoint after every finished (law, mesh) run (docs/robustness.md); --resume reads it before
   // the result directory is touched, so a refused resume leaves the interrupted study as it was.
   const nlohmann::json config = tm::inversion_fingerprint(o);
   o.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
   o.fingerprint = config;
-  if (p.has("--resume")) o.resume = read_checkpoint(o.checkpoint, "inversion", config);
+  if (p.flag("--resume")) o.resume = read_checkpoint(o.checkpoint, "inversion", config);
   RunOutput out(dir, nullptr,
-                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+                p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     const std::vector<tm::InversionRun> runs = tm::run_inversion_study(o);  // validates the options
     nlohmann::json doc = tm::inversion_json(o, runs);
@@ -80,7 +73,7 @@ int cmd_inversion(const std::vector<std::string>& args, const std::string& comma
       if (!md) throw Error(out.file("inversion.md").string() + ": cannot write");
     }
     std::string plots = "skipped (--no-plots)";
-    if (!p.has("--no-plots")) {
+    if (!p.flag("--no-plots")) {
       const ProcessStatus ps =
           tm::draw_study_plot(tmlab_root(), "inversion", "tmlab_inversion_plot.py", out.staging_dir());
       plots = ps.ok() ? "ok" : "failed (" + ps.describe() + ")";

@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "core/base/error.hpp"
 #include "core/config/config_reader.hpp"
@@ -21,7 +22,7 @@ namespace tmlab::cli {
 namespace fs = std::filesystem;
 
 int cmd_cases(const std::vector<std::string>& args) {
-  if (!args.empty()) throw UsageError("cases takes no arguments");
+  if (!parse(cases_spec(), args).positional.empty()) throw UsageError("cases takes no arguments");
   const fs::path dir = fs::path(tmlab_root()) / "cases";
   std::vector<fs::path> files;
   if (fs::exists(dir))
@@ -45,49 +46,51 @@ int cmd_cases(const std::vector<std::string>& args) {
 int cmd_mesh(const std::vector<std::string>& args) {
   if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE");
   const std::string sub = args[0];
-  const Parsed p = parse(std::vector<std::string>(args.begin() + 1, args.end()), {"--scale", "--repair"},
-                         {"--json", "--overwrite"});
+  if (sub != "info" && sub != "check")
+    throw UsageError("unknown mesh sub-command '" + sub + "' (info or check)");
+  const ParsedOptions p =
+      parse(sub == "info" ? mesh_info_spec() : mesh_check_spec(), {args.begin() + 1, args.end()});
+  // Only `mesh check` declares --repair.
+  const bool repair = sub == "check" && p.given("--repair");
   if (p.positional.size() != 1) throw UsageError("mesh " + sub + " needs exactly one mesh file");
-  if (p.has("--repair")) check_output_files({p.get("--repair")}, {p.positional[0]}, p.has("--overwrite"));
+  if (repair) check_output_files({p.text("--repair")}, {p.positional[0]}, p.flag("--overwrite"));
   Mesh mesh = read_mesh(p.positional[0]);
-  if (p.has("--scale")) scale_mesh(mesh, parse_double("--scale", p.get("--scale")));
+  if (p.given("--scale")) scale_mesh(mesh, p.decimal("--scale"));
   if (sub == "info") {
     const MeshReport rep = analyse_mesh(mesh);
-    if (p.has("--json"))
+    if (p.flag("--json"))
       std::cout << mesh_report_json(rep).dump(2) << "\n";
     else
       std::cout << format_mesh_report(rep);
     return 0;
   }
-  if (sub == "check") {
-    if (p.has("--repair")) {
-      const int n = repair_orientation(mesh);
-      write_gmsh22(mesh, p.get("--repair"));
-      std::cout << "re-oriented " << n << " tets; wrote " << p.get("--repair") << "\n";
-    }
-    const MeshReport rep = analyse_mesh(mesh);
-    std::cout << format_mesh_report(rep);
-    if (mesh.num_points() == 0 || mesh.num_tets() == 0) {
-      std::cerr << "tmlab: error: " << p.positional[0] << ": the mesh has " << mesh.num_points()
-                << " nodes and " << mesh.num_tets()
-                << " tetrahedra: nothing to simulate (a volume mesh of linear tets, Gmsh type 4, "
-                << "is needed)\n";
-      return 1;
-    }
-    if (!rep.inverted.empty() || !rep.degenerate.empty()) {
-      std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
-                << rep.degenerate.size() << " degenerate tets";
-      if (!rep.inverted.empty())
-        std::cerr << " (first inverted: " << mesh.tet_name(rep.inverted.front()) << ")";
-      if (!rep.degenerate.empty())
-        std::cerr << " (first degenerate: " << mesh.tet_name(rep.degenerate.front()) << ")";
-      std::cerr << "\n";
-      return 1;
-    }
-    std::cout << "check: OK (no inverted or degenerate tets)\n";
-    return 0;
+  // mesh check
+  if (repair) {
+    const int n = repair_orientation(mesh);
+    write_gmsh22(mesh, p.text("--repair"));
+    std::cout << "re-oriented " << n << " tets; wrote " << p.text("--repair") << "\n";
   }
-  throw UsageError("unknown mesh sub-command '" + sub + "' (info or check)");
+  const MeshReport rep = analyse_mesh(mesh);
+  std::cout << format_mesh_report(rep);
+  if (mesh.num_points() == 0 || mesh.num_tets() == 0) {
+    std::cerr << "tmlab: error: " << p.positional[0] << ": the mesh has " << mesh.num_points()
+              << " nodes and " << mesh.num_tets()
+              << " tetrahedra: nothing to simulate (a volume mesh of linear tets, Gmsh type 4, "
+              << "is needed)\n";
+    return 1;
+  }
+  if (!rep.inverted.empty() || !rep.degenerate.empty()) {
+    std::cerr << "tmlab: error: " << p.positional[0] << ": " << rep.inverted.size() << " inverted and "
+              << rep.degenerate.size() << " degenerate tets";
+    if (!rep.inverted.empty())
+      std::cerr << " (first inverted: " << mesh.tet_name(rep.inverted.front()) << ")";
+    if (!rep.degenerate.empty())
+      std::cerr << " (first degenerate: " << mesh.tet_name(rep.degenerate.front()) << ")";
+    std::cerr << "\n";
+    return 1;
+  }
+  std::cout << "check: OK (no inverted or degenerate tets)\n";
+  return 0;
 }
 
 }  // namespace tmlab::cli

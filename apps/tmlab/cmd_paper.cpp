@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "core/config/config_reader.hpp"
 #include "core/results/run_output.hpp"
@@ -22,26 +23,27 @@ namespace fs = std::filesystem;
 namespace {
 
 /// fig2|fig3|table1|table2: the Section IV-A identification, one result directory per target.
-int paper_fit(const Parsed& p, const std::string& target, const std::string& command_line) {
+int paper_fit(const ParsedOptions& p, const std::string& target, const std::string& command_line) {
   tm::PaperFitOptions o;
-  o.params_file =
-      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_indentation.json").string());
+  o.params_file = p.given("--params")
+                      ? p.text("--params")
+                      : (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_indentation.json").string();
   const nlohmann::json params = ConfigReader::parse_file(o.params_file);
-  const bool quick = p.has("--quick");
+  const bool quick = p.flag("--quick");
   const tm::PaperFitSettings s = tm::paper_fit_settings(params, o.params_file, quick);
   o.tmlab_root = tmlab_root();
-  o.plots = !p.has("--no-plots");
-  o.resume = p.has("--resume");
+  o.plots = !p.flag("--no-plots");
+  o.resume = p.flag("--resume");
   o.log = &std::cerr;
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / target;
+  const fs::path dir = fs::path(results_root(p)) / "paper" / target;
   // Same protocol as the figures below; --resume reuses the fits an interrupted run finished.
   RunOutput out(dir, &std::cerr,
                 o.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     ManifestInput mi;
     mi.command_line = split_words(command_line);
-    mi.config = {{"target", target}, {"quick", quick}, {"params", params}};
+    mi.config = p.config(kManifest);
+    mi.config.update({{"target", target}, {"params", params}});
     mi.input_files = {o.params_file};
     out.write_json("manifest.json", make_manifest(mi));
     const nlohmann::json summary = tm::run_paper_fit(target, s, o, out.staging_dir());
@@ -63,38 +65,38 @@ int paper_fit(const Parsed& p, const std::string& target, const std::string& com
 }  // namespace
 
 int cmd_paper(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results", "--params"}, {"--no-plots", "--resume", "--quick"});
+  const ParsedOptions p = parse(paper_spec(), args);
   if (p.positional.size() != 1)
     throw UsageError("paper needs one target: fig2, fig3, table1, table2, fig5, fig6 or fig7");
   if (tm::is_paper_fit_target(p.positional[0])) return paper_fit(p, p.positional[0], command_line);
   if (p.positional[0] != "fig5" && p.positional[0] != "fig6" && p.positional[0] != "fig7")
     throw UsageError("unknown paper target '" + p.positional[0] +
                      "' (expected fig2, fig3, table1, table2, fig5, fig6 or fig7)");
-  if (p.has("--quick")) throw UsageError("--quick applies to fig2, fig3, table1 and table2 only");
+  if (p.flag("--quick")) throw UsageError("--quick applies to fig2, fig3, table1 and table2 only");
   tm::PaperRunOptions o;
-  o.params_file =
-      p.get("--params", (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string());
+  o.params_file = p.given("--params")
+                      ? p.text("--params")
+                      : (fs::path(tmlab_root()) / "cases" / "paper" / "xu2011_liver.json").string();
   const nlohmann::json params = ConfigReader::parse_file(o.params_file);
   const tm::PaperFigure fig = tm::paper_figure(p.positional[0], params, o.params_file);
   o.tmlab_root = tmlab_root();
   o.command_line = split_words(command_line);
-  o.plots = !p.has("--no-plots");
+  o.plots = !p.flag("--no-plots");
   o.log = &std::cerr;
   // The figure is one result directory, results/paper/<fig>/, written through the run protocol:
   // its runs are staged inside it, figure.json and the drawing next to them, and the whole appears
   // at once when everything has succeeded (a killed run leaves FAILED/INTERRUPTED, never an old
   // figure that looks current).
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "paper" / fig.name;
+  const fs::path dir = fs::path(results_root(p)) / "paper" / fig.name;
   // --resume: the runs an interrupted figure finished (complete result directories in its staging
   // area) are reused; the others run again from their start.
-  o.resume = p.has("--resume");
+  o.resume = p.flag("--resume");
   RunOutput out(dir, &std::cerr,
                 o.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     ManifestInput mi;
     mi.command_line = o.command_line;
-    mi.config = {{"figure", fig.name}, {"params", params}};
+    mi.config = {{"figure", fig.name}, {"params", params}};  // --quick is refused for the figures
     mi.input_files = {o.params_file};
     out.write_json("manifest.json", make_manifest(mi));
     const nlohmann::json summary = tm::run_paper_figure(fig, o, out.staging_dir());

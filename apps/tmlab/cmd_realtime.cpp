@@ -6,6 +6,7 @@
 // --serve: the loop with the probe steered from a web page served on 127.0.0.1:P (live_server.hpp)
 // until SIGINT/SIGTERM (or --duration), then the timing.
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
@@ -96,45 +97,38 @@ int serve(const rt::RealtimeCase& c, int port, double duration) {
 }  // namespace
 
 int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--duration", "--results", "--coupling", "--port"},
-                         {"--record", "--no-frames", "--serve"});
+  const ParsedOptions p = parse(realtime_spec(), args);
   if (p.positional.size() != 1)
     throw UsageError("realtime needs one case (a file or a name in cases/realtime/)");
-  if (p.has("--serve") && p.has("--record")) throw UsageError("--serve and --record exclude each other");
-  if (p.has("--port") && !p.has("--serve")) throw UsageError("--port goes with --serve");
+  if (p.flag("--serve") && p.flag("--record")) throw UsageError("--serve and --record exclude each other");
+  if (p.given("--port") && !p.flag("--serve")) throw UsageError("--port goes with --serve");
   for (const char* opt : {"--results", "--no-frames"})
-    if (p.has(opt) && !p.has("--record"))
+    if (p.given(opt) && !p.flag("--record"))
       throw UsageError(std::string(opt) +
                        " only applies with --record (where the recording goes, whether it keeps PNG "
                        "frames); add --record to record the run");
-  // 0: any free port.
-  const int port =
-      p.has("--port") ? static_cast<int>(parse_whole("--port", p.get("--port"), 0, 65535)) : 8765;
+  const int port = static_cast<int>(p.whole("--port"));
   const std::string file = resolve_realtime_case(p.positional[0]);
   rt::RealtimeCase c = rt::load_realtime_case(file, tmlab_root());
-  double duration = c.duration;
-  if (p.has("--duration")) {
-    duration = parse_double("--duration", p.get("--duration"));
-    if (!(duration > 0.0) || duration > 3600.0) throw UsageError("--duration must be in (0, 3600] seconds");
-  }
-  if (p.has("--coupling")) {
+  const double duration = p.given("--duration") ? p.decimal("--duration") : c.duration;
+  if (p.given("--coupling")) {
     try {
-      c.rendered = rt::parse_coupling(p.get("--coupling"));
+      c.rendered = rt::parse_coupling(p.text("--coupling"));
     } catch (const tmlab::Error& e) {
       throw UsageError(e.what());
     }
   }
-  if (p.has("--serve")) {
+  if (p.flag("--serve")) {
     std::cerr << "tmlab realtime --serve: " << c.name << " (" << c.mesh.num_points() << " nodes), haptic "
               << c.haptic_hz << " Hz, control dt " << c.control.dt << " s, visual " << c.visual_hz << " Hz\n";
     // Without --duration: until SIGINT/SIGTERM (a day at most).
-    return serve(c, port, p.has("--duration") ? duration : 86400.0);
+    return serve(c, port, p.given("--duration") ? duration : 86400.0);
   }
   std::cerr << "tmlab realtime: " << c.name << " (" << c.mesh.num_points() << " nodes), haptic "
             << c.haptic_hz << " Hz, control dt " << c.control.dt << " s, visual " << c.visual_hz << " Hz, "
             << duration << " s\n";
 
-  if (!p.has("--record")) {
+  if (!p.flag("--record")) {
     std::cerr << "tmlab realtime: preparing the control model (the surface compliance of the local-model "
                  "coupling), then the run\n";
     auto control = c.make_control();
@@ -155,19 +149,17 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
     return 0;
   }
 
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "realtime";
+  const fs::path dir = fs::path(results_root(p)) / "realtime";
   RunOutput out(dir);
   nlohmann::json doc;
   try {
-    const nlohmann::json config = {{"case", file},
-                                   {"duration", duration},
-                                   {"coupling", rt::to_string(c.rendered)},
-                                   {"frames", !p.has("--no-frames")}};
+    // The options as given, with the case's duration and coupling when they were not.
+    nlohmann::json config = p.config(kManifest);
+    config.update({{"case", file}, {"duration", duration}, {"coupling", rt::to_string(c.rendered)}});
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, {file, c.mesh_file}}));
     rt::RecordOptions ro;
     ro.duration = duration;
-    ro.frames = !p.has("--no-frames");
+    ro.frames = !p.flag("--no-frames");
     ro.log = [](const std::string& m) { std::cerr << "tmlab realtime: " << m << "\n"; };
     doc = rt::record_realtime(c, ro, out.staging_dir());
     out.write_json("timing.json", doc);

@@ -2,6 +2,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "demo_case.hpp"
 
 #include "core/base/error.hpp"
@@ -78,39 +79,32 @@ void print_summary(const tmlab::RunResult& r, bool plots) {
   std::cout << ")\n";
 }
 
-int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& command_line) {
+int run_config(const CaseConfig& cfg, const ParsedOptions& p, const std::string& command_line) {
   tmlab::RunOptions opt;
   opt.tmlab_root = tmlab_root();
-  opt.results_root = p.get("--results", (fs::path(tmlab_root()) / "results").string());
+  opt.results_root = results_root(p);
   opt.command_line = split_words(command_line);
-  opt.plots = !p.has("--no-plots");
+  opt.plots = !p.flag("--no-plots");
   opt.log = &std::cerr;
-  const std::string model = p.get("--model", to_string(cfg.model));
+  // demo's table has no --model, --degree, --time-integration, --checkpoint-every or --resume.
+  const auto has = [&p](const char* name) { return p.spec().find(name) != nullptr && p.given(name); };
+  const std::string model = has("--model") ? p.text("--model") : to_string(cfg.model);
   // Checkpoints and --resume (docs/robustness.md): the tensor-mass runner's.
-  opt.resume = p.has("--resume");
-  if (p.has("--checkpoint-every")) {
-    try {
-      opt.checkpoints = CheckpointSchedule::parse(p.get("--checkpoint-every"));
-    } catch (const Error& e) {
-      throw UsageError(e.what());
-    }
-  }
-  if ((opt.resume || p.has("--checkpoint-every")) && model == "reference")
+  opt.resume = has("--resume");
+  if (has("--checkpoint-every")) opt.checkpoints = checkpoint_schedule(p);
+  if ((opt.resume || has("--checkpoint-every")) && model == "reference")
     throw UsageError(
         "--resume and --checkpoint-every are for the tensor-mass models (tensor_mass, tl_oracle); "
         "the deal.II reference has no checkpoints");
   int degree = 1;
-  if (p.has("--degree")) {
-    const std::string d = p.get("--degree");
-    if (d != "1" && d != "2") throw UsageError("--degree must be 1 or 2 (got '" + d + "')");
+  if (has("--degree")) {
     if (model != "reference")
       throw UsageError("--degree applies to the deal.II reference only (add --model reference); the " +
                        model + " model is P1 (linear tets)");
-    degree = d == "2" ? 2 : 1;
+    degree = p.text("--degree") == "2" ? 2 : 1;
   }
-  const std::string time_integration = p.get("--time-integration", "fixed_step");
-  if (time_integration != "fixed_step" && time_integration != "ida")
-    throw UsageError("--time-integration must be fixed_step or ida");
+  const std::string time_integration =
+      has("--time-integration") ? p.text("--time-integration") : "fixed_step";
   if (time_integration == "ida" && model != "reference")
     throw UsageError("--time-integration ida needs --model reference");
   std::cerr << "tmlab: running '" << cfg.name << "' (" << model << ")\n";
@@ -122,7 +116,7 @@ int run_config(const CaseConfig& cfg, const Parsed& p, const std::string& comman
 }  // namespace
 
 int cmd_demo(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--results"}, {"--no-plots"});
+  const ParsedOptions p = parse(demo_spec(), args);
   if (!p.positional.empty()) throw UsageError("demo takes no positional arguments");
   const nlohmann::json doc = nlohmann::json::parse(kDemoCase);
   const CaseConfig cfg = parse_case(doc, "<embedded demo case>", {tmlab_root()});
@@ -130,17 +124,11 @@ int cmd_demo(const std::vector<std::string>& args, const std::string& command_li
 }
 
 int cmd_run(const std::vector<std::string>& args, const std::string& command_line) {
-  Parsed p = parse(args, {"--results", "--model", "--degree", "--time-integration", "--checkpoint-every"},
-                   {"--no-plots", "--resume"});
+  const ParsedOptions p = parse(run_spec(), args);
   if (p.positional.size() != 1) throw UsageError("run needs exactly one case name or case file");
   CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
-  if (p.has("--model")) {
-    const std::string m = p.get("--model");
-    const std::optional<CaseModel> fast = case_model_from_string(m);
-    if (!fast && m != "reference")
-      throw UsageError("--model must be tensor_mass, tl_oracle, hyperelastic_tl or reference");
-    if (fast) cfg.model = *fast;
-  }
+  if (const std::optional<CaseModel> fast = case_model_from_string(p.text("--model")); fast)
+    cfg.model = *fast;
   return run_config(cfg, p, command_line);
 }
 

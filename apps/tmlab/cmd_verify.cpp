@@ -1,6 +1,7 @@
 // tmlab verify: runs the verification catalogue (verification/cases/) and writes the report
 // (results/verification/: report.md, report.html, verification.json, plots/, manifest.json).
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 #include "commands.hpp"
 
 #include "core/base/error.hpp"
@@ -45,20 +46,19 @@ void print_list(const std::vector<verify::VerificationCase>& cases) {
 }  // namespace
 
 int cmd_verify(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p = parse(args, {"--case", "--label", "--results", "--cases-dir"},
-                         {"--full", "--list", "--no-plots", "--update-docs", "--resume"});
+  const ParsedOptions p = parse(verify_spec(), args);
   if (!p.positional.empty()) throw UsageError("unexpected argument '" + p.positional.front() + "'");
   const fs::path root = tmlab_root();
   const fs::path cases_dir =
-      p.has("--cases-dir") ? fs::path(p.get("--cases-dir")) : root / "verification" / "cases";
+      p.given("--cases-dir") ? fs::path(p.text("--cases-dir")) : root / "verification" / "cases";
   const auto catalogue = verify::load_catalogue(cases_dir);
 
   verify::Selection sel;
-  sel.full = p.has("--full");
+  sel.full = p.flag("--full");
   sel.names = p.all("--case");
   sel.labels = p.all("--label");
   const auto cases = verify::select(catalogue, sel);
-  if (p.has("--list")) {
+  if (p.flag("--list")) {
     print_list(cases);
     return 0;
   }
@@ -67,12 +67,13 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
   verify::CheckRegistry registry;
   verify::register_builtin_checks(registry);
 
-  const fs::path results_root = p.has("--results") ? fs::path(p.get("--results")) : root / "results";
-  RunOutput out(results_root / "verification");
+  const fs::path root_dir = results_root(p);
+  RunOutput out(root_dir / "verification");
   try {
-    nlohmann::json config{{"cases_dir", fs::absolute(cases_dir).string()},
-                          {"full", sel.full},
-                          {"cases", nlohmann::json::array()}};
+    // The suite's identity (its checkpoint's fingerprint): the options that change the result
+    // (--full), the cases dir and the cases in order.
+    nlohmann::json config = p.config(kFingerprint);
+    config.update({{"cases_dir", fs::absolute(cases_dir).string()}, {"cases", nlohmann::json::array()}});
     std::vector<fs::path> inputs;
     for (const auto& c : cases) {
       config["cases"].push_back(c.name);
@@ -84,9 +85,8 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     // Checkpoint: each finished case's result, beside the result directory (which a new run
     // empties), so that an interrupted suite continues with --resume (docs/robustness.md).
     // The suite's identity is its configuration: the cases dir, --full and the cases in order.
-    verify::SuiteCheckpoint checkpoint(results_root / "verification.checkpoint.h5", config,
-                                       p.has("--resume"));
-    if (p.has("--resume"))
+    verify::SuiteCheckpoint checkpoint(root_dir / "verification.checkpoint.h5", config, p.flag("--resume"));
+    if (p.flag("--resume"))
       std::cerr << "tmlab verify: resuming: " << checkpoint.stored() << " of " << cases.size()
                 << " case(s) finished before the interruption\n";
     verify::RunSettings settings{root, out.staging_dir() / "work"};
@@ -101,11 +101,11 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     }
     fs::remove_all(settings.work_root);
 
-    verify::ReportInput in{cases, results, command_line, !p.has("--no-plots"),
+    verify::ReportInput in{cases, results, command_line, !p.flag("--no-plots"),
                            root / "verification" / "harness" / "python" / "plot_convergence.py"};
     verify::write_report(in, out.staging_dir());
     const nlohmann::json vj = verify::verification_json(in);
-    if (p.has("--update-docs"))
+    if (p.flag("--update-docs"))
       verify::update_doc_table(root / "docs" / "verification.md", verify::results_table(in));
     const int passed = vj["passed"], failed = vj["failed"], errors = vj["errors"];
     out.finalize({{"passed", passed}, {"failed", failed}, {"errors", errors}, {"cases", cases.size()}});

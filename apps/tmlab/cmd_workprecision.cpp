@@ -5,6 +5,7 @@
 #include "commands.hpp"
 
 #include "cli_args.hpp"
+#include "command_specs.hpp"
 
 #include "core/results/run_output.hpp"
 #include "studies/workprecision/work_precision.hpp"
@@ -17,40 +18,28 @@ namespace tmlab::cli {
 namespace fs = std::filesystem;
 
 int cmd_workprecision(const std::vector<std::string>& args, const std::string& command_line) {
-  const Parsed p =
-      parse(args, {"--problem", "--results", "--reference-rtol"}, {"--quick", "--no-plots", "--resume"});
+  const ParsedOptions p = parse(workprecision_spec(), args);
   if (!p.positional.empty())
     throw UsageError("workprecision takes no positional argument (got '" + p.positional[0] + "')");
   tm::WorkPrecisionOptions opt;
-  const std::string problem = p.get("--problem", "all");
-  if (problem == "all")
-    opt.problems = {"liver", "incompressible"};
-  else if (problem == "liver" || problem == "incompressible")
-    opt.problems = {problem};
-  else
-    throw UsageError("--problem must be liver, incompressible or all (got '" + problem + "')");
-  opt.quick = p.has("--quick");
-  if (p.has("--reference-rtol")) {
-    opt.reference_rtol = parse_double("--reference-rtol", p.get("--reference-rtol"));
-    if (!(opt.reference_rtol > 0.0 && opt.reference_rtol < 1e-6))
-      throw UsageError("--reference-rtol must be in (0, 1e-6)");
-  }
+  const std::string problem = p.text("--problem");
+  opt.problems = problem == "all" ? std::vector<std::string>{"liver", "incompressible"}
+                                  : std::vector<std::string>{problem};
+  opt.quick = p.flag("--quick");
+  opt.reference_rtol = p.decimal("--reference-rtol");
   opt.tmlab_root = tmlab_root();
   opt.log = &std::cerr;
-  const fs::path dir =
-      fs::path(p.get("--results", (fs::path(tmlab_root()) / "results").string())) / "workprecision";
+  const fs::path dir = fs::path(results_root(p)) / "workprecision";
 
-  const nlohmann::json config = {{"problems", opt.problems},
-                                 {"quick", opt.quick},
-                                 {"reference_rtol", opt.reference_rtol},
-                                 {"tmlab_root", opt.tmlab_root}};
+  nlohmann::json config = p.config(kFingerprint);
+  config["tmlab_root"] = opt.tmlab_root;
   // Checkpoint after every run (docs/robustness.md); --resume reads it before the result directory
   // is touched, so a refused resume leaves the interrupted study as it was.
   opt.checkpoint = dir / RunOutput::kStaging / "checkpoint.h5";
   opt.fingerprint = config;
-  if (p.has("--resume")) opt.resume = read_checkpoint(opt.checkpoint, "workprecision", config);
+  if (p.flag("--resume")) opt.resume = read_checkpoint(opt.checkpoint, "workprecision", config);
   RunOutput out(dir, nullptr,
-                p.has("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
+                p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   try {
     std::vector<fs::path> inputs;
     for (const auto& name : opt.problems)
@@ -60,7 +49,7 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
     out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
     const std::vector<tm::WorkPrecisionProblem> results = tm::run_work_precision(opt);
     remove_checkpoint(opt.checkpoint);  // a complete result holds no checkpoint
-    out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.has("--no-plots"),
+    out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.flag("--no-plots"),
                                           opt.tmlab_root, &std::cerr));
     std::cout << tm::work_precision_table(results) << "results     " << dir.string()
               << "/ (workprecision.h5, workprecision.md, *.png)\n";

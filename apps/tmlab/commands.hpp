@@ -1,6 +1,7 @@
 // The tmlab sub-commands, one function each (commands.cpp).
 #pragma once
 
+#include "apps/tmlab/options/parsed_options.hpp"
 #include "core/config/case_config.hpp"
 #include "runner/case_runner.hpp"
 
@@ -9,10 +10,6 @@
 #include <vector>
 
 namespace tmlab::cli {
-
-struct UsageError : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 /// The tmlab source tree (cases/, meshes/, results/): $TMLAB_ROOT, else the tree this binary was built from.
 std::string tmlab_root();

@@ -20,13 +20,8 @@ std::pair<std::string, double> name_value(const std::string& option, const std::
   return {s.substr(0, eq), parse_double(option + " " + s.substr(0, eq), s.substr(eq + 1))};
 }
 
-/// A whole number 1..10000 for option `key`, `fallback` when it is not given.
-int positive_int(const Parsed& p, const std::string& key, int fallback) {
-  return p.has(key) ? int(parse_whole(key, p.get(key), 1, 10000)) : fallback;
-}
-
 /// Every --prior NAME=MEAN:SD.
-std::vector<fit::Prior> parse_priors(const Parsed& p) {
+std::vector<fit::Prior> parse_priors(const ParsedOptions& p) {
   std::vector<fit::Prior> priors;
   for (const auto& s : p.all("--prior")) {
     const std::size_t eq = s.find('='), colon = s.find(':', eq == std::string::npos ? 0 : eq);
@@ -43,48 +38,40 @@ std::vector<fit::Prior> parse_priors(const Parsed& p) {
 }
 
 /// --mesh CELLS,LAYERS and --substeps of the FE-rig forward model.
-fit::FeRigOptions parse_fe_rig_options(const Parsed& p) {
+fit::FeRigOptions parse_fe_rig_options(const ParsedOptions& p) {
   fit::FeRigOptions fe;
-  if (p.has("--mesh")) std::tie(fe.mesh.cells, fe.mesh.layers) = parse_cells_layers(p.get("--mesh"));
-  fe.substeps = positive_int(p, "--substeps", fe.substeps);
+  std::tie(fe.mesh.cells, fe.mesh.layers) = parse_cells_layers(p.text("--mesh"));
+  fe.substeps = int(p.whole("--substeps"));
   return fe;
 }
 
 }  // namespace
 
-FitRequest parse_fit_request(const Parsed& p) {
+FitRequest parse_fit_request(const ParsedOptions& p) {
   FitRequest q;
-  q.spec = fit::parse_model_spec(p.get("--model"));
+  q.spec = fit::parse_model_spec(p.text("--model"));
   for (const auto& s : p.all("--fix")) q.fixes.push_back(name_value("--fix", s));
   for (const auto& s : p.all("--weight")) q.weights.push_back(name_value("--weight", s));
   fit::FitOptions& o = q.options;
-  q.cost = p.get("--cost", "least_squares");
-  if (q.cost == "l1")
-    o.cost = fit::Cost::L1;
-  else if (q.cost != "least_squares")
-    throw UsageError("--cost must be least_squares or l1 (got '" + q.cost + "')");
-  o.starts = positive_int(p, "--starts", o.starts);
-  o.threads = positive_int(p, "--threads", 2);
-  o.seed = (unsigned long)positive_int(p, "--seed", 1);
-  o.geodesic = p.has("--geodesic");
-  o.profile = !p.has("--no-profile");
-  if (!p.has("--quiet"))
+  q.cost = p.text("--cost");
+  if (q.cost == "l1") o.cost = fit::Cost::L1;
+  o.starts = int(p.whole("--starts"));
+  o.threads = int(p.whole("--threads"));
+  o.seed = (unsigned long)p.whole("--seed");
+  o.geodesic = p.flag("--geodesic");
+  o.profile = !p.flag("--no-profile");
+  if (!p.flag("--quiet"))
     o.progress = [](const std::string& line) { std::cout << line << "\n" << std::flush; };
-  o.local_runs = positive_int(p, "--local-runs", o.local_runs);
-  o.siman_evaluations = positive_int(p, "--siman-evaluations", o.siman_evaluations);
-  q.global = p.get("--global", "multistart");
-  if (q.global == "siman")
-    o.global = fit::GlobalStage::Siman;
-  else if (q.global != "multistart")
-    throw UsageError("--global must be multistart or siman (got '" + q.global + "')");
+  o.local_runs = int(p.whole("--local-runs"));
+  o.siman_evaluations = int(p.whole("--siman-evaluations"));
+  q.global = p.text("--global");
+  if (q.global == "siman") o.global = fit::GlobalStage::Siman;
   q.priors = parse_priors(p);
   q.fe = parse_fe_rig_options(p);
   // closed_form by default: an FE-rig fit can take minutes, so it is asked for, not fallen into.
-  q.forward = p.get("--forward", "closed_form");
-  if (q.forward != "auto" && q.forward != "closed_form" && q.forward != "fe_rig")
-    throw UsageError("--forward must be auto, closed_form or fe_rig (got '" + q.forward + "')");
-  if (p.has("--relaxation-bands")) {
-    const std::string v = p.get("--relaxation-bands");
+  q.forward = p.text("--forward");
+  if (p.given("--relaxation-bands")) {
+    const std::string v = p.text("--relaxation-bands");
     const auto comma = v.find(',');
     if (comma == std::string::npos)
       throw UsageError("--relaxation-bands needs FLOOR,CEILING (e.g. 0.5,1), got '" + v + "'");
@@ -98,32 +85,10 @@ FitRequest parse_fit_request(const Parsed& p) {
   return q;
 }
 
-nlohmann::json manifest_config(const Parsed& p, const FitRequest& q) {
-  const fit::FitOptions& o = q.options;
-  return {{"model", q.spec.text},
-          {"cost", q.cost},
-          {"starts", o.starts},
-          {"threads", o.threads},
-          {"seed", o.seed},
-          {"geodesic", o.geodesic},
-          {"profile", o.profile},
-          {"fix", p.all("--fix")},
-          {"weight", p.all("--weight")},
-          {"forward", q.forward},
-          {"global", q.global},
-          {"prior", p.all("--prior")},
-          {"mesh", {q.fe.mesh.cells, q.fe.mesh.layers}},
-          {"substeps", q.fe.substeps},
-          {"relaxation_bands", p.get("--relaxation-bands", "")}};
-}
-
-nlohmann::json fit_fingerprint(const Parsed& p, const FitRequest& q, const std::filesystem::path& csv) {
-  nlohmann::json j = manifest_config(p, q);
-  const fit::FitOptions& o = q.options;
-  j["local_runs"] = o.local_runs;
-  j["siman_evaluations"] = o.siman_evaluations;
-  j["max_iterations"] = o.max_iterations;
-  j["noise"] = p.get("--noise", "");
+nlohmann::json fit_fingerprint(const ParsedOptions& p, const FitRequest& q,
+                               const std::filesystem::path& csv) {
+  nlohmann::json j = p.config(kFingerprint);
+  j["max_iterations"] = q.options.max_iterations;  // the engine's, not an option
   j["data"] = {{"csv", file_hash(csv)}, {"metadata", file_hash(measured::metadata_path(csv))}};
   return j;
 }

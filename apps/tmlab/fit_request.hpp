@@ -30,13 +30,11 @@ struct FitRequest {
 };
 
 /// The request of `p` (--model is required; the caller checks its presence).
-FitRequest parse_fit_request(const Parsed& p);
-
-/// The manifest's config block: the request as the user wrote it.
-nlohmann::json manifest_config(const Parsed& p, const FitRequest& q);
+FitRequest parse_fit_request(const ParsedOptions& p);
 
 /// What --resume must match: everything that changes the result (the data files' contents, the
-/// request, every option of the engine), not what only changes where or how it is shown.
-nlohmann::json fit_fingerprint(const Parsed& p, const FitRequest& q, const std::filesystem::path& csv);
+/// options the table marks kFingerprint, the engine's own limits), not what only changes where or
+/// how it is shown. The manifest's config is the table's kManifest options (fit_spec()).
+nlohmann::json fit_fingerprint(const ParsedOptions& p, const FitRequest& q, const std::filesystem::path& csv);
 
 }  // namespace tmlab::cli

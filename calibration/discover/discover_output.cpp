@@ -217,33 +217,8 @@ nlohmann::json options_fingerprint(const Options& o) {
           {"threads", o.threads},
           {"seed", o.seed},
           {"alpha", o.thresholds.alpha},
+          {"test_control", o.test_control},
           {"effects", o.effects}};
-}
-
-nlohmann::json discovery_fingerprint(const Options& o, const std::string& forward, const FeRefitOptions& fe) {
-  nlohmann::json j = options_fingerprint(o);
-  j["forward"] = forward;
-  if (forward == "fe_rig")
-    j["fe_rig"] = {{"mesh", {fe.mesh.cells, fe.mesh.layers}},
-                   {"substeps", fe.substeps},
-                   {"iterations", fe.max_iterations},
-                   {"max_samples", fe.max_samples}};
-  return j;
-}
-
-nlohmann::json manifest_config(const Options& o, const std::string& forward) {
-  return {{"poisson", o.poisson},
-          {"fix_poisson", o.fix_poisson},
-          {"max_samples", o.max_samples},
-          {"rounds", o.max_rounds},
-          {"starts", o.starts},
-          {"threads", o.threads},
-          {"seed", o.seed},
-          {"effects", o.effects},
-          {"bic_threshold", o.bic_threshold},
-          {"held_out_ratio", o.held_out_ratio},
-          {"alpha", o.thresholds.alpha},
-          {"forward", forward}};
 }
 
 nlohmann::json summary_json(const Report& r, const std::string& plots) {

@@ -40,13 +40,10 @@ void write_confusion_csv(const std::filesystem::path& path, const BenchmarkResul
 /// The confusion matrix and the benchmark's scores (library, noise-only, outside sets, error reduction).
 void print_benchmark_report(std::ostream& os, const BenchmarkResult& b);
 
-/// Every option of the loop that changes its result: part of what --resume must match.
+/// Every option of the loop that changes its result, as the engine holds them: part of what
+/// --resume must match and of the manifest (tmlab discover adds its command-line options, the FE
+/// rig's and the data's hashes).
 nlohmann::json options_fingerprint(const Options& o);
-/// The fingerprint of a discovery: options_fingerprint, the forward model (`forward`,
-/// "closed_form" or "fe_rig") and, with the FE rig, its options (the data's hashes are the caller's).
-nlohmann::json discovery_fingerprint(const Options& o, const std::string& forward, const FeRefitOptions& fe);
-/// The manifest's config block of a discovery: the options as the run used them.
-nlohmann::json manifest_config(const Options& o, const std::string& forward);
 
 /// summary.json's own block of a discovery (`plots`: "ok", "failed (why)", "skipped (--no-plots)").
 nlohmann::json summary_json(const Report& r, const std::string& plots);

@@ -45,6 +45,37 @@ TEST_F(Cli, HelpAndUsageErrors) {
       << fig9.output;
 }
 
+// The help is generated from the option tables: every option is listed (the three the hand-written
+// help had lost among them), one command's block by `help COMMAND` or `COMMAND --help`.
+TEST_F(Cli, HelpFromTheOptionTables) {
+  const Result all = run("help");
+  ASSERT_EQ(all.status, 0) << all.output;
+  for (const char* o :
+       {"--meshes", "--fe-iterations", "--fe-max-samples", "--relaxation-bands", "--no-test-control"})
+    EXPECT_NE(all.output.find(o), std::string::npos) << o;
+  const Result fit = run("help fit");
+  EXPECT_EQ(fit.status, 0) << fit.output;
+  EXPECT_EQ(fit.output.rfind("  fit DATA.csv --model SPEC", 0), 0u) << fit.output;
+  EXPECT_NE(fit.output.find("--starts N"), std::string::npos) << fit.output;
+  EXPECT_EQ(fit.output.find("  discover"), std::string::npos) << fit.output;
+  EXPECT_EQ(run("fit --help").output, fit.output);
+  const Result data = run("data show --help");
+  EXPECT_EQ(data.status, 0) << data.output;
+  EXPECT_NE(data.output.find("  data show"), std::string::npos) << data.output;
+  EXPECT_EQ(data.output.find("  data convert"), std::string::npos) << data.output;
+  EXPECT_EQ(run("help frobnicate").status, 2);
+  // Refusals name the option and the table's range or choices.
+  const Result range = run("bench --threads 65");
+  EXPECT_EQ(range.status, 2) << range.output;
+  EXPECT_NE(range.output.find("--threads needs a whole number"), std::string::npos) << range.output;
+  const Result twice = run("verify --full --full");
+  EXPECT_EQ(twice.status, 2) << twice.output;
+  EXPECT_NE(twice.output.find("option --full is given 2 times"), std::string::npos) << twice.output;
+  const Result outside = run("realtime liver-poke --duration 0");
+  EXPECT_EQ(outside.status, 2) << outside.output;
+  EXPECT_NE(outside.output.find("--duration must be in (0, 3600]"), std::string::npos) << outside.output;
+}
+
 TEST_F(Cli, CasesListsTheShippedCases) {
   const Result r = run("cases");
   EXPECT_EQ(r.status, 0);

@@ -729,8 +729,7 @@ TEST_F(CliFitResume, InterruptedBenchmarkResumesToTheSameResult) {
   args.push_back("--resume");
   const auto r = run_argv(args, dir_ / "other.log");
   EXPECT_EQ(r.status, 1) << r.output;
-  EXPECT_NE(r.output.find(
-                "benchmark.only: the checkpoint has \"noise_only,contact_offset\", this run \"noise_only\""),
+  EXPECT_NE(r.output.find("(only: the checkpoint has \"noise_only,contact_offset\", this run \"noise_only\""),
             std::string::npos)
       << r.output;
   EXPECT_TRUE(fs::exists(out / "INTERRUPTED"));
