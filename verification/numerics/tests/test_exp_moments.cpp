@@ -48,12 +48,12 @@ TEST(ExpMoments, HigherMomentsAgainstSimpson) {
 }
 
 TEST(ExpMoments, SmallTimeLimit) {
-  // t << tau: I_k = t^{k+1} / (k + 1) (1 - (k+1) t / ((k+2) tau) + ...).
+  // t << tau: I_k = t^{k+1} / (k + 1) (1 - t / ((k+2) tau) + O(t^2 / tau^2)).
   const double tau = 1.0, t = 1e-4;
   const auto I = exp_moments(t, tau, 3);
   for (int k = 0; k <= 3; ++k) {
     const double lead = std::pow(t, k + 1) / (k + 1);
-    const double approx = lead * (1.0 - (k + 1.0) * t / ((k + 2.0) * tau));
+    const double approx = lead * (1.0 - t / ((k + 2.0) * tau));
     EXPECT_NEAR(I[static_cast<std::size_t>(k)], approx, 1e-7 * lead) << "k = " << k;
   }
 }
