@@ -10,7 +10,10 @@ void register_builtin_checks(CheckRegistry& registry);
 
 // One registration function per family (verification/checks/<family>_checks.cpp).
 void register_kernel_checks(CheckRegistry& registry);
-void register_analytic_checks(CheckRegistry& registry);
+void register_analytic_homogeneous_checks(CheckRegistry& registry);
+void register_analytic_prony_checks(CheckRegistry& registry);
+void register_analytic_hertz_checks(CheckRegistry& registry);
+void register_analytic_mms_checks(CheckRegistry& registry);
 void register_model_checks(CheckRegistry& registry);
 void register_sundials_checks(CheckRegistry& registry);
 void register_contact_checks(CheckRegistry& registry);

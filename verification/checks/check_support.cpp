@@ -23,10 +23,6 @@ Mesh load_tree_mesh(const CheckContext& ctx, const std::string& relative_path) {
   return load_case_mesh(spec, report, repaired);
 }
 
-double rel_max_diff(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double floor) {
-  return (a - b).lpNorm<Eigen::Infinity>() / std::max(b.lpNorm<Eigen::Infinity>(), floor);
-}
-
 Mesh perturb_interior(const Mesh& mesh, double fraction, unsigned seed) {
   // Shortest edge at each node bounds the move, so no tet can invert for fraction < ~0.25.
   std::vector<double> hmin(mesh.points.size(), 1e300);

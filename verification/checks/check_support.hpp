@@ -4,6 +4,7 @@
 #include "core/config/config_reader.hpp"
 #include "core/mesh/mesh.hpp"
 #include "verification/checks/builtin_checks.hpp"
+#include "verification/numerics/error_norms.hpp"
 
 #include <Eigen/Core>
 
@@ -19,8 +20,8 @@ ConfigReader parameters(const CheckContext& ctx);
 /// A mesh file given relative to the tmlab tree (e.g. "meshes/liver.msh"), read and checked.
 Mesh load_tree_mesh(const CheckContext& ctx, const std::string& relative_path);
 
-/// ||a - b||_inf / max(||b||_inf, floor): the relative max-norm difference.
-double rel_max_diff(const Eigen::VectorXd& a, const Eigen::VectorXd& b, double floor = 1e-300);
+/// ||a - b||_inf / max(||b||_inf, floor) (verification/numerics/error_norms.hpp).
+using numerics::rel_max_diff;
 
 /// A Mesh with every interior node moved by up to `fraction` of the local edge length (seeded,
 /// deterministic), boundary nodes kept; used to make structured meshes irregular.

@@ -15,7 +15,8 @@
 // moves down by d(t). Mesh: make_box_mesh of the unit cube, each axis mapped by
 // s(xi) = L xi / t_a for xi <= t_a (uniform: N t_a cells over the length L, the patch holding the
 // contact) and L + (L / t_a)(exp(k (xi - t_a)) - 1)/k beyond (C1, k from s(1) = W); the depth axis
-// the same with D, or uniform over a layer. Forces are 4x the quarter's.
+// the same with D, or uniform over a layer (verification/numerics/graded_map.hpp). Forces are 4x the
+// quarter's.
 //
 // Contact stiffness eps: the solver's default (stiffness_factor x the mean K_0 diagonal over all
 // boundary DOFs) is dominated on these graded blocks by the far-field cells, hundreds of times
@@ -33,6 +34,7 @@
 #include "calibration/closed_forms/indentation.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/base/stopwatch.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/contact/contact_solver.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
@@ -43,6 +45,7 @@
 #include "tensormass/system/mechanical_system.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
+#include "verification/numerics/graded_map.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -56,32 +59,13 @@ namespace tmlab::verify {
 namespace {
 
 namespace cf = closed_forms;
+using numerics::graded;
+using numerics::grading_rate;
 using tm::VecX;
 
 constexpr double kPi = 3.14159265358979323846;
 
 std::string fmt(double v, int digits = 3) { return scientific(v, digits); }
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-/// k with L + (L/t_a)(e^{k(1 - t_a)} - 1)/k = W (bisection; the left side grows with k).
-double grading_rate(double W_over_L, double t_a) {
-  auto g = [&](double k) { return 1.0 + (std::expm1(k * (1.0 - t_a)) / k) / t_a - W_over_L; };
-  double lo = 1e-9, hi = 1.0;
-  while (g(hi) < 0.0) hi *= 2.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    (g(mid) < 0.0 ? lo : hi) = mid;
-  }
-  return 0.5 * (lo + hi);
-}
-
-/// The graded map of [0, 1] onto [0, W]: uniform over [0, L] (fraction t_a of the cells).
-double graded(double xi, double L, double t_a, double k) {
-  return xi <= t_a ? L * xi / t_a : L + (L / t_a) * std::expm1(k * (xi - t_a)) / k;
-}
 
 struct BlockSpec {
   double L = 1.0;          ///< patch length (uniform cells), m

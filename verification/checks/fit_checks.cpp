@@ -9,7 +9,7 @@
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/surrogates.hpp"
-#include "calibration/fit/tests/synthetic_data.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "verification/checks/builtin_checks.hpp"
@@ -25,29 +25,6 @@ namespace {
 
 namespace ms = tmlab::measured;
 
-/// Unconfined compression of a block (20 x 20 x 10 mm) to each strain: a 1 s ramp (samples every
-/// 0.2 s) then a hold to t_end (every 0.5 s), one test per strain.
-ms::DataSet block_compression(const std::vector<double>& strains, double t_end, bool bonded) {
-  ms::DataSet d;
-  d.meta.name = "synthetic_block";
-  d.meta.test = ms::TestType::unconfined_compression;
-  d.meta.sample.shape = ms::SampleShape::block;
-  d.meta.sample.size_m = {0.02, 0.02, 0.01};
-  d.meta.sample.bottom = bonded ? ms::Interface::bonded : ms::Interface::frictionless;
-  d.meta.sample.platens = d.meta.sample.bottom;
-  for (std::size_t k = 0; k < strains.size(); ++k) {
-    ms::Test t;
-    t.id = "s" + std::to_string(k + 1);
-    for (double s = 0.0; s <= t_end + 1e-9; s += (s < 1.0 - 1e-9 ? 0.2 : 0.5)) {
-      t.time_s.push_back(s);
-      t.displacement_m.push_back(0.01 * strains[k] * std::min(s, 1.0));
-      t.force_N.push_back(1.0);
-    }
-    d.tests.push_back(t);
-  }
-  return d;
-}
-
 struct Setup {
   ms::DataSet data;
   fit::ModelSpec spec;
@@ -60,13 +37,14 @@ Setup read_setup(ConfigReader& r) {
   Setup s;
   const std::string data = r.require<std::string>("data");
   if (data == "indentation") {
-    s.data = fit::testing::indentation_data(r.require<std::vector<double>>("depths"), r.positive("t_end"),
-                                            r.get<double>("thickness", 0.0));
+    s.data = fit::synthetic::indentation_data(r.require<std::vector<double>>("depths"), r.positive("t_end"),
+                                              r.get<double>("thickness", 0.0));
     for (auto& t : s.data.tests)
       for (double& f : t.force_N) f = 1.0;
   } else if (data == "block_compression") {
-    s.data = block_compression(r.require<std::vector<double>>("strains"), r.positive("t_end"),
-                               r.get<std::string>("platens", "frictionless") == "bonded");
+    s.data =
+        fit::synthetic::block_compression_data(r.require<std::vector<double>>("strains"), r.positive("t_end"),
+                                               r.get<std::string>("platens", "frictionless") == "bonded");
   } else {
     throw r.error("data", "must be indentation or block_compression");
   }
@@ -140,7 +118,7 @@ Measurements coverage(const CheckContext& ctx) {
     std::vector<double> f = clean;
     for (double& v : f) v += gauss(rng);
     ms::DataSet d = s.data;
-    fit::testing::set_forces(d, f);
+    fit::synthetic::set_forces(d, f);
     o.seed = seed + 1000 + unsigned(trial);
     fit::FitResult res;
     try {
@@ -209,7 +187,7 @@ Measurements confounding(const CheckContext& ctx) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> gauss(0.0, noise * peak);
   for (double& v : f) v += gauss(rng);
-  fit::testing::set_forces(s.data, f);
+  fit::synthetic::set_forces(s.data, f);
   const fit::FitResult res = fit::fit(make_problem(s, s.data), o);
   std::size_t ie = res.free_names.size(), inu = ie;
   for (std::size_t j = 0; j < res.free_names.size(); ++j) {

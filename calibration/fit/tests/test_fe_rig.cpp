@@ -8,7 +8,7 @@
 #include "calibration/closed_forms/indentation.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/surrogates.hpp"
-#include "calibration/fit/tests/synthetic_data.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
 
 #include <gtest/gtest.h>
@@ -101,7 +101,7 @@ TEST(FeRig, ShallowSphereIndentationIsCloseToHertzAndThreadSafe) {
   // (8 cells across, 4 layers: about two nodes in contact) is far stiffer: measured F/F_Hertz = 1.77
   // (1.57 with 10 cells and grading 3; docs/contact.md has the mesh convergence). This checks the
   // wiring (sign, rest state, order of magnitude, threads), not the mesh limit.
-  ms::DataSet d = testing::indentation_data({0.0005}, 1.0, 0.02);
+  ms::DataSet d = synthetic::indentation_data({0.0005}, 1.0, 0.02);
   d.meta.sample.bottom = ms::Interface::frictionless;
   d.meta.sample.size_m = {0.04, 0.04, 0.02};
   ms::Test& t = d.tests[0];  // three samples: rest, half depth, full depth
@@ -136,7 +136,7 @@ TEST(FeRig, FitRecoversItsOwnParametersWithTheSurrogateAsGlobalStage) {
   // the homogeneous closed form is the global stage's model.
   ms::DataSet d = block_compression(0.2, 1.0);
   const ModelSpec spec = parse_model_spec("neo_hookean,poisson=0.3");
-  testing::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3}));
+  synthetic::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3}));
   std::string why;
   const Problem pr = make_fe_rig_problem(d, spec, {}, {}, coarse(), &why);
   ASSERT_TRUE(pr.global_model) << why;
@@ -189,7 +189,7 @@ TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
 TEST(FeRig, WarmJacobianColumnsGiveTheColdFit) {
   ms::DataSet d = block_compression(0.2, 2.0);
   const ModelSpec spec = parse_model_spec("neo_hookean+prony:1,poisson=0.3");
-  testing::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3, 4000.0, 0.4}));
+  synthetic::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3, 4000.0, 0.4}));
   FitOptions o;
   o.starts = 4;
   o.local_runs = 1;

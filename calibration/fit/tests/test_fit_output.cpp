@@ -4,7 +4,7 @@
 // tests with their weights), fit.h5 read back, and the forward-model rule of --forward.
 #include "calibration/fit/fit_output.hpp"
 
-#include "calibration/fit/tests/synthetic_data.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/testing/temp_dir.hpp"
@@ -112,9 +112,9 @@ TEST(FitOutput, ParameterJsonWithoutBounds) {
 class FitOutputFiles : public tmlab::testing::TempDirTest {};
 
 TEST_F(FitOutputFiles, H5HoldsDataModelAndResidualPerTest) {
-  tmlab::measured::DataSet data = fit::testing::compression_data(0.1, 3);
+  tmlab::measured::DataSet data = fit::synthetic::compression_data(0.1, 3);
   data.tests[0].id = "t1";
-  fit::testing::set_forces(data, {1.0, 2.0, 4.0});
+  fit::synthetic::set_forces(data, {1.0, 2.0, 4.0});
   fit::FitResult r = sample_result();
   r.prediction = {1.5, 2.0, 3.0};
   r.profile.parameter = "young";
@@ -129,10 +129,10 @@ TEST_F(FitOutputFiles, H5HoldsDataModelAndResidualPerTest) {
 }
 
 TEST(FitOutput, ForwardModelRule) {
-  tmlab::measured::DataSet data = fit::testing::compression_data(0.1, 20);
+  tmlab::measured::DataSet data = fit::synthetic::compression_data(0.1, 20);
   std::vector<double> force;
   for (const double d : data.tests[0].displacement_m) force.push_back(1e3 * d);  // positive in compression
-  fit::testing::set_forces(data, force);
+  fit::synthetic::set_forces(data, force);
   const auto spec = fit::parse_model_spec("neo_hookean,poisson=0.49");
   std::string why;
   const fit::Problem closed = fit::make_problem(data, spec, {}, {}, "auto", {}, why);
@@ -162,10 +162,10 @@ TEST(FitOutput, ResultNameSummaryAndPlan) {
   EXPECT_EQ(s["forward_model"], "homogeneous_platen");
   EXPECT_EQ(s["global_stage"], "siman");
   EXPECT_EQ(s["plots"], "ok");
-  tmlab::measured::DataSet data = fit::testing::compression_data(0.1, 20);
+  tmlab::measured::DataSet data = fit::synthetic::compression_data(0.1, 20);
   std::vector<double> force;
   for (const double d : data.tests[0].displacement_m) force.push_back(1e3 * d);
-  fit::testing::set_forces(data, force);
+  fit::synthetic::set_forces(data, force);
   const auto spec = fit::parse_model_spec("neo_hookean,poisson=0.49");
   std::string why;
   const fit::Problem pr = fit::make_problem(data, spec, {}, {}, "closed_form", {}, why);

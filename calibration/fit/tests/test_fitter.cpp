@@ -8,7 +8,7 @@
 //   and: the same answer on 1 and 2 threads; the L1 cost; a Mooney-Rivlin compression recovery.
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/surrogates.hpp"
-#include "calibration/fit/tests/synthetic_data.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 
@@ -54,7 +54,7 @@ TEST(Fitter, CoverageOfThe95PercentIntervalsOnLeeRadokIndentation) {
   const std::vector<std::pair<std::string, double>> truth = {
       {"young", 3000.0}, {"e1", 2000.0}, {"e2", 1000.0}, {"tau1", 0.4}, {"tau2", 4.0}};
   const std::string spec = "stvk+prony:2,poisson=0.45";
-  measured::DataSet d = testing::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3});
+  measured::DataSet d = synthetic::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3});
   const std::vector<double> clean = truth_forces(d, spec, truth);
   std::mt19937_64 rng(20261125);
   const int trials = 50;
@@ -63,7 +63,7 @@ TEST(Fitter, CoverageOfThe95PercentIntervalsOnLeeRadokIndentation) {
   for (int trial = 0; trial < trials; ++trial) {
     std::vector<double> f = clean;
     add_noise(f, 0.015, rng);
-    testing::set_forces(d, f);
+    synthetic::set_forces(d, f);
     const Problem p = make_surrogate_problem(d, parse_model_spec(spec));
     FitOptions o;
     o.seed = 1000 + unsigned(trial);
@@ -87,11 +87,11 @@ TEST(Fitter, CoverageOfThe95PercentIntervalsOnLeeRadokIndentation) {
 TEST(Fitter, IndentationAloneConfoundsYoungAndPoisson) {
   // A bonded layer 4 mm thick: the finite-layer factor depends weakly on nu, so J^T J is regular
   // but E and nu are nearly interchangeable (E/(1 - nu^2) is what the force sees).
-  measured::DataSet d = testing::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0, 4e-3);
+  measured::DataSet d = synthetic::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0, 4e-3);
   std::vector<double> f = truth_forces(d, "stvk", {{"young", 5000.0}, {"poisson", 0.3}});
   std::mt19937_64 rng(7);
   add_noise(f, 0.01, rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   const FitResult r = fit(make_surrogate_problem(d, parse_model_spec("stvk")), FitOptions{});
   ASSERT_EQ(r.free_names.size(), 2u);
   std::cout << "layer: corr(E, nu) = " << r.correlation[0][1] << ", nu = " << find(r, "poisson").value << " ["
@@ -107,10 +107,10 @@ TEST(Fitter, IndentationAloneConfoundsYoungAndPoisson) {
   EXPECT_EQ(r.profile.parameter, "poisson");
 
   // On a half-space Hertz sees E/(1 - nu^2) only: nu is not identifiable at all.
-  measured::DataSet h = testing::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0);
+  measured::DataSet h = synthetic::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0);
   std::vector<double> g = truth_forces(h, "stvk", {{"young", 5000.0}, {"poisson", 0.3}});
   add_noise(g, 0.01, rng);
-  testing::set_forces(h, g);
+  synthetic::set_forces(h, g);
   const FitResult s = fit(make_surrogate_problem(h, parse_model_spec("stvk")), FitOptions{});
   std::cout << "half-space: corr(E, nu) = " << s.correlation[0][1] << "\n";
   EXPECT_GT(std::abs(s.correlation[0][1]), 0.9);
@@ -123,12 +123,12 @@ TEST(Fitter, IndentationAloneConfoundsYoungAndPoisson) {
 }
 
 TEST(Fitter, ResultsDoNotDependOnTheThreadCount) {
-  measured::DataSet d = testing::indentation_data({1e-3, 2e-3}, 10.0);
+  measured::DataSet d = synthetic::indentation_data({1e-3, 2e-3}, 10.0);
   std::vector<double> f =
       truth_forces(d, "stvk+prony:1,poisson=0.45", {{"young", 3000.0}, {"e1", 1500.0}, {"tau1", 1.0}});
   std::mt19937_64 rng(3);
   add_noise(f, 0.01, rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   const Problem p = make_surrogate_problem(d, parse_model_spec("stvk+prony:1,poisson=0.45"));
   FitOptions one, two;
   one.threads = 1;
@@ -151,11 +151,11 @@ TEST(Fitter, ResultsDoNotDependOnTheThreadCount) {
 }
 
 TEST(Fitter, RecoversMooneyRivlinFromCompressionWithBothCosts) {
-  measured::DataSet d = testing::compression_data(0.5, 101);
+  measured::DataSet d = synthetic::compression_data(0.5, 101);
   std::vector<double> f = truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}});
   std::mt19937_64 rng(11);
   add_noise(f, 0.01, rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   for (const Cost c : {Cost::LeastSquares, Cost::L1}) {
     FitOptions o;
     o.cost = c;
@@ -174,12 +174,12 @@ TEST(Fitter, RecoversMooneyRivlinFromCompressionWithBothCosts) {
 }
 
 TEST(Fitter, SimulatedAnnealingIsReproducibleAndReachesTheMultiStartOptimum) {
-  measured::DataSet d = testing::indentation_data({1e-3, 2e-3}, 10.0);
+  measured::DataSet d = synthetic::indentation_data({1e-3, 2e-3}, 10.0);
   const std::string spec = "stvk+prony:1,poisson=0.45";
   std::vector<double> f = truth_forces(d, spec, {{"young", 3000.0}, {"e1", 1500.0}, {"tau1", 1.0}});
   std::mt19937_64 rng(5);
   add_noise(f, 0.01, rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   const Problem p = make_surrogate_problem(d, parse_model_spec(spec));
   FitOptions ms, sa;
   sa.global = GlobalStage::Siman;
@@ -197,13 +197,13 @@ TEST(Fitter, SimulatedAnnealingIsReproducibleAndReachesTheMultiStartOptimum) {
 }
 
 TEST(Fitter, NoiseSigmaFromSecondDifferences) {
-  measured::DataSet d = testing::indentation_data({1e-3, 2e-3}, 20.0);
+  measured::DataSet d = synthetic::indentation_data({1e-3, 2e-3}, 20.0);
   std::vector<double> f =
       truth_forces(d, "stvk+prony:1,poisson=0.45", {{"young", 3000.0}, {"e1", 1500.0}, {"tau1", 3.0}});
   std::mt19937_64 rng(11);
   std::normal_distribution<double> n(0.0, 2e-4);
   for (double& v : f) v += n(rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   const Problem p = make_surrogate_problem(d, parse_model_spec("stvk"));
   EXPECT_NEAR(noise_sigma(p.data), 2e-4, 0.2 * 2e-4);
 }
@@ -211,11 +211,11 @@ TEST(Fitter, NoiseSigmaFromSecondDifferences) {
 TEST(Fitter, AGaussianPriorRegularisesTheConfoundedPoissonRatio) {
   // Hertz on a half-space sees E/(1 - nu^2) only; a prior nu ~ N(0.45, 0.02) makes the pair
   // determined, and the report says the prior, not the data, determines nu.
-  measured::DataSet h = testing::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0);
+  measured::DataSet h = synthetic::indentation_data({0.5e-3, 1e-3, 1.5e-3, 2e-3}, 5.0);
   std::vector<double> g = truth_forces(h, "stvk", {{"young", 5000.0}, {"poisson", 0.45}});
   std::mt19937_64 rng(9);
   add_noise(g, 0.01, rng);
-  testing::set_forces(h, g);
+  synthetic::set_forces(h, g);
   Problem p = make_surrogate_problem(h, parse_model_spec("stvk"));
   p.priors.push_back({"poisson", 0.45, 0.02});
   const FitResult r = fit(p, FitOptions{});
@@ -262,8 +262,9 @@ class StopAtEvaluation : public ForwardModel {
 };
 
 TEST(Fitter, AStopRequestEndsTheFitAtItsNextSafePoint) {
-  measured::DataSet d = testing::compression_data(0.5, 101);
-  testing::set_forces(d, truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
+  measured::DataSet d = synthetic::compression_data(0.5, 101);
+  synthetic::set_forces(d,
+                        truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
   FitOptions o;
   o.starts = 1;
   o.local_runs = 1;
@@ -362,11 +363,11 @@ TEST(Fitter, RestoredUnitsGiveTheIdenticalResult) {
   // The units an uninterrupted fit reports (global stage, each local run, each profile point), each
   // handed back as the checkpoint of a fit interrupted right after it: the resumed fit must skip
   // what was restored (fewer forward solves) and end with the identical result.
-  measured::DataSet d = testing::compression_data(0.5, 101);
+  measured::DataSet d = synthetic::compression_data(0.5, 101);
   std::vector<double> f = truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}});
   std::mt19937_64 rng(11);
   add_noise(f, 0.01, rng);
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   for (const GlobalStage global : {GlobalStage::MultiStart, GlobalStage::Siman}) {
     SCOPED_TRACE(to_string(global));
     FitOptions o;
@@ -421,8 +422,9 @@ TEST(Fitter, AFitStoppedInsideAUnitResumesFromItsLastFinishedUnit) {
   // A stop request inside the second local run (a few evaluations into it): the fit ends with
   // Interrupted, the run half done is lost; resumed from the units it reported, the second run is
   // done again from its start and the fit ends with the uninterrupted result.
-  measured::DataSet d = testing::compression_data(0.5, 101);
-  testing::set_forces(d, truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
+  measured::DataSet d = synthetic::compression_data(0.5, 101);
+  synthetic::set_forces(d,
+                        truth_forces(d, "mooney_rivlin,poisson=0.49", {{"c10", 20000.0}, {"c01", 5000.0}}));
   FitOptions o;
   o.starts = 4;
   o.local_runs = 2;
@@ -457,10 +459,10 @@ TEST(Fitter, AFitStoppedInsideAUnitResumesFromItsLastFinishedUnit) {
 // relative standard error is NaN (the profile likelihood picked "the worst" by comparisons a NaN
 // never wins, and indexed one past the free parameters).
 measured::DataSet flipped_compression() {
-  measured::DataSet d = testing::compression_data(0.3, 61);
+  measured::DataSet d = synthetic::compression_data(0.3, 61);
   std::vector<double> f = truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}});
   for (double& v : f) v = -v;
-  testing::set_forces(d, f);
+  synthetic::set_forces(d, f);
   return d;
 }
 
@@ -492,8 +494,8 @@ TEST(Fitter, NaNStandardErrorsDoNotBreakTheProfileLikelihood) {
 }
 
 TEST(Fitter, AParameterFixedTwiceOrATestWeightedTwiceIsRefusedWithBothValues) {
-  measured::DataSet d = testing::compression_data(0.3, 31);
-  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  measured::DataSet d = synthetic::compression_data(0.3, 31);
+  synthetic::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
   const auto message = [&](const std::string& spec, const std::vector<std::pair<std::string, double>>& fixes,
                            const std::vector<std::pair<std::string, double>>& weights) {
     try {
@@ -515,8 +517,8 @@ TEST(Fitter, AParameterFixedTwiceOrATestWeightedTwiceIsRefusedWithBothValues) {
 }
 
 TEST(Fitter, TwoPriorsOnOneParameterAreRefused) {
-  measured::DataSet d = testing::compression_data(0.3, 31);
-  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  measured::DataSet d = synthetic::compression_data(0.3, 31);
+  synthetic::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
   Problem pr = make_surrogate_problem(d, parse_model_spec("neo_hookean"));
   pr.noise_sigma = 0.01;
   pr.priors = {{"poisson", 0.45, 0.02}, {"young", 3e4, 1e3}};
@@ -535,8 +537,8 @@ TEST(Fitter, TwoPriorsOnOneParameterAreRefused) {
 }
 
 TEST(Fitter, TheLocalRunsThatRanAreCounted) {
-  measured::DataSet d = testing::compression_data(0.3, 31);
-  testing::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
+  measured::DataSet d = synthetic::compression_data(0.3, 31);
+  synthetic::set_forces(d, truth_forces(d, "neo_hookean", {{"young", 30000.0}, {"poisson", 0.45}}));
   FitOptions o;
   o.starts = 3;
   o.local_runs = 100;

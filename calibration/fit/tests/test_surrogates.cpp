@@ -4,7 +4,7 @@
 
 #include "calibration/closed_forms/homogeneous.hpp"
 #include "calibration/closed_forms/indentation.hpp"
-#include "calibration/fit/tests/synthetic_data.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
 
 #include <gtest/gtest.h>
@@ -14,8 +14,8 @@
 namespace tmlab::fit {
 namespace {
 
-using testing::compression_data;
-using testing::indentation_data;
+using synthetic::compression_data;
+using synthetic::indentation_data;
 
 std::vector<double> values(const Problem& p) {
   std::vector<double> x;
@@ -25,7 +25,7 @@ std::vector<double> values(const Problem& p) {
 
 TEST(Surrogates, IndentationIsHertzOrLeeRadok) {
   measured::DataSet d = indentation_data({0.5e-3, 1e-3});
-  testing::set_forces(d, std::vector<double>(2 * d.tests[0].size(), 1e-3));
+  synthetic::set_forces(d, std::vector<double>(2 * d.tests[0].size(), 1e-3));
   Problem hertz = make_surrogate_problem(d, parse_model_spec("stvk"), {{"young", 4000.0}, {"poisson", 0.4}});
   const std::vector<double> f = hertz.model->predict(values(hertz));
   EXPECT_EQ(hertz.model->name(), "hertz_sphere");
@@ -43,7 +43,7 @@ TEST(Surrogates, IndentationIsHertzOrLeeRadok) {
 
 TEST(Surrogates, CompressionIsTheHomogeneousPlatenState) {
   measured::DataSet d = compression_data(0.3, 31);
-  testing::set_forces(d, std::vector<double>(31, 1.0));
+  synthetic::set_forces(d, std::vector<double>(31, 1.0));
   Problem p = make_surrogate_problem(d, parse_model_spec("neo_hookean"), {{"young", 5e4}, {"poisson", 0.49}});
   const std::vector<double> f = p.model->predict(values(p));
   const tm::Law law = build_law(parse_model_spec("neo_hookean"), values(p));
@@ -68,7 +68,7 @@ TEST(Surrogates, BadDataIsRejectedWithAClearError) {
   expect_refused(zero, "stvk", "the force is zero at every sample");
 
   measured::DataSet unload = indentation_data({1e-3});
-  testing::set_forces(unload, std::vector<double>(unload.tests[0].size(), 1e-3));
+  synthetic::set_forces(unload, std::vector<double>(unload.tests[0].size(), 1e-3));
   unload.tests[0].displacement_m.back() = 0.5e-3;
   expect_refused(unload, "stvk+prony:1", "the depth decreases while in contact");
 
@@ -78,26 +78,26 @@ TEST(Surrogates, BadDataIsRejectedWithAClearError) {
   expect_refused(unload, "yeoh", "small-strain");
 
   measured::DataSet deep = indentation_data({4e-3}, 20.0, 2e-3);  // contact radius 4.5 mm > 2 mm layer
-  testing::set_forces(deep, std::vector<double>(deep.tests[0].size(), 1e-3));
+  synthetic::set_forces(deep, std::vector<double>(deep.tests[0].size(), 1e-3));
   expect_refused(deep, "stvk", "exceeds the layer thickness");
 
   measured::DataSet neg = indentation_data({1e-3});
-  testing::set_forces(neg, std::vector<double>(neg.tests[0].size(), -1e-3));
+  synthetic::set_forces(neg, std::vector<double>(neg.tests[0].size(), -1e-3));
   expect_refused(neg, "stvk", "sign convention");
 
   measured::DataSet c = compression_data(0.3, 31);
-  testing::set_forces(c, std::vector<double>(31, 1.0));
+  synthetic::set_forces(c, std::vector<double>(31, 1.0));
   expect_refused(c, "neo_hookean+prony:1", "Prony terms");
   expect_refused(c, "neo_hookean", "--weight names test 'x'", {{"x", 2.0}});
   c.tests[0].displacement_m.back() = 0.031;
   expect_refused(c, "neo_hookean", "reaches the sample height");
 
   measured::DataSet few = compression_data(0.3, 2);
-  testing::set_forces(few, {0.0, 1.0});
+  synthetic::set_forces(few, {0.0, 1.0});
   expect_refused(few, "mooney_rivlin", "more samples than parameters");
 
   measured::DataSet hs = compression_data(0.3, 31);
-  testing::set_forces(hs, std::vector<double>(31, 1.0));
+  synthetic::set_forces(hs, std::vector<double>(31, 1.0));
   hs.meta.sample.shape = measured::SampleShape::half_space;
   expect_refused(hs, "neo_hookean", "not a half-space");
 

@@ -12,59 +12,76 @@
 #include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/model_spec.hpp"
 #include "calibration/fit/surrogates.hpp"
+#include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
+#include "core/base/number.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <iostream>
+#include <limits>
 #include <random>
 #include <sstream>
+
+namespace {
+
+/// The number `text` given as `what` (the strict grammar of core/base/number.hpp).
+double decimal(const std::string& text, const std::string& what) {
+  double v = 0.0;
+  std::string why;
+  if (!tmlab::parse_decimal(text, v, why)) throw tmlab::Error(what + ": " + why);
+  return v;
+}
+
+/// The whole number `text` given as `what`, within [min, max].
+std::int64_t whole(const std::string& text, const std::string& what, std::int64_t min, std::int64_t max) {
+  std::int64_t v = 0;
+  std::string why;
+  if (!tmlab::parse_whole(text, min, max, v, why)) throw tmlab::Error(what + ": " + why);
+  return v;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace tmlab;
   namespace ms = tmlab::measured;
   if (argc < 9) {
-    std::cerr
-        << "usage: fit_synthetic_data OUTDIR NAME SPEC NOISE_FRACTION SEED STRAINS PLATENS NAME=VALUE...\n";
+    std::cerr << "usage: fit_synthetic_data OUTDIR NAME SPEC NOISE_FRACTION SEED STRAINS PLATENS "
+                 "CELLS,LAYERS NAME=VALUE...\n";
     return 2;
   }
   try {
     const fit::ModelSpec spec = fit::parse_model_spec(argv[3]);
-    const double noise = std::stod(argv[4]);
-    const unsigned long seed = std::stoul(argv[5]);
+    const double noise = decimal(argv[4], "NOISE_FRACTION");
+    if (!(noise >= 0.0)) throw Error("NOISE_FRACTION: must be >= 0 (got " + std::string(argv[4]) + ")");
+    const auto seed =
+        static_cast<unsigned long>(whole(argv[5], "SEED", 0, std::numeric_limits<std::int64_t>::max()));
     std::vector<double> strains;
     std::stringstream ss(argv[6]);
-    for (std::string item; std::getline(ss, item, ',');) strains.push_back(std::stod(item));
-    const bool bonded = std::string(argv[7]) == "bonded";
+    for (std::string item; std::getline(ss, item, ',');) strains.push_back(decimal(item, "STRAINS"));
+    if (strains.empty()) throw Error("STRAINS: give at least one strain");
+    const std::string platens = argv[7];
+    if (platens != "bonded" && platens != "frictionless")
+      throw Error("PLATENS: must be bonded or frictionless (got '" + platens + "')");
+    const bool bonded = platens == "bonded";
     std::vector<std::pair<std::string, double>> truth;
     fit::FeRigOptions fe;
     const std::string mesh = argv[8];
-    fe.mesh.cells = std::stoi(mesh.substr(0, mesh.find(',')));
-    fe.mesh.layers = std::stoi(mesh.substr(mesh.find(',') + 1));
+    const std::size_t comma = mesh.find(',');
+    if (comma == std::string::npos) throw Error("CELLS,LAYERS: expected two numbers, got '" + mesh + "'");
+    fe.mesh.cells = static_cast<int>(whole(mesh.substr(0, comma), "CELLS", 1, 1000));
+    fe.mesh.layers = static_cast<int>(whole(mesh.substr(comma + 1), "LAYERS", 1, 1000));
     for (int i = 9; i < argc; ++i) {
       const std::string a = argv[i];
       const std::size_t eq = a.find('=');
       if (eq == std::string::npos) throw Error("expected NAME=VALUE, got '" + a + "'");
-      truth.emplace_back(a.substr(0, eq), std::stod(a.substr(eq + 1)));
+      truth.emplace_back(a.substr(0, eq), decimal(a.substr(eq + 1), a.substr(0, eq)));
     }
-    ms::DataSet d;
+    ms::DataSet d = fit::synthetic::block_compression_data(strains, 10.0, bonded);
     d.meta.name = argv[2];
-    d.meta.test = ms::TestType::unconfined_compression;
-    d.meta.sample.shape = ms::SampleShape::block;
-    d.meta.sample.size_m = {0.02, 0.02, 0.01};
-    d.meta.sample.bottom = bonded ? ms::Interface::bonded : ms::Interface::frictionless;
-    d.meta.sample.platens = d.meta.sample.bottom;
     d.meta.source = "synthetic: fit_synthetic_data, FE rig (mesh " + std::string(argv[8]) + "), " + argv[3];
     d.meta.license = "CC0-1.0";
-    for (std::size_t k = 0; k < strains.size(); ++k) {
-      ms::Test t;
-      t.id = "s" + std::to_string(k + 1);
-      for (double s = 0.0; s <= 10.0 + 1e-9; s += (s < 1.0 - 1e-9 ? 0.2 : 0.5)) {
-        t.time_s.push_back(s);
-        t.displacement_m.push_back(0.01 * strains[k] * std::min(s, 1.0));
-        t.force_N.push_back(1.0);
-      }
-      d.tests.push_back(t);
-    }
     fit::Problem p = fit::make_data_problem(d, spec, truth);
     std::vector<double> x;
     for (const auto& q : p.parameters) {

@@ -1,19 +1,13 @@
-// Synthetic data sets for the fit tests: indentation by a sphere (ramp and hold to several depths)
-// and unconfined compression of a cylinder, made in memory as tmlab-measured/1 DataSets.
-#pragma once
+// Synthetic data sets: see synthetic_data.hpp.
+#include "calibration/fit/synthetic_data.hpp"
 
-#include "calibration/data/measured_data.hpp"
-
+#include <algorithm>
+#include <optional>
 #include <string>
-#include <vector>
 
-namespace tmlab::fit::testing {
+namespace tmlab::fit::synthetic {
 
-/// Sphere (radius 5 mm) into a half-space (or a bonded layer of `thickness` m when > 0): one test per
-/// depth, a 1 s ramp then a hold to t_end, samples every 0.1 s on the ramp and 0.25 s in the hold.
-/// Forces are zero: fill them from a forward model.
-inline measured::DataSet indentation_data(const std::vector<double>& depths, double t_end = 20.0,
-                                          double thickness = 0.0) {
+measured::DataSet indentation_data(const std::vector<double>& depths, double t_end, double thickness) {
   measured::DataSet d;
   d.meta.name = "synthetic_indentation";
   d.meta.test = measured::TestType::indentation;
@@ -38,8 +32,7 @@ inline measured::DataSet indentation_data(const std::vector<double>& depths, dou
   return d;
 }
 
-/// Unconfined compression of a 50 mm x 30 mm cylinder to `strain`, n samples, frictionless platens.
-inline measured::DataSet compression_data(double strain, int n) {
+measured::DataSet compression_data(double strain, int n) {
   measured::DataSet d;
   d.meta.name = "synthetic_compression";
   d.meta.test = measured::TestType::unconfined_compression;
@@ -58,11 +51,31 @@ inline measured::DataSet compression_data(double strain, int n) {
   return d;
 }
 
-/// Puts `force` (Observations order) into the tests of `d`.
-inline void set_forces(measured::DataSet& d, const std::vector<double>& force) {
+measured::DataSet block_compression_data(const std::vector<double>& strains, double t_end, bool bonded) {
+  measured::DataSet d;
+  d.meta.name = "synthetic_block";
+  d.meta.test = measured::TestType::unconfined_compression;
+  d.meta.sample.shape = measured::SampleShape::block;
+  d.meta.sample.size_m = {0.02, 0.02, 0.01};
+  d.meta.sample.bottom = bonded ? measured::Interface::bonded : measured::Interface::frictionless;
+  d.meta.sample.platens = d.meta.sample.bottom;
+  for (std::size_t k = 0; k < strains.size(); ++k) {
+    measured::Test t;
+    t.id = "s" + std::to_string(k + 1);
+    for (double s = 0.0; s <= t_end + 1e-9; s += (s < 1.0 - 1e-9 ? 0.2 : 0.5)) {
+      t.time_s.push_back(s);
+      t.displacement_m.push_back(0.01 * strains[k] * std::min(s, 1.0));
+      t.force_N.push_back(1.0);
+    }
+    d.tests.push_back(t);
+  }
+  return d;
+}
+
+void set_forces(measured::DataSet& d, const std::vector<double>& force) {
   std::size_t i = 0;
   for (auto& t : d.tests)
     for (double& f : t.force_N) f = force[i++];
 }
 
-}  // namespace tmlab::fit::testing
+}  // namespace tmlab::fit::synthetic
