@@ -24,7 +24,7 @@ CommandSpec help_spec();
 CommandSpec paper_spec();
 CommandSpec hereditary_spec();
 CommandSpec workprecision_spec();
-CommandSpec inversion_spec();
+CommandSpec depth_limit_spec();
 CommandSpec realtime_spec();
 CommandSpec verify_spec();
 CommandSpec bench_spec();

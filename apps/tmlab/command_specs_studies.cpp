@@ -63,13 +63,13 @@ CommandSpec workprecision_spec() {
            results_option(), no_plots_option(), study_resume()}};
 }
 
-CommandSpec inversion_spec() {
+CommandSpec depth_limit_spec() {
   return {
-      "inversion",
+      "depth-limit",
       {"[options]"},
       "the depth at which each law first inverts a tet (or loses\n"
       "equilibrium) under a sphere R 5 mm in a thick block, per mesh;\n"
-      "results/inversion/ (inversion.json, .md, PNG; docs/contact.md)",
+      "results/depth-limit/ (depth_limit.json, .md, PNG; docs/contact.md)",
       {text_list("--laws", "L1,L2", "the laws (default: every law)"),
        whole_list("--cells", "N1,N2", 2, 64, "cells per axis of each mesh (default 4,6,9; 4 with --quick)"),
        decimal("--max-depth", "M", Interval{}, "deepest indentation, m").def("0.008"),

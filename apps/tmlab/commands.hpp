@@ -44,7 +44,7 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
 int cmd_realtime(const std::vector<std::string>& args, const std::string& command_line);
 // Model discovery (cmd_discover.cpp, docs/discover.md).
 int cmd_discover(const std::vector<std::string>& args, const std::string& command_line);
-// The depth at which each law inverts a tet under a sphere (cmd_inversion.cpp, docs/contact.md).
-int cmd_inversion(const std::vector<std::string>& args, const std::string& command_line);
+// The depth at which each law inverts a tet under a sphere (cmd_depth_limit.cpp, docs/contact.md).
+int cmd_depth_limit(const std::vector<std::string>& args, const std::string& command_line);
 
 }  // namespace tmlab::cli

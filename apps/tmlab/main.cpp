@@ -75,7 +75,10 @@ int main(int argc, char** argv) {
     if (cmd == "version") return tmlab::cli::cmd_version();
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
-    if (cmd == "inversion") return tmlab::cli::cmd_inversion(args, command_line);
+    if (cmd == "depth-limit") return tmlab::cli::cmd_depth_limit(args, command_line);
+    if (cmd == "inversion")
+      throw tmlab::cli::UsageError(
+          "tmlab inversion is now tmlab depth-limit (the same options; results in <results>/depth-limit/)");
     if (cmd == "bench") return tmlab::cli::cmd_bench(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);

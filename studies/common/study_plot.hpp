@@ -10,7 +10,7 @@
 namespace tmlab::tm {
 
 /// Runs `python studies/<study>/python/<script> <dir>` (run_python: no shell); `study` is the study's
-/// folder (paper, hereditary, workprecision, inversion). Returns how it ended; never throws for a
+/// folder (paper, hereditary, workprecision, depth_limit). Returns how it ended; never throws for a
 /// failing script.
 ProcessStatus draw_study_plot(const std::string& tmlab_root, const std::string& study,
                               const std::string& script, const std::filesystem::path& dir,

@@ -138,9 +138,9 @@ std::vector<Command> commands() {
                  "ramp_hold",  "--no-plots", "--results",  o};
        },
        none},
-      {"inversion", "inversion",
+      {"depth-limit", "depth-limit",
        [](const fs::path&, const std::string& o) -> std::vector<std::string> {
-         return {"inversion", "--laws",      "neo_hookean,stvk", "--cells",    "3",         "--max-depth",
+         return {"depth-limit", "--laws",      "neo_hookean,stvk", "--cells",    "3",         "--max-depth",
                  "0.001",     "--increment", "0.0005",           "--no-plots", "--results", o};
        },
        none},

@@ -1,5 +1,5 @@
 // Interrupted commands resume (issue 12): `tmlab verify`, `run`, `paper`, `hereditary`,
-// `workprecision`, `inversion`, `fit`, `discover` and `discover --benchmark` stopped by SIGINT /
+// `workprecision`, `depth-limit`, `fit`, `discover` and `discover --benchmark` stopped by SIGINT /
 // SIGTERM, then `--resume`, must give the same results as an uninterrupted run, bit for bit except the
 // wall-clock times; finished work is not done again.
 //
@@ -735,12 +735,12 @@ TEST_F(CliFitResume, InterruptedBenchmarkResumesToTheSameResult) {
   EXPECT_TRUE(fs::exists(out / "INTERRUPTED"));
 }
 
-/// `tmlab inversion`: a checkpoint after every finished (law, mesh) run. Four small runs (St VK, whose
+/// `tmlab depth-limit`: a checkpoint after every finished (law, mesh) run. Four small runs (St VK, whose
 /// solve fails on the n = 4 mesh between 2.0 and 2.5 mm, and neo-Hookean, on 3 and 4 cells per
-/// axis), stopped after the first and after the third run, resumed: inversion.json and summary.json
+/// axis), stopped after the first and after the third run, resumed: depth_limit.json and summary.json
 /// equal the uninterrupted study's except the clock times.
 TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
-  const std::vector<std::string> args = {"inversion", "--laws",      "stvk,neo_hookean", "--cells",
+  const std::vector<std::string> args = {"depth-limit", "--laws",      "stvk,neo_hookean", "--cells",
                                          "3,4",       "--max-depth", "0.0025",           "--increment",
                                          "0.0005",    "--no-plots"};
   auto with = [&](const fs::path& res, bool resume) {
@@ -750,8 +750,8 @@ TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
     return a;
   };
   auto result = [](const fs::path& res) {
-    nlohmann::json j = {{"inversion", nlohmann::json::parse(read_file(res / "inversion" / "inversion.json"))},
-                        {"summary", nlohmann::json::parse(read_file(res / "inversion" / "summary.json"))}};
+    nlohmann::json j = {{"inversion", nlohmann::json::parse(read_file(res / "depth-limit" / "depth_limit.json"))},
+                        {"summary", nlohmann::json::parse(read_file(res / "depth-limit" / "summary.json"))}};
     strip_times(j);
     return j;
   };
@@ -771,14 +771,14 @@ TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
       const auto r = run_argv(with(cut, false), dir_ / "inv-cut.log");
       ASSERT_EQ(r.status, 128 + sig) << r.output;
     }
-    EXPECT_FALSE(fs::exists(cut / "inversion" / "summary.json"));
-    const std::string marker = read_file(cut / "inversion" / "INTERRUPTED");
+    EXPECT_FALSE(fs::exists(cut / "depth-limit" / "summary.json"));
+    const std::string marker = read_file(cut / "depth-limit" / "INTERRUPTED");
     EXPECT_NE(marker.find("--resume"), std::string::npos) << marker;
     const auto resumed = run_argv(with(cut, true), dir_ / "inv-resumed.log");
     ASSERT_EQ(resumed.status, 0) << resumed.output;
     EXPECT_NE(resumed.output.find("stvk.n3: from the checkpoint of the interrupted study"), std::string::npos)
         << resumed.output;
-    EXPECT_FALSE(fs::exists(cut / "inversion" / ".incomplete" / "checkpoint.h5"));
+    EXPECT_FALSE(fs::exists(cut / "depth-limit" / ".incomplete" / "checkpoint.h5"));
     EXPECT_EQ(result(cut), expected);
   }
   // Other options are refused, naming the key; the interrupted study stays resumable.
@@ -794,7 +794,7 @@ TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
   EXPECT_NE(refused.output.find("increment_m: the checkpoint has 0.0005, this run 0.00025"),
             std::string::npos)
       << refused.output;
-  EXPECT_TRUE(fs::exists(other / "inversion" / "INTERRUPTED"));
+  EXPECT_TRUE(fs::exists(other / "depth-limit" / "INTERRUPTED"));
 }
 
 }  // namespace

@@ -88,7 +88,7 @@ TEST_F(CliSignals, WorkprecisionStopsOnSigint) {
 }
 
 TEST_F(CliSignals, InversionStopsOnSigterm) {
-  stops({"inversion", "--no-plots", "--results", res().string()}, res() / "inversion", SIGTERM);
+  stops({"depth-limit", "--no-plots", "--results", res().string()}, res() / "depth-limit", SIGTERM);
 }
 
 TEST_F(CliSignals, FitStopsOnSigint) {

@@ -58,18 +58,28 @@ TEST(CliStudies, WorkPrecisionUsageErrors) {
   EXPECT_EQ(opt.status, 2);
 }
 
-TEST(CliStudies, InversionCellsAreWholeNumbers) {
+TEST(CliStudies, DepthLimitCellsAreWholeNumbers) {
   // Issue 26: "4.0" and "4e0" used to be taken as 4; every count is a whole number under the one
   // grammar, the option named (exit 2, before anything runs or is written).
-  const fs::path out = fs::temp_directory_path() / ("tmlab_inversion_cells_" + std::to_string(::getpid()));
+  const fs::path out = fs::temp_directory_path() / ("tmlab_depth_limit_cells_" + std::to_string(::getpid()));
   for (const char* cells : {"4.0", "4e0", "0x4", " 4", "1", "65"}) {
-    const Result r = run(std::string("inversion --quick --no-plots --laws stvk --cells '") + cells +
+    const Result r = run(std::string("depth-limit --quick --no-plots --laws stvk --cells '") + cells +
                          "' --results '" + out.string() + "'");
     EXPECT_EQ(r.status, 2) << cells << "\n" << r.output;
     EXPECT_NE(r.output.find("--cells needs a whole number"), std::string::npos) << r.output;
   }
   EXPECT_FALSE(fs::exists(out));
   fs::remove_all(out);
+}
+
+TEST(CliStudies, TheOldInversionCommandNamesItsNewName) {
+  // Issue 27: 'tmlab inversion' (element inversion depth) read like inverse identification beside
+  // 'tmlab fit'; it is 'tmlab depth-limit' now, and the old name says so (exit 2, nothing run).
+  const fs::path out = fs::temp_directory_path() / ("tmlab_old_inversion_" + std::to_string(::getpid()));
+  const Result r = run("inversion --quick --no-plots --results '" + out.string() + "'");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("tmlab inversion is now tmlab depth-limit"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 }  // namespace

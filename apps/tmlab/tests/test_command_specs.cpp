@@ -36,7 +36,7 @@ TEST(CommandSpecs, HelpListsEveryOptionOfEveryCommand) {
   }
   for (const char* c :
        {"demo",       "run",           "compare",   "cases",    "mesh info", "mesh check",   "paper",
-        "hereditary", "workprecision", "inversion", "realtime", "verify",    "data convert", "data show",
+        "hereditary", "workprecision", "depth-limit", "realtime", "verify",    "data convert", "data show",
         "rig",        "fit",           "bench",     "discover", "version",   "help"})
     EXPECT_EQ(names.count(c), 1u) << c;
   EXPECT_EQ(specs_of("data").size(), 2u);
@@ -67,7 +67,7 @@ TEST(CommandSpecs, NoCommandReadsAnOptionOutsideItsTable) {
       {"cmd_paper.cpp", {"paper"}},
       {"cmd_hereditary.cpp", {"hereditary"}},
       {"cmd_workprecision.cpp", {"workprecision"}},
-      {"cmd_inversion.cpp", {"inversion"}},
+      {"cmd_depth_limit.cpp", {"depth-limit"}},
       {"cmd_realtime.cpp", {"realtime"}},
       {"cmd_verify.cpp", {"verify"}},
       {"cmd_data.cpp", {"data convert", "data show"}},

@@ -1,4 +1,4 @@
-// How deep can a rigid sphere go before a tet inverts? (issue 13, `tmlab inversion`; docs/contact.md,
+// How deep can a rigid sphere go before a tet inverts? (issue 13, `tmlab depth-limit`; docs/contact.md,
 // section "Inversion depth of each law")
 //
 // The paper's indentation: a rigid sphere of radius R = 5 mm pressed into the centre of the top of a
@@ -39,7 +39,7 @@
 namespace tmlab::tm {
 
 /// One law of the study: its name (tensormass/materials/law_factory.hpp) and parameter object.
-struct InversionLaw {
+struct DepthLimitLaw {
   std::string name;
   nlohmann::json parameters;
 };
@@ -48,9 +48,9 @@ struct InversionLaw {
 /// poisson), and with G = E / (2 (1 + nu)), kappa = E / (3 (1 - 2 nu)): mooney_rivlin c10 = 0.4 G,
 /// c01 = 0.1 G; yeoh c10 = G/2, c20 = G/20; ogden one term alpha = 5, mu = 2 G / 5;
 /// veronda_westmann c1 = G, c2 = 1.
-std::vector<InversionLaw> default_inversion_laws(double E, double nu);
+std::vector<DepthLimitLaw> default_depth_limit_laws(double E, double nu);
 
-struct InversionStudyOptions {
+struct DepthLimitOptions {
   double radius = 0.005;                        ///< sphere R, m
   double half_width = 0.02;                     ///< W: the quarter block's side (the block is 2W x 2W x H), m
   double height = 0.02;                         ///< H, m
@@ -59,21 +59,21 @@ struct InversionStudyOptions {
   double grading = 2.0;                         ///< p of the graded map (1 = uniform)
   double max_depth = 0.008;                     ///< m
   double increment = 0.5e-3;                    ///< depth increment, m
-  std::vector<InversionLaw> laws;               ///< empty: default_inversion_laws(young, poisson)
+  std::vector<DepthLimitLaw> laws;               ///< empty: default_depth_limit_laws(young, poisson)
   std::vector<int> cells = {4, 6, 9};           ///< cells per axis of the quarter block (>= 2 each)
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
   /// Checkpoints (empty: none): after every finished (law, mesh) run the finished runs are written
-  /// to this file (kind "inversion") with `fingerprint` (the effective options), and SIGINT/SIGTERM
+  /// to this file (kind "depth_limit") with `fingerprint` (the effective options), and SIGINT/SIGTERM
   /// stop the study there. A run interrupted half-way runs again from its start on --resume.
   std::filesystem::path checkpoint;
   nlohmann::json fingerprint = nlohmann::json::object();
-  /// --resume: a checkpoint read back (read_checkpoint kind "inversion"); its finished runs are
+  /// --resume: a checkpoint read back (read_checkpoint kind "depth_limit"); its finished runs are
   /// taken from it instead of run again.
   std::optional<CheckpointData> resume;
 };
 
 /// One accepted increment.
-struct InversionSample {
+struct DepthLimitSample {
   double depth = 0.0;    ///< m
   double min_j = 1.0;    ///< smallest det F over all tets
   Index worst_tet = -1;  ///< where
@@ -81,7 +81,7 @@ struct InversionSample {
   int active_nodes = 0;  ///< in the quarter
 };
 
-struct InversionRun {
+struct DepthLimitRun {
   std::string law;
   int cells = 0;
   Index tets = 0;       ///< of the quarter
@@ -101,27 +101,27 @@ struct InversionRun {
   /// and its distance from the indenter's axis, m.
   double worst_depth_below_top = 0.0, worst_radius = 0.0;
   std::string message;  ///< the solver's error (solver_failed)
-  std::vector<InversionSample> samples;
+  std::vector<DepthLimitSample> samples;
 };
 
 /// The graded quarter block with n cells per axis (see the file comment).
-Mesh inversion_block(const InversionStudyOptions& options, int cells);
+Mesh inversion_block(const DepthLimitOptions& options, int cells);
 
 /// Runs one law on one mesh. Throws tmlab::Error for bad options or law parameters (not for a
 /// failing solve, which is an outcome).
-InversionRun run_inversion(const InversionStudyOptions& options, const InversionLaw& law, int cells);
+DepthLimitRun run_inversion(const DepthLimitOptions& options, const DepthLimitLaw& law, int cells);
 
 /// The effective options as JSON: geometry, moduli, depths, grading, cells and the laws with their
-/// parameters (what a --resume must match; also the "options" of inversion.json).
-nlohmann::json inversion_fingerprint(const InversionStudyOptions& options);
+/// parameters (what a --resume must match; also the "options" of depth_limit.json).
+nlohmann::json depth_limit_fingerprint(const DepthLimitOptions& options);
 
 /// Runs every law on every mesh (laws outer, meshes inner), taking the finished runs of
 /// `options.resume` from it and checkpointing after every run when `options.checkpoint` is set.
-std::vector<InversionRun> run_inversion_study(const InversionStudyOptions& options);
+std::vector<DepthLimitRun> run_depth_limit_study(const DepthLimitOptions& options);
 
 /// The study as JSON (options, and per run the outcome and samples) and as a markdown table.
-nlohmann::json inversion_json(const InversionStudyOptions& options, const std::vector<InversionRun>& runs);
-std::string inversion_markdown(const InversionStudyOptions& options, const std::vector<InversionRun>& runs,
+nlohmann::json depth_limit_json(const DepthLimitOptions& options, const std::vector<DepthLimitRun>& runs);
+std::string depth_limit_markdown(const DepthLimitOptions& options, const std::vector<DepthLimitRun>& runs,
                                const std::string& command_line);
 
 }  // namespace tmlab::tm

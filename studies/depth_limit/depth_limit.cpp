@@ -1,5 +1,5 @@
-// The inversion depth of each law under the paper's sphere indentation (inversion_depth.hpp).
-#include "studies/inversion/inversion_depth.hpp"
+// The inversion depth of each law under the paper's sphere indentation (depth_limit.hpp).
+#include "studies/depth_limit/depth_limit.hpp"
 
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -70,9 +70,9 @@ DirichletSet quarter_supports(const Mesh& mesh, double W) {
   return DirichletSet(mesh.num_points(), {sx, sy, bottom});
 }
 
-void check_options(const InversionStudyOptions& o) {
+void check_options(const DepthLimitOptions& o) {
   auto positive = [](double v, const char* key) {
-    if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("inversion study: ") + key + " must be > 0");
+    if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("depth-limit study: ") + key + " must be > 0");
   };
   positive(o.radius, "radius");
   positive(o.half_width, "half_width");
@@ -80,26 +80,26 @@ void check_options(const InversionStudyOptions& o) {
   positive(o.young, "young");
   positive(o.max_depth, "max_depth");
   positive(o.increment, "increment");
-  if (!(o.grading >= 1.0)) throw Error("inversion study: grading must be >= 1");
-  if (!(o.poisson > -1.0 && o.poisson < 0.5)) throw Error("inversion study: poisson must be in (-1, 0.5)");
-  if (o.increment > o.max_depth) throw Error("inversion study: increment must be <= max_depth");
-  if (o.max_depth >= o.height) throw Error("inversion study: max_depth must be below the block height");
-  if (o.cells.empty()) throw Error("inversion study: no mesh (cells is empty)");
+  if (!(o.grading >= 1.0)) throw Error("depth-limit study: grading must be >= 1");
+  if (!(o.poisson > -1.0 && o.poisson < 0.5)) throw Error("depth-limit study: poisson must be in (-1, 0.5)");
+  if (o.increment > o.max_depth) throw Error("depth-limit study: increment must be <= max_depth");
+  if (o.max_depth >= o.height) throw Error("depth-limit study: max_depth must be below the block height");
+  if (o.cells.empty()) throw Error("depth-limit study: no mesh (cells is empty)");
   for (int n : o.cells)
-    if (n < 2) throw Error("inversion study: cells must be >= 2 (got " + std::to_string(n) + ")");
+    if (n < 2) throw Error("depth-limit study: cells must be >= 2 (got " + std::to_string(n) + ")");
 }
 
 /// The study's checkpoint: every finished (law, mesh) run by key "<law>.n<cells>", written after
 /// each; on --resume those of the interrupted study are taken from here. Every field of the run is
 /// stored as it is (doubles exactly, NaN included), so a resumed study's output equals an
 /// uninterrupted one's.
-class InversionCheckpoint {
+class DepthLimitCheckpoint {
  public:
-  explicit InversionCheckpoint(const InversionStudyOptions& o) : o_(o) {
+  explicit DepthLimitCheckpoint(const DepthLimitOptions& o) : o_(o) {
     if (o.resume) d_ = *o.resume;
   }
 
-  std::optional<InversionRun> restore(const std::string& key) const {
+  std::optional<DepthLimitRun> restore(const std::string& key) const {
     if (!d_.has(key + ".num")) return std::nullopt;
     const std::vector<double>& v = d_.doubles(key + ".num");
     const nlohmann::json t = nlohmann::json::parse(d_.text(key + ".text"));
@@ -112,7 +112,7 @@ class InversionCheckpoint {
     if (v.size() != 12 || t.size() != 3 || min_j.size() != n || force.size() != n || worst.size() != n ||
         active.size() != n)
       throw Error(d_.source() + ": inconsistent entry " + key + "; run without --resume");
-    InversionRun r;
+    DepthLimitRun r;
     r.law = t[0], r.outcome = t[1], r.message = t[2];
     r.cells = static_cast<int>(v[0]), r.tets = static_cast<Index>(v[1]), r.h_min = v[2];
     r.inversion_depth = v[3], r.bracket_low = v[4], r.bracket_high = v[5], r.limit_depth = v[6];
@@ -127,11 +127,11 @@ class InversionCheckpoint {
 
   /// Stores a finished run, writes the checkpoint (when the study has one), then stops here if a
   /// signal is pending.
-  void store(const std::string& key, const InversionRun& r) {
+  void store(const std::string& key, const DepthLimitRun& r) {
     if (o_.checkpoint.empty()) return;
     std::vector<double> depth, min_j, force;
     std::vector<std::int64_t> worst, active;
-    for (const InversionSample& s : r.samples) {
+    for (const DepthLimitSample& s : r.samples) {
       depth.push_back(s.depth), min_j.push_back(s.min_j), force.push_back(s.force);
       worst.push_back(s.worst_tet), active.push_back(s.active_nodes);
     }
@@ -146,18 +146,18 @@ class InversionCheckpoint {
     d_.put(key + ".force", std::move(force));
     d_.put(key + ".worst_tet", std::move(worst));
     d_.put(key + ".active_nodes", std::move(active));
-    write_checkpoint(o_.checkpoint, "inversion", o_.fingerprint, d_);
+    write_checkpoint(o_.checkpoint, "depth_limit", o_.fingerprint, d_);
     check_interrupt("after the run " + key + "; the finished runs are in the checkpoint " +
                     o_.checkpoint.string() + ": continue with the same command and --resume");
   }
 
  private:
-  const InversionStudyOptions& o_;
+  const DepthLimitOptions& o_;
   CheckpointData d_;
 };
 
 /// Where a stop request inside a run lands, and how to continue.
-std::string interrupt_where(const InversionStudyOptions& o, const std::string& law, int cells) {
+std::string interrupt_where(const DepthLimitOptions& o, const std::string& law, int cells) {
   std::string w = "during the run " + law + ".n" + std::to_string(cells);
   if (!o.checkpoint.empty())
     w += " (it starts again on resuming; the finished runs are in the checkpoint " + o.checkpoint.string() +
@@ -174,7 +174,7 @@ std::string fmt_mm(double metres, int digits = 2) {
 
 }  // namespace
 
-std::vector<InversionLaw> default_inversion_laws(double E, double nu) {
+std::vector<DepthLimitLaw> default_depth_limit_laws(double E, double nu) {
   const double G = E / (2.0 * (1.0 + nu)), kappa = E / (3.0 * (1.0 - 2.0 * nu));
   using nlohmann::json;
   return {
@@ -187,7 +187,7 @@ std::vector<InversionLaw> default_inversion_laws(double E, double nu) {
   };
 }
 
-Mesh inversion_block(const InversionStudyOptions& o, int cells) {
+Mesh inversion_block(const DepthLimitOptions& o, int cells) {
   check_options(o);
   Mesh mesh = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), cells, cells, cells);
   const double p = o.grading;
@@ -199,15 +199,15 @@ Mesh inversion_block(const InversionStudyOptions& o, int cells) {
   return mesh;
 }
 
-InversionRun run_inversion(const InversionStudyOptions& o, const InversionLaw& law, int cells) {
+DepthLimitRun run_inversion(const DepthLimitOptions& o, const DepthLimitLaw& law, int cells) {
   check_options(o);
   const Mesh mesh = inversion_block(o, cells);
-  HyperelasticTL model(mesh, make_law(law.name, law.parameters, "inversion study: law " + law.name));
+  HyperelasticTL model(mesh, make_law(law.name, law.parameters, "depth-limit study: law " + law.name));
   const VecX node_mass = lumped_node_mass(mesh, kDensity);
   MechanicalSystem system(model, lumped_dof_mass(node_mass), quarter_supports(mesh, o.half_width),
                           ExternalLoads(mesh, node_mass));
 
-  InversionRun run;
+  DepthLimitRun run;
   run.law = law.name;
   run.cells = cells;
   run.tets = mesh.num_tets();
@@ -239,7 +239,7 @@ InversionRun run_inversion(const InversionStudyOptions& o, const InversionLaw& l
     }
     check_interrupt(interrupt_where(o, law.name, cells));  // safe point
     const auto [jmin, worst] = min_volume_ratio(mesh, u);
-    InversionSample s;
+    DepthLimitSample s;
     s.depth = t1 * o.max_depth;
     s.min_j = jmin;
     s.worst_tet = worst;
@@ -273,11 +273,11 @@ InversionRun run_inversion(const InversionStudyOptions& o, const InversionLaw& l
   return run;
 }
 
-nlohmann::json inversion_fingerprint(const InversionStudyOptions& o) {
+nlohmann::json depth_limit_fingerprint(const DepthLimitOptions& o) {
   using nlohmann::json;
-  const std::vector<InversionLaw> laws = o.laws.empty() ? default_inversion_laws(o.young, o.poisson) : o.laws;
+  const std::vector<DepthLimitLaw> laws = o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
   json jl = json::array();
-  for (const InversionLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
+  for (const DepthLimitLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
   return {{"radius_m", o.radius},       {"half_width_m", o.half_width},
           {"height_m", o.height},       {"young_Pa", o.young},
           {"poisson", o.poisson},       {"grading", o.grading},
@@ -285,16 +285,16 @@ nlohmann::json inversion_fingerprint(const InversionStudyOptions& o) {
           {"cells", o.cells},           {"laws", jl}};
 }
 
-std::vector<InversionRun> run_inversion_study(const InversionStudyOptions& options) {
+std::vector<DepthLimitRun> run_depth_limit_study(const DepthLimitOptions& options) {
   check_options(options);
-  const std::vector<InversionLaw> laws =
-      options.laws.empty() ? default_inversion_laws(options.young, options.poisson) : options.laws;
-  InversionCheckpoint ck(options);
-  std::vector<InversionRun> runs;
-  for (const InversionLaw& law : laws)
+  const std::vector<DepthLimitLaw> laws =
+      options.laws.empty() ? default_depth_limit_laws(options.young, options.poisson) : options.laws;
+  DepthLimitCheckpoint ck(options);
+  std::vector<DepthLimitRun> runs;
+  for (const DepthLimitLaw& law : laws)
     for (int n : options.cells) {
       const std::string key = law.name + ".n" + std::to_string(n);
-      if (std::optional<InversionRun> done = ck.restore(key)) {
+      if (std::optional<DepthLimitRun> done = ck.restore(key)) {
         if (options.log) options.log(key + ": from the checkpoint of the interrupted study");
         runs.push_back(std::move(*done));
         continue;
@@ -305,12 +305,12 @@ std::vector<InversionRun> run_inversion_study(const InversionStudyOptions& optio
   return runs;
 }
 
-nlohmann::json inversion_json(const InversionStudyOptions& o, const std::vector<InversionRun>& runs) {
+nlohmann::json depth_limit_json(const DepthLimitOptions& o, const std::vector<DepthLimitRun>& runs) {
   using nlohmann::json;
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  const std::vector<InversionLaw> laws = o.laws.empty() ? default_inversion_laws(o.young, o.poisson) : o.laws;
+  const std::vector<DepthLimitLaw> laws = o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
   json jl = json::array();
-  for (const InversionLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
+  for (const DepthLimitLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
   json out = {{"geometry",
                {{"radius_m", o.radius},
                 {"block_m", {2.0 * o.half_width, 2.0 * o.half_width, o.height}},
@@ -323,12 +323,12 @@ nlohmann::json inversion_json(const InversionStudyOptions& o, const std::vector<
               {"cells", o.cells},
               {"laws", jl},
               {"runs", json::array()}};
-  for (const InversionRun& r : runs) {
+  for (const DepthLimitRun& r : runs) {
     json s = {{"depth_m", json::array()},
               {"min_J", json::array()},
               {"force_N", json::array()},
               {"active_nodes", json::array()}};
-    for (const InversionSample& x : r.samples) {
+    for (const DepthLimitSample& x : r.samples) {
       s["depth_m"].push_back(x.depth);
       s["min_J"].push_back(x.min_j);
       s["force_N"].push_back(x.force);
@@ -352,7 +352,7 @@ nlohmann::json inversion_json(const InversionStudyOptions& o, const std::vector<
   return out;
 }
 
-std::string inversion_markdown(const InversionStudyOptions& o, const std::vector<InversionRun>& runs,
+std::string depth_limit_markdown(const DepthLimitOptions& o, const std::vector<DepthLimitRun>& runs,
                                const std::string& command_line) {
   std::ostringstream m;
   m << "# Inversion depth of each law under a sphere indentation\n\n"
@@ -366,7 +366,7 @@ std::string inversion_markdown(const InversionStudyOptions& o, const std::vector
   m << "| law | cells | tets | h at the tip (mm) | outcome | limit depth (mm) | bracket (mm) | deepest "
        "converged (mm) | min J there | worst tet: depth, radius (mm) |\n"
     << "|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const InversionRun& r : runs) {
+  for (const DepthLimitRun& r : runs) {
     m << "| " << r.law << " | " << r.cells << " | " << r.tets << " | " << fmt_mm(r.h_min, 3) << " | "
       << r.outcome << " | " << fmt_mm(r.limit_depth) << " | ";
     if (r.outcome != "max_depth")
@@ -380,7 +380,7 @@ std::string inversion_markdown(const InversionStudyOptions& o, const std::vector
        "crossing of min J between the last two increments), `solver_failed` (the contact solve fails "
        "after its cut-backs within the bracket; every converged state has det F > 0; the limit depth is "
        "the deepest converged one), `max_depth` (neither within the range).\n";
-  for (const InversionRun& r : runs)
+  for (const DepthLimitRun& r : runs)
     if (!r.message.empty()) m << "\n- " << r.law << ", " << r.cells << " cells: " << r.message << "\n";
   return m.str();
 }

@@ -1,9 +1,9 @@
 #!/usr/bin/env python3
-"""Plot of `tmlab inversion` from DIR/inversion.json (written by apps/tmlab/cmd_inversion.cpp).
+"""Plot of `tmlab depth-limit` from DIR/depth_limit.json (written by apps/tmlab/cmd_depth_limit.cpp).
 
-Usage: python3 tmlab_inversion_plot.py DIR
+Usage: python3 tmlab_depth_limit_plot.py DIR
 
-Writes DIR/inversion_depth.png: left, the smallest volume ratio min det F against the indentation
+Writes DIR/depth_limit.png: left, the smallest volume ratio min det F against the indentation
 depth, one panel line per law and mesh (line style by mesh), the end of each run marked (x: a tet
 inverted, o: the contact solve failed, nothing: the depth range reached); right, the depth each run
 ended at against the spacing at the indentation point.
@@ -23,11 +23,11 @@ STYLES = ["-", "--", ":", "-."]
 
 
 def fail(msg):
-    _fail("tmlab_inversion_plot", msg)
+    _fail("tmlab_depth_limit_plot", msg)
 
 
 def main():
-    d, path = input_file("tmlab_inversion_plot", "inversion.json")
+    d, path = input_file("tmlab_depth_limit_plot", "depth_limit.json")
     try:
         with open(path) as f:
             doc = json.load(f)
@@ -60,7 +60,7 @@ def main():
     label_axes(bx, "depth reached (inversion, failure or the range end)", "spacing at the tip h [mm]",
                "depth [mm]")
     bx.set_xscale("log")
-    save(fig, os.path.join(d, "inversion_depth.png"), 120)
+    save(fig, os.path.join(d, "depth_limit.png"), 120)
 
 
 if __name__ == "__main__":

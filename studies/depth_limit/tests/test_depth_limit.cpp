@@ -1,9 +1,9 @@
-// The inversion-depth study (inversion_depth.hpp) on its coarsest setting: the quarter block with 4
+// The inversion-depth study (depth_limit.hpp) on its coarsest setting: the quarter block with 4
 // cells per axis, St VK and neo-Hookean with the same small-strain moduli. St VK softens in
 // compression: a tet inverts, or collapses past St VK's compression limit, at a finite depth;
 // neo-Hookean's energy grows without bound as J -> 0, so it reaches deeper or never inverts.
 #include "core/base/error.hpp"
-#include "studies/inversion/inversion_depth.hpp"
+#include "studies/depth_limit/depth_limit.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,22 +13,22 @@
 namespace tmlab::tm {
 namespace {
 
-InversionStudyOptions coarse() {
-  InversionStudyOptions o;
+DepthLimitOptions coarse() {
+  DepthLimitOptions o;
   o.cells = {4};
   o.max_depth = 0.010;
   o.increment = 0.5e-3;
   return o;
 }
 
-InversionLaw law_named(const std::string& name, const InversionStudyOptions& o) {
-  for (const InversionLaw& l : default_inversion_laws(o.young, o.poisson))
+DepthLimitLaw law_named(const std::string& name, const DepthLimitOptions& o) {
+  for (const DepthLimitLaw& l : default_depth_limit_laws(o.young, o.poisson))
     if (l.name == name) return l;
   throw Error("no default law " + name);
 }
 
 TEST(InversionDepth, GradedQuarterBlockIsValidAndRefinedAtTheTip) {
-  InversionStudyOptions o = coarse();
+  DepthLimitOptions o = coarse();
   const Mesh m = inversion_block(o, 4);
   EXPECT_EQ(m.num_tets(), 6 * 4 * 4 * 4);
   double zmax = 0.0, xmax = 0.0;
@@ -45,7 +45,7 @@ TEST(InversionDepth, GradedQuarterBlockIsValidAndRefinedAtTheTip) {
 }
 
 TEST(InversionDepth, DefaultLawsShareTheSmallStrainModuli) {
-  const auto laws = default_inversion_laws(3000.0, 0.45);
+  const auto laws = default_depth_limit_laws(3000.0, 0.45);
   ASSERT_EQ(laws.size(), 6u);
   const double G = 3000.0 / 2.9;
   EXPECT_NEAR(2.0 * (laws[2].parameters["c10"].get<double>() + laws[2].parameters["c01"].get<double>()), G,
@@ -57,10 +57,10 @@ TEST(InversionDepth, DefaultLawsShareTheSmallStrainModuli) {
 }
 
 TEST(InversionDepth, StVKReachesItsLimitAtAFiniteDepthAndNeoHookeanGoesDeeper) {
-  const InversionStudyOptions o = coarse();
-  const InversionRun stvk = run_inversion(o, law_named("stvk", o), 4);
-  const InversionRun nh = run_inversion(o, law_named("neo_hookean", o), 4);
-  for (const InversionRun* r : {&stvk, &nh})
+  const DepthLimitOptions o = coarse();
+  const DepthLimitRun stvk = run_inversion(o, law_named("stvk", o), 4);
+  const DepthLimitRun nh = run_inversion(o, law_named("neo_hookean", o), 4);
+  for (const DepthLimitRun* r : {&stvk, &nh})
     std::cout << r->law << ": " << r->outcome << ", limit depth " << r->limit_depth << " m, deepest "
               << r->deepest << " m, min J " << r->deepest_min_j << (r->message.empty() ? "" : ": ")
               << r->message << "\n";
@@ -82,21 +82,21 @@ TEST(InversionDepth, StVKReachesItsLimitAtAFiniteDepthAndNeoHookeanGoesDeeper) {
   EXPECT_GT(stvk.samples.back().force, stvk.samples.front().force);
   // Neo-Hookean: never a converged inverted state, and deeper than St VK's limit (or no limit).
   EXPECT_NE(nh.outcome, "inverted");
-  for (const InversionSample& s : nh.samples) EXPECT_GT(s.min_j, 0.0);
+  for (const DepthLimitSample& s : nh.samples) EXPECT_GT(s.min_j, 0.0);
   EXPECT_GT(nh.deepest, stvk.limit_depth);
   EXPECT_TRUE(!std::isfinite(nh.limit_depth) || nh.limit_depth > stvk.limit_depth);
 }
 
 TEST(InversionDepth, BadOptionsAreErrors) {
-  InversionStudyOptions o = coarse();
+  DepthLimitOptions o = coarse();
   o.max_depth = o.height;
-  EXPECT_THROW(run_inversion_study(o), Error);
+  EXPECT_THROW(run_depth_limit_study(o), Error);
   o = coarse();
   o.cells = {1};
-  EXPECT_THROW(run_inversion_study(o), Error);
+  EXPECT_THROW(run_depth_limit_study(o), Error);
   o = coarse();
   o.laws = {{"ogden", {{"mu", {-1.0}}, {"alpha", {2.0}}, {"kappa", 1e4}}}};  // unstable Ogden
-  EXPECT_THROW(run_inversion_study(o), Error);
+  EXPECT_THROW(run_depth_limit_study(o), Error);
 }
 
 }  // namespace
