@@ -43,8 +43,8 @@ std::vector<fit::Prior> parse_priors(const Parsed& p) {
 }
 
 /// --mesh CELLS,LAYERS and --substeps of the FE-rig forward model.
-fit::FeRigOptions parse_fe_rig_options(const Parsed& p) {
-  fit::FeRigOptions fe;
+fit::RigForwardModelOptions parse_fe_rig_options(const Parsed& p) {
+  fit::RigForwardModelOptions fe;
   if (p.has("--mesh")) std::tie(fe.mesh.cells, fe.mesh.layers) = parse_cells_layers(p.get("--mesh"));
   fe.substeps = positive_int(p, "--substeps", fe.substeps);
   return fe;
