@@ -7,9 +7,9 @@
 //   baseline     TotalLagrangianStVK / HyperelasticTL: the plain per-tet Eigen F-based kernel,
 //                kept on purpose as the yardstick; history objective = ViscoelasticStVK (pk2)
 //   fast         FastTetForce (SoA, AVX-512, Morton order, deterministic parallel scatter)
-//   tensor_mass  TensorMassStVK, the paper's stored tensors; history seed = ViscoelasticStVK
+//   tensor_mass  TensorMassStVK, the paper's stored tensors; history xu2011 = ViscoelasticStVK
 //                (nodal_force)
-// history none | seed | objective (2 Prony terms), law stvk | neo_hookean; ns_per_tet (wall time:
+// history none | xu2011 | objective (2 Prony terms), law stvk | neo_hookean; ns_per_tet (wall time:
 // the fast kernel's own threads are counted), flops_per_tet and bytes_per_tet (per-tet arrays
 // streamed, hand counts documented in docs/performance.md), memory_per_tet (the model's storage).
 // Whole steps ("kind": "step"): explicit (central differences), implicit (Newmark, Newton with the

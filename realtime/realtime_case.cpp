@@ -85,6 +85,7 @@ RealtimeCase load_realtime_case(const std::string& path, const std::string& tmla
     c.scheme = liver.get<std::string>("scheme", "objective");
     const auto scheme = prony_scheme_from_string(c.scheme);
     if (!scheme) throw liver.error("scheme", "unknown Prony scheme '" + c.scheme + "'");
+    c.scheme = to_string(*scheme);  // the current name (xu2011 for the former seed)
     const PronySchemeParts parts = scheme_parts(*scheme);
     c.viscoelastic.history = parts.history;
     c.viscoelastic.integration = parts.integration;

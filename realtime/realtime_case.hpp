@@ -25,7 +25,7 @@ struct RealtimeCase {
   double young = 0.0, poisson = 0.0, density = 0.0;
   tm::PronySeries prony = tm::PronySeries::from_long_term({0.0}, {1.0});
   tm::ViscoelasticOptions viscoelastic;
-  std::string scheme;  ///< the Prony shorthand ("objective", "seed", ...)
+  std::string scheme;  ///< the Prony shorthand ("objective", "xu2011", ...)
   ControlOptions control;
   Vec3 surface_point = Vec3::Zero(), direction = -Vec3::UnitZ(), probe_start = Vec3::Zero();
   double clearance = 0.0;

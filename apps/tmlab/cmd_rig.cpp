@@ -1,14 +1,14 @@
 // tmlab rig: a mechanical test as a generated mesh and an ordinary case file (calibration/rigs);
 // with --data, the test of a tmlab-measured/1 data set, driven by its measured displacement column
-// (calibration/rigs/data_rig.hpp).
+// (calibration/rigs/rig_from_data.hpp).
 #include "commands.hpp"
 
 #include "cli_args.hpp"
 #include "command_specs.hpp"
 
 #include "calibration/data/measured_data.hpp"
-#include "calibration/rigs/data_rig.hpp"
 #include "calibration/rigs/rig.hpp"
+#include "calibration/rigs/rig_from_data.hpp"
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
 
@@ -123,7 +123,7 @@ rigs::RigSpec data_rig(const ParsedOptions& p) {
     throw UsageError("rig --data: " + file + " holds " + std::to_string(data.tests.size()) +
                      " tests; choose one with --test ID (" + ids + ")");
   }
-  rigs::DataRigMesh mesh;
+  rigs::RigFromDataMesh mesh;
   int steps = 1;  // one load step across the shortest sampling interval
   apply_resolution(p, mesh.cells, mesh.layers, mesh.grading, steps);
   rigs::RigSpec s = rigs::rig_from_data(data, k, mesh);

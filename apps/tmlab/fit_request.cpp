@@ -38,8 +38,8 @@ std::vector<fit::Prior> parse_priors(const ParsedOptions& p) {
 }
 
 /// --mesh CELLS,LAYERS and --substeps of the FE-rig forward model.
-fit::FeRigOptions parse_fe_rig_options(const ParsedOptions& p) {
-  fit::FeRigOptions fe;
+fit::RigForwardModelOptions parse_fe_rig_options(const ParsedOptions& p) {
+  fit::RigForwardModelOptions fe;
   std::tie(fe.mesh.cells, fe.mesh.layers) = parse_cells_layers(p.text("--mesh"));
   fe.substeps = int(p.whole("--substeps"));
   return fe;

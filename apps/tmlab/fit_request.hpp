@@ -4,9 +4,9 @@
 
 #include "cli_args.hpp"
 
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/model_spec.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -25,7 +25,7 @@ struct FitRequest {
   std::string cost, global, forward;
   fit::FitOptions options;
   std::vector<fit::Prior> priors;
-  fit::FeRigOptions fe;
+  fit::RigForwardModelOptions fe;
   double band_floor = 0.0, band_ceiling = 0.0;  ///< --relaxation-bands (0: off)
 };
 

@@ -1,6 +1,6 @@
 #include "calibration/discover/fe_refit.hpp"
 
-#include "calibration/fit/fe_rig.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 
@@ -80,12 +80,12 @@ FeRefit refit_one(const measured::DataSet& dec, const std::vector<std::vector<st
   std::vector<std::pair<std::string, double>> fixes;
   for (std::size_t i = 0; i < f.parameters.size(); ++i)
     if (f.parameters[i].fixed) fixes.emplace_back(f.parameters[i].name, f.x[i]);
-  fit::FeRigOptions feo;
+  fit::RigForwardModelOptions feo;
   feo.mesh = fo.mesh;
   feo.substeps = fo.substeps;
   fit::Problem pr;
   try {
-    pr = fit::make_fe_rig_problem(dec, spec, fixes, {}, feo);
+    pr = fit::make_rig_forward_problem(dec, spec, fixes, {}, feo);
   } catch (const Error& e) {
     r.why_not = std::string("the FE rig cannot be built: ") + e.what();
     return r;

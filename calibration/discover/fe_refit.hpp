@@ -1,7 +1,7 @@
 // The FE-rig refit of `tmlab discover --forward fe_rig` (issue 15, "the test simulated by its rig";
 // docs/discover.md section 1). The selection loop runs on the closed-form forward model
 // (DiscoverModel: hundreds of fits per data set); this step then takes the baseline and the final
-// model to the FE rig of `tmlab fit --forward fe_rig` (calibration/fit/fe_rig.hpp: the tensor-mass
+// model to the FE rig of `tmlab fit --forward fe_rig` (calibration/fit/rig_forward_model.hpp: the tensor-mass
 // St VK model, or the F-based element for another law, with the Prony terms, on the rig the data's
 // JSON names), evaluates it at the closed-form optimum (how far the closed form is from the rig) and
 // refits it from there with Levenberg-Marquardt (local only: the closed-form optimum is the start).
@@ -17,7 +17,7 @@
 #include "calibration/data/measured_data.hpp"
 #include "calibration/discover/discover.hpp"
 #include "calibration/fit/fitter.hpp"
-#include "calibration/rigs/data_rig.hpp"
+#include "calibration/rigs/rig_from_data.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -27,7 +27,7 @@
 namespace tmlab::discover {
 
 struct FeRefitOptions {
-  rigs::DataRigMesh mesh{8, 4, 2.0};  ///< coarser than tmlab fit's default: two refits per data set
+  rigs::RigFromDataMesh mesh{8, 4, 2.0};  ///< coarser than tmlab fit's default: two refits per data set
   int substeps = 1;                   ///< static load steps per (decimated) sampling interval
   int max_iterations = 8;             ///< Levenberg-Marquardt iterations of each refit
   std::size_t max_samples = 300;      ///< the loop's data decimated further for the rig

@@ -226,9 +226,9 @@ std::string write_fit_plots(const fs::path& dir, const fs::path& tmlab_root, con
 Problem make_problem(const measured::DataSet& data, const ModelSpec& spec,
                      const std::vector<std::pair<std::string, double>>& fixes,
                      const std::vector<std::pair<std::string, double>>& weights, const std::string& which,
-                     const FeRigOptions& fe, std::string& why_no_closed_form) {
+                     const RigForwardModelOptions& fe, std::string& why_no_closed_form) {
   if (which == "closed_form") return make_surrogate_problem(data, spec, fixes, weights);
-  if (which == "fe_rig") return make_fe_rig_problem(data, spec, fixes, weights, fe, &why_no_closed_form);
+  if (which == "fe_rig") return make_rig_forward_problem(data, spec, fixes, weights, fe, &why_no_closed_form);
   if (which != "auto") throw Error("forward model must be auto, closed_form or fe_rig (got '" + which + "')");
   // auto: the closed form when it covers the data and the law, else the FE rig.
   try {
@@ -236,7 +236,7 @@ Problem make_problem(const measured::DataSet& data, const ModelSpec& spec,
   } catch (const Error& e) {
     why_no_closed_form = e.what();
   }
-  return make_fe_rig_problem(data, spec, fixes, weights, fe);
+  return make_rig_forward_problem(data, spec, fixes, weights, fe);
 }
 
 }  // namespace tmlab::fit

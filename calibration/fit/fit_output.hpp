@@ -6,9 +6,9 @@
 #pragma once
 
 #include "calibration/data/measured_data.hpp"
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/model_spec.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -68,6 +68,6 @@ std::string write_fit_plots(const std::filesystem::path& dir, const std::filesys
 Problem make_problem(const measured::DataSet& data, const ModelSpec& spec,
                      const std::vector<std::pair<std::string, double>>& fixes,
                      const std::vector<std::pair<std::string, double>>& weights, const std::string& which,
-                     const FeRigOptions& fe, std::string& why_no_closed_form);
+                     const RigForwardModelOptions& fe, std::string& why_no_closed_form);
 
 }  // namespace tmlab::fit

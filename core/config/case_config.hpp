@@ -37,7 +37,7 @@ struct ViscoelasticSpec {
   PronyHistory history = PronyHistory::Pk2;  ///< nodal_force (the seed's eq. 20) | pk2 (objective)
   PronyIntegration integration = PronyIntegration::ExactLinear;  ///< midpoint | exact_linear | backward_euler
   PronyRelaxation relaxation = PronyRelaxation::Full;            ///< full | deviatoric (pk2 only)
-  std::optional<PronyScheme> scheme;  ///< the shorthand given, if any (seed, objective, ...)
+  std::optional<PronyScheme> scheme;  ///< the shorthand given, if any (xu2011, objective, ...)
 };
 
 /// The material section: the law and its parameters (core/constitutive/material_law.hpp; each

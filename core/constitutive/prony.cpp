@@ -13,7 +13,7 @@ const char* const kConventions[] = {"long_term", "instantaneous"};
 const char* const kHistories[] = {"nodal_force", "pk2"};
 const char* const kIntegrations[] = {"midpoint", "exact_linear", "backward_euler"};
 const char* const kRelaxations[] = {"full", "deviatoric"};
-const char* const kSchemes[] = {"seed", "seed_exact_linear", "backward_euler", "objective"};
+const char* const kSchemes[] = {"xu2011", "xu2011_exact_linear", "backward_euler", "objective"};
 
 double sum(const std::vector<double>& v) {
   double s = 0.0;
@@ -42,6 +42,9 @@ std::optional<PronyRelaxation> prony_relaxation_from_string(const std::string& n
   return enum_from_name<PronyRelaxation>(kRelaxations, name);
 }
 std::optional<PronyScheme> prony_scheme_from_string(const std::string& name) {
+  // The scheme's former names, still read so that older case files keep working.
+  if (name == "seed") return PronyScheme::Xu2011;
+  if (name == "seed_exact_linear") return PronyScheme::Xu2011ExactLinear;
   return enum_from_name<PronyScheme>(kSchemes, name);
 }
 
@@ -53,9 +56,9 @@ std::vector<std::string> prony_scheme_names() { return enum_names(kSchemes); }
 
 PronySchemeParts scheme_parts(PronyScheme s) {
   switch (s) {
-    case PronyScheme::Seed:
+    case PronyScheme::Xu2011:
       return {PronyHistory::NodalForce, PronyIntegration::Midpoint};
-    case PronyScheme::SeedExactLinear:
+    case PronyScheme::Xu2011ExactLinear:
       return {PronyHistory::NodalForce, PronyIntegration::ExactLinear};
     case PronyScheme::BackwardEuler:
       return {PronyHistory::NodalForce, PronyIntegration::BackwardEuler};

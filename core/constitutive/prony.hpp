@@ -35,7 +35,8 @@ enum class PronyIntegration { Midpoint, ExactLinear, BackwardEuler };
 /// What relaxes (pk2 only): the full stress, or only its deviatoric part (the bulk stress never relaxes).
 enum class PronyRelaxation { Full, Deviatoric };
 /// The case file's shorthands for a history + integration pair.
-enum class PronyScheme { Seed, SeedExactLinear, BackwardEuler, Objective };
+/// xu2011 is the recursion of Xu et al. 2011 (the paper the project implements).
+enum class PronyScheme { Xu2011, Xu2011ExactLinear, BackwardEuler, Objective };
 
 std::string to_string(PronyConvention c);
 std::string to_string(PronyHistory h);
@@ -43,7 +44,8 @@ std::string to_string(PronyIntegration i);
 std::string to_string(PronyRelaxation r);
 std::string to_string(PronyScheme s);
 
-/// The choice a name denotes, or nothing (exact, case-sensitive names as written by to_string).
+/// The choice a name denotes, or nothing (exact, case-sensitive names as written by to_string;
+/// prony_scheme_from_string also reads the former names seed and seed_exact_linear).
 std::optional<PronyConvention> prony_convention_from_string(const std::string& name);
 std::optional<PronyHistory> prony_history_from_string(const std::string& name);
 std::optional<PronyIntegration> prony_integration_from_string(const std::string& name);
@@ -57,8 +59,8 @@ std::vector<std::string> prony_integration_names();
 std::vector<std::string> prony_relaxation_names();
 std::vector<std::string> prony_scheme_names();
 
-/// The history and integration a shorthand stands for: seed = nodal_force + midpoint,
-/// seed_exact_linear = nodal_force + exact_linear, backward_euler = nodal_force + backward_euler,
+/// The history and integration a shorthand stands for: xu2011 = nodal_force + midpoint,
+/// xu2011_exact_linear = nodal_force + exact_linear, backward_euler = nodal_force + backward_euler,
 /// objective = pk2 + exact_linear.
 struct PronySchemeParts {
   PronyHistory history;

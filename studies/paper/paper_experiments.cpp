@@ -5,6 +5,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/constitutive/prony.hpp"
 
 namespace tmlab::tm {
 
@@ -67,8 +68,11 @@ PaperFigure paper_figure(const std::string& name, const nlohmann::json& params, 
   r.raw("base");
   r.raw("material");
   r.raw("prony");
-  const auto schemes = r.require<std::vector<std::string>>("schemes");
+  auto schemes = r.require<std::vector<std::string>>("schemes");
   if (schemes.empty()) throw r.error("schemes", "must name at least one scheme");
+  // Runs are named and written under the current names (xu2011 for the former seed).
+  for (std::string& s : schemes)
+    if (const auto named = prony_scheme_from_string(s)) s = to_string(*named);
   for (const char* f : {"fig5", "fig6", "fig7"})
     if (r.has(f)) r.raw(f);
   r.finish();

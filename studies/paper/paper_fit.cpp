@@ -2,10 +2,10 @@
 #include "studies/paper/paper_fit.hpp"
 
 #include "calibration/closed_forms/indentation.hpp"
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fit_output.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/relaxation_bands.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -154,8 +154,8 @@ Mesh paper_fit_mesh(const rigs::RigSpec& s, double patch_factor, int patch_cells
   return mesh;
 }
 
-fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s) {
-  fit::FeRigOptions fe;
+fit::RigForwardModelOptions paper_fe_rig_options(const PaperFitSettings& s) {
+  fit::RigForwardModelOptions fe;
   fe.substeps = s.substeps;
   fe.contact_stiffness_factor = s.contact_stiffness_factor;
   fe.newton_max_iterations = s.newton_max_iterations;
@@ -173,10 +173,10 @@ std::string paper_fit_spec(const PaperFitSettings& s, const std::string& law, bo
 fit::Problem paper_fit_problem(const PaperFitSettings& s, const std::string& kind, const std::string& law,
                                bool visco, const ms::DataSet& data) {
   const fit::ModelSpec spec = fit::parse_model_spec(paper_fit_spec(s, law, visco));
-  fit::FeRigOptions fe = paper_fe_rig_options(s);
+  fit::RigForwardModelOptions fe = paper_fe_rig_options(s);
   if (visco) fe.jacobian_step = s.relaxation.jacobian_step;
   fit::Problem pr = kind == "closed_form" ? fit::make_surrogate_problem(data, spec)
-                                          : fit::make_fe_rig_problem(data, spec, {}, {}, fe);
+                                          : fit::make_rig_forward_problem(data, spec, {}, {}, fe);
   if (visco && s.relaxation.time_floor > 0.0)
     fit::band_relaxation_times(
         pr.parameters, spec, fit::relaxation_range(data, s.relaxation.time_floor, s.relaxation.time_ceiling));

@@ -10,7 +10,7 @@
 // identified twice:
 //   closed form   the generating model itself (Hertz / Lee-Radok): checks that the data determine
 //                 the parameters (the fit must recover them within its intervals);
-//   tensor mass   the FE rig with the fast model (calibration/fit/fe_rig.hpp): St VK (the paper's
+//   tensor mass   the FE rig with the fast model (calibration/fit/rig_forward_model.hpp): St VK (the paper's
 //                 tensor-mass model, TensorMassStVK / ViscoelasticStVK) and, what the paper does not,
 //                 a neo-Hookean base (HyperelasticTL / ViscoelasticHyperelastic), on a half-space
 //                 block meshed with a uniform patch under the indenter and geometric grading beyond
@@ -23,7 +23,7 @@
 #pragma once
 
 #include "calibration/data/measured_data.hpp"
-#include "calibration/fit/fe_rig.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "calibration/rigs/rig.hpp"
 #include "core/mesh/mesh.hpp"
 #include "studies/paper/paper_fit_settings.hpp"
@@ -54,7 +54,7 @@ Mesh paper_fit_mesh(const rigs::RigSpec& spec, double patch_factor, int patch_ce
 
 /// The FE-rig options of the study's tensor-mass fits: paper_fit_mesh with the settings' patch,
 /// their load steps and contact stiffness.
-fit::FeRigOptions paper_fe_rig_options(const PaperFitSettings& s);
+fit::RigForwardModelOptions paper_fe_rig_options(const PaperFitSettings& s);
 
 /// The SPEC of the study's fits of `law`: with the reference's number of Prony terms when `viscoelastic`,
 /// poisson fixed at the reference value.

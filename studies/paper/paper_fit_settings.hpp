@@ -27,9 +27,10 @@ struct PaperFitSettings {
   // The FE rig's mesh (paper_fit_mesh) and load steps.
   double patch_factor = 1.5;  ///< patch half-width / the deepest contact radius sqrt(R d)
   int patch_cells = 3, outer_cells = 3, substeps = 1;
-  /// > 0: contact stiffness from the nodes under the indenter (fit::FeRigOptions); 0: solver default.
+  /// > 0: contact stiffness from the nodes under the indenter (fit::RigForwardModelOptions); 0: solver
+  /// default.
   double contact_stiffness_factor = 0.0;
-  int newton_max_iterations = 40;  ///< before a load step is cut back (fit::FeRigOptions)
+  int newton_max_iterations = 40;  ///< before a load step is cut back (fit::RigForwardModelOptions)
   // Identification.
   std::vector<std::string> laws = {"stvk", "neo_hookean"};
   int starts = 12, local_runs = 1, max_iterations = 20, threads = 2;
@@ -40,7 +41,8 @@ struct PaperFitSettings {
     /// interval, tau <= time_ceiling x the test's duration, one ordered band per term. 0: no bands
     /// (tau > 0 only, the terms unordered).
     double time_floor = 0.0, time_ceiling = 0.0;
-    double jacobian_step = 1e-6;  ///< the FE rig's relative finite-difference step (fit::FeRigOptions)
+    /// the FE rig's relative finite-difference step (fit::RigForwardModelOptions)
+    double jacobian_step = 1e-6;
     double xtol = 1e-9;           ///< Levenberg-Marquardt's step test (fit::FitOptions::xtol)
     int max_iterations = 0;       ///< Levenberg-Marquardt iterations; 0: identification.max_iterations
   } relaxation;

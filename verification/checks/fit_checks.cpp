@@ -6,8 +6,8 @@
 //                    interval, and the bias of the estimates in standard errors.
 //   fit.confounding  E and nu from indentation alone: the reported |corr(E, nu)|, whether the pair
 //                    is named as confounded, and whether a precise nu is claimed.
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/fitter.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
@@ -30,7 +30,7 @@ struct Setup {
   fit::ModelSpec spec;
   std::vector<std::pair<std::string, double>> truth;
   std::string forward = "closed_form";
-  fit::FeRigOptions fe;
+  fit::RigForwardModelOptions fe;
 };
 
 Setup read_setup(ConfigReader& r) {
@@ -66,7 +66,7 @@ Setup read_setup(ConfigReader& r) {
 
 fit::Problem make_problem(const Setup& s, const ms::DataSet& d,
                           const std::vector<std::pair<std::string, double>>& fixes = {}) {
-  return s.forward == "fe_rig" ? fit::make_fe_rig_problem(d, s.spec, fixes, {}, s.fe)
+  return s.forward == "fe_rig" ? fit::make_rig_forward_problem(d, s.spec, fixes, {}, s.fe)
                                : fit::make_surrogate_problem(d, s.spec, fixes);
 }
 

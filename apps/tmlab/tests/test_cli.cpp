@@ -188,6 +188,32 @@ TEST_F(Cli, DemoRunsAndWritesACompleteResult) {
             s["solver"]["load_steps"].get<std::size_t>());
 }
 
+/// "seed" was the name of the xu2011 Prony scheme: a case file that still says so runs, as the same case.
+TEST_F(Cli, FormerSchemeNameSeedStillRuns) {
+  tmlab::write_gmsh22(tmlab::make_box_mesh(tmlab::Vec3(0, 0, 0), tmlab::Vec3(1, 1, 1), 2, 2, 2),
+                      (dir_ / "m.msh").string());
+  std::vector<nlohmann::json> reactions;
+  for (const std::string scheme : {"seed", "xu2011"}) {
+    const nlohmann::json doc = nlohmann::json::parse(R"({"mesh": {"file": "m.msh"},
+      "material": {"E": 1000, "nu": 0.3, "density": 1000,
+                   "viscoelastic": {"prony": {"terms": [{"weight": 0.3, "tau": 0.5}]}}},
+      "boundary": [{"name": "base", "nodes": {"plane": {"axis": "z", "value": 0}}},
+                   {"name": "top", "nodes": {"plane": {"axis": "z", "value": 1}}, "components": "z",
+                    "value": [0, 0, -0.02]}],
+      "solver": {"type": "static", "steps": 4, "t_end": 1.0}, "output": {"plots": false, "vtu": false}})");
+    nlohmann::json j = doc;
+    j["name"] = scheme;
+    j["material"]["viscoelastic"]["scheme"] = scheme;
+    const fs::path c = write(scheme + ".json", j.dump());
+    const Result r = run("run '" + c.string() + "' --results '" + (dir_ / "res").string() + "'");
+    ASSERT_EQ(r.status, 0) << r.output;
+    std::ifstream in(dir_ / "res" / scheme / "summary.json");
+    reactions.push_back(nlohmann::json::parse(in).at("final_reactions_N"));
+  }
+  EXPECT_NE(reactions[0]["top"][2].get<double>(), 0.0);
+  EXPECT_EQ(reactions[0], reactions[1]);
+}
+
 /// `tmlab compare`: the shipped uniaxial case with the tensor-mass model and the deal.II P1 reference
 /// (same mesh, same discretisation: same answer to solver tolerance), and against the oracle.
 TEST_F(Cli, CompareWritesTheDifferences) {

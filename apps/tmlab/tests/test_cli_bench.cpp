@@ -79,7 +79,7 @@ TEST(CliBench, QuickWritesTheDocumentedSchema) {
   }
   EXPECT_EQ(implicit_contact, 2);  // ldlt and cholmod
   EXPECT_EQ(kernels, (std::set<std::string>{"baseline", "fast", "tensor_mass"}));
-  EXPECT_EQ(histories, (std::set<std::string>{"none", "seed", "objective"}));
+  EXPECT_EQ(histories, (std::set<std::string>{"none", "xu2011", "objective"}));
   EXPECT_EQ(laws, (std::set<std::string>{"stvk", "neo_hookean"}));
   EXPECT_EQ(steps, (std::set<std::string>{"explicit", "implicit", "static_newton", "explicit_contact",
                                           "implicit_contact"}));

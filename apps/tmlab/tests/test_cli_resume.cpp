@@ -153,7 +153,7 @@ TEST_F(CliResume, InterruptedPaperFigureReusesItsFinishedRuns) {
   auto params =
       nlohmann::json::parse(read_file(fs::path(TMLAB_SOURCE_DIR) / "cases" / "paper" / "xu2011_liver.json"),
                             nullptr, true, /*ignore_comments=*/true);
-  params["schemes"] = {"objective", "seed"};
+  params["schemes"] = {"objective", "xu2011"};
   params["fig7"]["periods"] = {1.0};
   params["fig7"]["steps_per_cycle"] = 40;
   const fs::path pf = dir_ / "params.json";

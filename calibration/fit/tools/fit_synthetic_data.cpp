@@ -9,8 +9,8 @@
 //     CELLS,LAYERS the rig's mesh (fit with the same --mesh to fit the model that made the data)
 //     NAME=VALUE every parameter of SPEC (SI units)
 #include "calibration/data/measured_data.hpp"
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/model_spec.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "calibration/fit/surrogates.hpp"
 #include "calibration/fit/synthetic_data.hpp"
 #include "core/base/error.hpp"
@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
       throw Error("PLATENS: must be bonded or frictionless (got '" + platens + "')");
     const bool bonded = platens == "bonded";
     std::vector<std::pair<std::string, double>> truth;
-    fit::FeRigOptions fe;
+    fit::RigForwardModelOptions fe;
     const std::string mesh = argv[8];
     const std::size_t comma = mesh.find(',');
     if (comma == std::string::npos) throw Error("CELLS,LAYERS: expected two numbers, got '" + mesh + "'");
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
       if (!q.fixed) throw Error("give every parameter of the SPEC: '" + q.name + "' is missing");
       x.push_back(q.value);
     }
-    std::vector<double> f = fit::make_fe_rig_model(d, spec, fe)->predict(x);
+    std::vector<double> f = fit::make_rig_forward_model(d, spec, fe)->predict(x);
     double peak = 0.0;
     for (const double v : f) peak = std::max(peak, std::abs(v));
     std::mt19937_64 rng(seed);

@@ -138,7 +138,7 @@ TEST_F(CaseConfigTest, BadChoicesNameTheAcceptedValues) {
       {"relaxation", "bulk",
        "key 'material.viscoelastic.relaxation' must be 'full' or 'deviatoric' (got 'bulk')"},
       {"scheme", "nava",
-       "key 'material.viscoelastic.scheme' unknown scheme 'nava' (expected seed, seed_exact_linear, "
+       "key 'material.viscoelastic.scheme' unknown scheme 'nava' (expected xu2011, xu2011_exact_linear, "
        "backward_euler "
        "or objective)"},
       {"convention", "nava",
@@ -175,7 +175,7 @@ TEST_F(CaseConfigTest, JsonSyntaxErrorNamesFileAndLine) {
 TEST_F(CaseConfigTest, EffectiveConfigHasEveryDefaultAndRoundTrips) {
   // The manifest's configuration is what the run used: defaults filled in, shorthands resolved.
   nlohmann::json j = minimal();
-  j["material"]["viscoelastic"] = {{"scheme", "seed"},
+  j["material"]["viscoelastic"] = {{"scheme", "xu2011"},
                                    {"prony", {{"terms", {{{"weight", 0.5}, {"tau", 1.0}}}}}}};
   j["loads"] = {
       {{"type", "pressure"}, {"faces", {{"plane", {{"axis", "z"}, {"value", 0}}}}}, {"pressure", 10}}};
@@ -193,6 +193,12 @@ TEST_F(CaseConfigTest, EffectiveConfigHasEveryDefaultAndRoundTrips) {
   // parse_case(effective) is the same case.
   const CaseConfig again = parse_case(e, "effective.json", {dir_.string()});
   EXPECT_EQ(effective_case_json(again), e);
+  // The scheme's former name "seed" still reads, as the same case.
+  nlohmann::json old = j;
+  old["material"]["viscoelastic"]["scheme"] = "seed";
+  const CaseConfig c_old = parse_case(old, "case.json", {dir_.string()});
+  EXPECT_EQ(c_old.material.viscoelastic.scheme, PronyScheme::Xu2011);
+  EXPECT_EQ(effective_case_json(c_old), e);
   // Dynamics: dt and the damping block, no static steps.
   j["solver"] = {{"type", "implicit"}, {"dt", 0.1}};
   const nlohmann::json d = effective_case_json(parse_case(j, "case.json", {dir_.string()}));

@@ -32,11 +32,27 @@ TEST(Prony, NamesRoundTripAndUnknownNamesAreRefused) {
   EXPECT_FALSE(prony_scheme_from_string(""));
 }
 
+TEST(Prony, SchemeNamesAndFormerNames) {
+  // The names written are xu2011 / xu2011_exact_linear; the former names seed / seed_exact_linear
+  // are still read (older case files) but never written.
+  EXPECT_EQ(prony_scheme_names(),
+            (std::vector<std::string>{"xu2011", "xu2011_exact_linear", "backward_euler", "objective"}));
+  EXPECT_EQ(prony_scheme_from_string("xu2011"), PronyScheme::Xu2011);
+  EXPECT_EQ(prony_scheme_from_string("xu2011_exact_linear"), PronyScheme::Xu2011ExactLinear);
+  EXPECT_EQ(prony_scheme_from_string("seed"), PronyScheme::Xu2011);
+  EXPECT_EQ(prony_scheme_from_string("seed_exact_linear"), PronyScheme::Xu2011ExactLinear);
+  EXPECT_EQ(to_string(PronyScheme::Xu2011), "xu2011");
+  EXPECT_EQ(to_string(PronyScheme::Xu2011ExactLinear), "xu2011_exact_linear");
+  EXPECT_EQ(to_string(prony_scheme_from_string("seed").value()), "xu2011");
+  EXPECT_FALSE(prony_scheme_from_string("Seed"));
+  EXPECT_FALSE(prony_scheme_from_string("xu2011_midpoint"));
+}
+
 TEST(Prony, SchemeShorthands) {
-  const PronySchemeParts seed = scheme_parts(PronyScheme::Seed);
-  EXPECT_EQ(seed.history, PronyHistory::NodalForce);
-  EXPECT_EQ(seed.integration, PronyIntegration::Midpoint);
-  EXPECT_EQ(scheme_parts(PronyScheme::SeedExactLinear).integration, PronyIntegration::ExactLinear);
+  const PronySchemeParts xu2011 = scheme_parts(PronyScheme::Xu2011);
+  EXPECT_EQ(xu2011.history, PronyHistory::NodalForce);
+  EXPECT_EQ(xu2011.integration, PronyIntegration::Midpoint);
+  EXPECT_EQ(scheme_parts(PronyScheme::Xu2011ExactLinear).integration, PronyIntegration::ExactLinear);
   EXPECT_EQ(scheme_parts(PronyScheme::BackwardEuler).integration, PronyIntegration::BackwardEuler);
   EXPECT_EQ(scheme_parts(PronyScheme::BackwardEuler).history, PronyHistory::NodalForce);
   EXPECT_EQ(scheme_parts(PronyScheme::Objective).history, PronyHistory::Pk2);

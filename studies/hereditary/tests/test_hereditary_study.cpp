@@ -196,7 +196,7 @@ TEST(HereditaryStudy, LiverPipelineOnSmallMeshConvergesAndChecksItsReference) {
       {"prony",
        {{"convention", "instantaneous"},
         {"terms", {{{"weight", 0.35}, {"tau", 0.4}}, {{"weight", 0.2}, {"tau", 4.0}}}}}},
-      {"schemes", {"seed"}},
+      {"schemes", {"xu2011"}},
       {"fig6", {{"nodes", {{0.5, 0.5, 1.0}}}, {"depth", 0.05}, {"ramp", 1.0}, {"hold", 1.0}, {"dt", 0.1}}}};
   LiverStudyOptions o;
   o.node = 1;

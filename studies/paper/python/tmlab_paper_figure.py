@@ -42,7 +42,7 @@ def main():
     with open(spec_path) as fh:
         spec = json.load(fh)
     name = spec["name"]
-    styles = {"seed": "-", "objective": "--"}
+    styles = {"xu2011": "-", "seed": "-", "objective": "--"}
     colours = plt.rcParams["axes.prop_cycle"].by_key()["color"]
     fig, ax = plt.subplots(figsize=(8, 5))
     energy = []

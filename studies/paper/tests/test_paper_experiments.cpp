@@ -16,7 +16,7 @@ const std::string kRoot = TMLAB_SOURCE_DIR;
 const std::string kParams = kRoot + "/cases/paper/xu2011_liver.json";
 
 TEST(PaperExperiments, EveryRunOfEveryFigureIsAValidCase) {
-  const nlohmann::json params = ConfigReader::parse_file(kParams);
+  nlohmann::json params = ConfigReader::parse_file(kParams);
   for (const char* name : {"fig5", "fig6", "fig7"}) {
     const PaperFigure fig = paper_figure(name, params, kParams);
     ASSERT_FALSE(fig.runs.empty()) << name;
@@ -33,11 +33,19 @@ TEST(PaperExperiments, EveryRunOfEveryFigureIsAValidCase) {
   EXPECT_EQ(paper_figure("fig5", params, kParams).runs.size(), 12u);
   EXPECT_EQ(paper_figure("fig6", params, kParams).runs.size(), 6u);
   EXPECT_EQ(paper_figure("fig7", params, kParams).runs.size(), 6u);
-  // The seed runs use the paper's recursion, the objective ones the PK2 form.
-  const CaseConfig seed =
-      parse_case(paper_figure("fig6", params, kParams).runs.front().case_doc, kParams, {kRoot});
-  EXPECT_EQ(seed.material.viscoelastic.history, PronyHistory::NodalForce);
-  EXPECT_EQ(seed.material.viscoelastic.integration, PronyIntegration::Midpoint);
+  // The xu2011 runs use the paper's recursion, the objective ones the PK2 form.
+  const PaperFigure fig6 = paper_figure("fig6", params, kParams);
+  EXPECT_EQ(fig6.runs.front().scheme, "xu2011");
+  const CaseConfig xu2011 = parse_case(fig6.runs.front().case_doc, kParams, {kRoot});
+  EXPECT_EQ(xu2011.material.viscoelastic.history, PronyHistory::NodalForce);
+  EXPECT_EQ(xu2011.material.viscoelastic.integration, PronyIntegration::Midpoint);
+  // The former name "seed" still reads, and the runs are named and written under "xu2011".
+  params["schemes"] = {"seed"};
+  const PaperFigure old = paper_figure("fig6", params, kParams);
+  ASSERT_EQ(old.runs.size(), 3u);
+  EXPECT_EQ(old.runs.front().scheme, "xu2011");
+  EXPECT_EQ(old.runs.front().id, fig6.runs.front().id);
+  EXPECT_EQ(old.runs.front().case_doc, fig6.runs.front().case_doc);
 }
 
 TEST(PaperExperiments, BadParametersAreNamed) {

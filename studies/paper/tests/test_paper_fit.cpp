@@ -196,11 +196,11 @@ TEST(PaperFit, PatchContactStiffnessAndWarmStartsKeepTheRigForces) {
   for (std::size_t i : {0u, 2u, 4u}) xp[i] *= 1.0 + h;
   for (const std::size_t k : {std::size_t(0)}) {
     const measured::DataSet d = paper_reference_data(s, true, k);
-    fit::FeRigOptions with_default = paper_fe_rig_options(s);
+    fit::RigForwardModelOptions with_default = paper_fe_rig_options(s);
     with_default.contact_stiffness_factor = 0.0;
-    const auto ref = fit::make_fe_rig_model(d, spec, with_default);
-    const auto patch = fit::make_fe_rig_model(d, spec, paper_fe_rig_options(s));
-    const auto warm = fit::make_fe_rig_model(d, spec, paper_fe_rig_options(s));
+    const auto ref = fit::make_rig_forward_model(d, spec, with_default);
+    const auto patch = fit::make_rig_forward_model(d, spec, paper_fe_rig_options(s));
+    const auto warm = fit::make_rig_forward_model(d, spec, paper_fe_rig_options(s));
     const std::vector<double> f0 = ref->predict(x);
     std::shared_ptr<const fit::WarmStart> state;
     const std::vector<double> f1 = patch->predict_warm(x, nullptr, &state);
@@ -215,8 +215,9 @@ TEST(PaperFit, PatchContactStiffnessAndWarmStartsKeepTheRigForces) {
       d_warm = std::max(d_warm, std::abs(fp_warm[i] - fp_cold[i]));
       d_h = std::max(d_h, std::abs(fp_cold[i] - f1[i]));
     }
-    const fit::FeRigEffort e0 = fit::fe_rig_effort(*ref), e1 = fit::fe_rig_effort(*patch),
-                           ew = fit::fe_rig_effort(*warm);
+    const fit::RigForwardModelEffort e0 = fit::rig_forward_model_effort(*ref),
+                                     e1 = fit::rig_forward_model_effort(*patch),
+                                     ew = fit::rig_forward_model_effort(*warm);
     std::cout << "depth " << s.depths[k] << " m: peak " << peak << " N; |patch eps - default eps| "
               << d_eps / peak << " of peak, |warm - cold| " << d_warm / peak << " (the step " << h
               << " moves the force by " << d_h / peak << "); Newton iterations per solve: default eps "

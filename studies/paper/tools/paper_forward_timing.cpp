@@ -10,8 +10,8 @@
 // Prints the rig's size, then for a cold solve at the truth and a warm solve at parameters 1e-6
 // away (started from the cold one, as the fit's Jacobian columns are): wall and CPU seconds, Newton
 // and contact iterations, cut-backs, and the forces.
-#include "calibration/fit/fe_rig.hpp"
 #include "calibration/fit/model_spec.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
@@ -36,8 +36,8 @@ struct Clock {
   }
 };
 
-void report(const std::string& what, const Clock& c, const fit::FeRigEffort& before,
-            const fit::FeRigEffort& after, const std::vector<double>& f) {
+void report(const std::string& what, const Clock& c, const fit::RigForwardModelEffort& before,
+            const fit::RigForwardModelEffort& after, const std::vector<double>& f) {
   std::cout << what << ": " << c.since() << ", " << after.steps - before.steps << " load steps, "
             << after.newton - before.newton << " Newton iterations, " << after.outer - before.outer
             << " contact outer iterations, " << after.cutbacks - before.cutbacks
@@ -69,24 +69,24 @@ int run(int argc, char** argv) {
     x.insert(x.end(), s.prony_moduli.begin(), s.prony_moduli.end());
     x.insert(x.end(), s.prony_taus.begin(), s.prony_taus.end());
   }
-  fit::FeRigOptions fe = tm::paper_fe_rig_options(s);
+  fit::RigForwardModelOptions fe = tm::paper_fe_rig_options(s);
   if (argc == 8) fe.newton_max_iterations = std::stoi(argv[7]);
-  const auto model = fit::make_fe_rig_model(d, spec, fe);
+  const auto model = fit::make_rig_forward_model(d, spec, fe);
   std::cout << model->description() << "\ndepth " << significant(s.depths[k] * 1e3, 4) << " mm, "
             << d.tests[0].size() << " samples, contact stiffness factor "
             << significant(s.contact_stiffness_factor, 3) << " (0: solver default)\n";
-  fit::FeRigEffort e0 = fit::fe_rig_effort(*model);
+  fit::RigForwardModelEffort e0 = fit::rig_forward_model_effort(*model);
   Clock c;
   std::shared_ptr<const fit::WarmStart> state;
   const std::vector<double> f = model->predict_warm(x, nullptr, &state);
-  fit::FeRigEffort e1 = fit::fe_rig_effort(*model);
+  fit::RigForwardModelEffort e1 = fit::rig_forward_model_effort(*model);
   report("cold solve at the truth", c, e0, e1, f);
   std::vector<double> xp = x;
   for (std::size_t i = 0; i < xp.size(); ++i)
     if (i != 1) xp[i] *= 1.0 + 1e-6;  // every parameter but poisson (fixed in the study)
   Clock cw;
   const std::vector<double> fw = model->predict_warm(xp, state.get(), nullptr);
-  report("warm solve at 1e-6 away", cw, e1, fit::fe_rig_effort(*model), fw);
+  report("warm solve at 1e-6 away", cw, e1, fit::rig_forward_model_effort(*model), fw);
   return 0;
 }
 

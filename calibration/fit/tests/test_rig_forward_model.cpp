@@ -2,7 +2,7 @@
 // frictionless platens: linear tets carry the homogeneous state exactly), viscoelastic relaxation
 // to the long-term response, sphere indentation against Hertz at a shallow depth, thread safety,
 // and an FE fit that recovers the parameters its own model made.
-#include "calibration/fit/fe_rig.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 
 #include "calibration/closed_forms/homogeneous.hpp"
 #include "calibration/closed_forms/indentation.hpp"
@@ -42,18 +42,18 @@ ms::DataSet block_compression(double strain, double t_end) {
   return d;
 }
 
-FeRigOptions coarse() {
-  FeRigOptions o;
+RigForwardModelOptions coarse() {
+  RigForwardModelOptions o;
   o.mesh.cells = 2;
   o.mesh.layers = 2;
   return o;
 }
 
-TEST(FeRig, FrictionlessPlatensGiveTheHomogeneousClosedForm) {
+TEST(RigForwardModel, FrictionlessPlatensGiveTheHomogeneousClosedForm) {
   for (const char* law : {"stvk", "neo_hookean"}) {
     const ms::DataSet d = block_compression(0.15, 1.0);
     const ModelSpec spec = parse_model_spec(law);
-    const auto model = make_fe_rig_model(d, spec, coarse());
+    const auto model = make_rig_forward_model(d, spec, coarse());
     const std::vector<double> x = {5000.0, 0.3};
     const std::vector<double> f = model->predict(x);
     const tm::Law l = build_law(spec, x);
@@ -69,24 +69,24 @@ TEST(FeRig, FrictionlessPlatensGiveTheHomogeneousClosedForm) {
   }
 }
 
-TEST(FeRig, TensionForceIsNegative) {
+TEST(RigForwardModel, TensionForceIsNegative) {
   ms::DataSet d = block_compression(0.1, 1.0);
   d.meta.test = ms::TestType::uniaxial_tension;
   d.meta.sample.bottom.reset();  // tension grips: the platens, bonded
   d.meta.sample.platens = ms::Interface::bonded;
   for (double& u : d.tests[0].displacement_m) u = -u;
-  const auto model = make_fe_rig_model(d, parse_model_spec("neo_hookean"), coarse());
+  const auto model = make_rig_forward_model(d, parse_model_spec("neo_hookean"), coarse());
   const std::vector<double> f = model->predict({5000.0, 0.3});
   EXPECT_LT(f.back(), 0.0);
 }
 
-TEST(FeRig, PronyTermsRelaxToTheLongTermResponse) {
+TEST(RigForwardModel, PronyTermsRelaxToTheLongTermResponse) {
   // One Prony term, tau = 0.5 s: 20 s of hold is 40 tau, the branch stress decays to e^-40.
   const ms::DataSet d = block_compression(0.05, 20.0);
   const ModelSpec visco = parse_model_spec("neo_hookean+prony:1");
-  const auto model = make_fe_rig_model(d, visco, coarse());
+  const auto model = make_rig_forward_model(d, visco, coarse());
   const std::vector<double> f = model->predict({5000.0, 0.3, 5000.0, 0.5});
-  const auto elastic = make_fe_rig_model(d, parse_model_spec("neo_hookean"), coarse());
+  const auto elastic = make_rig_forward_model(d, parse_model_spec("neo_hookean"), coarse());
   const std::vector<double> fe = elastic->predict({5000.0, 0.3});
   const std::size_t ramp_end = 5, last = f.size() - 1;
   EXPECT_GT(f[ramp_end], 1.3 * fe[ramp_end]);  // the branch carries stress at the end of the ramp
@@ -95,7 +95,7 @@ TEST(FeRig, PronyTermsRelaxToTheLongTermResponse) {
     EXPECT_LE(f[i], f[i - 1] * (1.0 + 1e-12)) << "relaxes monotonically";
 }
 
-TEST(FeRig, ShallowSphereIndentationIsCloseToHertzAndThreadSafe) {
+TEST(RigForwardModel, ShallowSphereIndentationIsCloseToHertzAndThreadSafe) {
   // A 5 mm sphere 0.5 mm into a 40 x 40 x 20 mm block on a frictionless support: a/h = 0.08, the
   // layer correction (Dimitriadis, frictionless) about 1 + 0.39 a/h: 3 %. The coarse graded mesh
   // (8 cells across, 4 layers: about two nodes in contact) is far stiffer: measured F/F_Hertz = 1.77
@@ -108,10 +108,10 @@ TEST(FeRig, ShallowSphereIndentationIsCloseToHertzAndThreadSafe) {
   t.time_s = {0.0, 0.5, 1.0};
   t.displacement_m = {0.0, 0.00025, 0.0005};
   t.force_N = {0.0, 1.0, 1.0};
-  FeRigOptions o;
+  RigForwardModelOptions o;
   o.mesh.cells = 8;
   o.mesh.layers = 4;
-  const auto model = make_fe_rig_model(d, parse_model_spec("stvk"), o);
+  const auto model = make_rig_forward_model(d, parse_model_spec("stvk"), o);
   const std::vector<double> x = {3000.0, 0.45};
   const std::vector<double> f = model->predict(x);
   EXPECT_EQ(f.front(), 0.0);
@@ -131,14 +131,14 @@ TEST(FeRig, ShallowSphereIndentationIsCloseToHertzAndThreadSafe) {
   EXPECT_EQ(b, model->predict({3300.0, 0.45}));
 }
 
-TEST(FeRig, FitRecoversItsOwnParametersWithTheSurrogateAsGlobalStage) {
+TEST(RigForwardModel, FitRecoversItsOwnParametersWithTheSurrogateAsGlobalStage) {
   // Noise-free FE data of a neo-Hookean block (E = 8 kPa, nu = 0.3 fixed), fitted with the FE rig;
   // the homogeneous closed form is the global stage's model.
   ms::DataSet d = block_compression(0.2, 1.0);
   const ModelSpec spec = parse_model_spec("neo_hookean,poisson=0.3");
-  synthetic::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3}));
+  synthetic::set_forces(d, make_rig_forward_model(d, spec, coarse())->predict({8000.0, 0.3}));
   std::string why;
-  const Problem pr = make_fe_rig_problem(d, spec, {}, {}, coarse(), &why);
+  const Problem pr = make_rig_forward_problem(d, spec, {}, {}, coarse(), &why);
   ASSERT_TRUE(pr.global_model) << why;
   EXPECT_EQ(pr.global_model->name(), "platen_unconfined");
   FitOptions o;
@@ -152,7 +152,7 @@ TEST(FeRig, FitRecoversItsOwnParametersWithTheSurrogateAsGlobalStage) {
   EXPECT_GT(r.global_solves, 0);
 }
 
-TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
+TEST(RigForwardModel, WarmStartKeepsThePlatenForcesInFewerIterations) {
   // Viscoelastic platen compression: a solve started from the one at parameters 1e-6 away gives the
   // cold solve's forces to well below the difference the step makes, in fewer Newton iterations.
   const ms::DataSet d = block_compression(0.15, 3.0);
@@ -161,8 +161,8 @@ TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
   std::vector<double> xp = x;
   xp[0] *= 1.0 + 1e-6;
   xp[3] *= 1.0 + 1e-6;
-  const auto cold = make_fe_rig_model(d, spec, coarse());
-  const auto warm = make_fe_rig_model(d, spec, coarse());
+  const auto cold = make_rig_forward_model(d, spec, coarse());
+  const auto warm = make_rig_forward_model(d, spec, coarse());
   std::shared_ptr<const WarmStart> state;
   const std::vector<double> f = cold->predict_warm(x, nullptr, &state);
   ASSERT_TRUE(state);
@@ -175,7 +175,7 @@ TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
   }
   EXPECT_GT(dh, 0.0);
   EXPECT_LT(dw, 1e-3 * dh);
-  const FeRigEffort ec = fe_rig_effort(*cold), ew = fe_rig_effort(*warm);
+  const RigForwardModelEffort ec = rig_forward_model_effort(*cold), ew = rig_forward_model_effort(*warm);
   EXPECT_EQ(ec.solves, 3);
   EXPECT_EQ(ew.solves, 1);
   EXPECT_EQ(ew.warm, 1);
@@ -186,17 +186,17 @@ TEST(FeRig, WarmStartKeepsThePlatenForcesInFewerIterations) {
   EXPECT_NE(cold->effort().find("3 FE solves"), std::string::npos) << cold->effort();
 }
 
-TEST(FeRig, WarmJacobianColumnsGiveTheColdFit) {
+TEST(RigForwardModel, WarmJacobianColumnsGiveTheColdFit) {
   ms::DataSet d = block_compression(0.2, 2.0);
   const ModelSpec spec = parse_model_spec("neo_hookean+prony:1,poisson=0.3");
-  synthetic::set_forces(d, make_fe_rig_model(d, spec, coarse())->predict({8000.0, 0.3, 4000.0, 0.4}));
+  synthetic::set_forces(d, make_rig_forward_model(d, spec, coarse())->predict({8000.0, 0.3, 4000.0, 0.4}));
   FitOptions o;
   o.starts = 4;
   o.local_runs = 1;
   o.profile = false;
   std::vector<FitResult> r;
   for (const bool warm : {false, true}) {
-    const Problem pr = make_fe_rig_problem(d, spec, {}, {}, coarse());
+    const Problem pr = make_rig_forward_problem(d, spec, {}, {}, coarse());
     o.warm_start = warm;
     r.push_back(fit(pr, o));
   }
@@ -209,16 +209,16 @@ TEST(FeRig, WarmJacobianColumnsGiveTheColdFit) {
   EXPECT_NE(r[1].model_effort.find("warm-started"), std::string::npos);
 }
 
-TEST(FeRig, JacobianStepIsTheOptionsAndBadStepsAreRefused) {
+TEST(RigForwardModel, JacobianStepIsTheOptionsAndBadStepsAreRefused) {
   const ms::DataSet d = block_compression(0.1, 1.0);
-  EXPECT_EQ(make_fe_rig_model(d, parse_model_spec("stvk"))->jacobian_step(), 1e-6);  // the default
-  FeRigOptions o;
+  EXPECT_EQ(make_rig_forward_model(d, parse_model_spec("stvk"))->jacobian_step(), 1e-6);  // the default
+  RigForwardModelOptions o;
   o.jacobian_step = 1e-3;
-  EXPECT_EQ(make_fe_rig_model(d, parse_model_spec("stvk"), o)->jacobian_step(), 1e-3);
+  EXPECT_EQ(make_rig_forward_model(d, parse_model_spec("stvk"), o)->jacobian_step(), 1e-3);
   for (const double bad : {0.0, -1e-4, 0.5}) {
     o.jacobian_step = bad;
     try {
-      make_fe_rig_model(d, parse_model_spec("stvk"), o);
+      make_rig_forward_model(d, parse_model_spec("stvk"), o);
       ADD_FAILURE() << "jacobian_step " << bad << " accepted";
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("jacobian_step"), std::string::npos) << e.what();
@@ -226,11 +226,11 @@ TEST(FeRig, JacobianStepIsTheOptionsAndBadStepsAreRefused) {
   }
 }
 
-TEST(FeRig, DataWithoutARigIsRefusedNamingTheKey) {
+TEST(RigForwardModel, DataWithoutARigIsRefusedNamingTheKey) {
   ms::DataSet d = block_compression(0.1, 1.0);
   d.meta.sample.platens.reset();
   try {
-    make_fe_rig_model(d, parse_model_spec("stvk"));
+    make_rig_forward_model(d, parse_model_spec("stvk"));
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("key 'sample.platens'"), std::string::npos) << e.what();

@@ -1,6 +1,6 @@
 // Tests of rig_from_data: every field of the rig comes from the data set (test type, indenter,
 // sample, supports, history), and missing or rig-less metadata is an error naming the JSON key.
-#include "calibration/rigs/data_rig.hpp"
+#include "calibration/rigs/rig_from_data.hpp"
 
 #include "core/base/error.hpp"
 
@@ -61,7 +61,7 @@ void expect_error(const ms::DataSet& d, const std::string& part) {
   }
 }
 
-TEST(DataRig, IndentationBlockTakesEveryFieldFromTheData) {
+TEST(RigFromData, IndentationBlockTakesEveryFieldFromTheData) {
   const RigSpec s = rig_from_data(indentation(), 0);
   EXPECT_EQ(s.test, RigTest::Indentation);
   EXPECT_EQ(s.shape, SampleShape::Block);
@@ -76,20 +76,20 @@ TEST(DataRig, IndentationBlockTakesEveryFieldFromTheData) {
   EXPECT_DOUBLE_EQ(s.history.t[0], 0.0);
   EXPECT_DOUBLE_EQ(s.history.t[4], 2.0);
   EXPECT_DOUBLE_EQ(s.history.d[4], 0.002);
-  EXPECT_DOUBLE_EQ(data_rig_time_shift(indentation(), 0), 0.0);
+  EXPECT_DOUBLE_EQ(rig_from_data_time_shift(indentation(), 0), 0.0);
 }
 
-TEST(DataRig, ALoadedFirstSampleGetsARestStateOneIntervalBefore) {
+TEST(RigFromData, ALoadedFirstSampleGetsARestStateOneIntervalBefore) {
   const ms::DataSet d = indentation(0.0002);
   const RigSpec s = rig_from_data(d, 0);
   ASSERT_EQ(s.history.t.size(), 6u);
   EXPECT_DOUBLE_EQ(s.history.d[0], 0.0);
   EXPECT_DOUBLE_EQ(s.history.t[1], 0.5);
   EXPECT_DOUBLE_EQ(s.history.d[1], 0.0002);
-  EXPECT_DOUBLE_EQ(data_rig_time_shift(d, 0), 0.5);
+  EXPECT_DOUBLE_EQ(rig_from_data_time_shift(d, 0), 0.5);
 }
 
-TEST(DataRig, AHalfSpaceBecomesALargeBlockOnAFrictionlessSupport) {
+TEST(RigFromData, AHalfSpaceBecomesALargeBlockOnAFrictionlessSupport) {
   ms::DataSet d = indentation();
   d.meta.sample.shape = ms::SampleShape::half_space;
   d.meta.sample.bottom.reset();
@@ -100,7 +100,7 @@ TEST(DataRig, AHalfSpaceBecomesALargeBlockOnAFrictionlessSupport) {
   EXPECT_EQ(s.bottom, Support::Frictionless);
 }
 
-TEST(DataRig, PlatenTestsTakeTheCylinderAndThePlatens) {
+TEST(RigFromData, PlatenTestsTakeTheCylinderAndThePlatens) {
   for (const auto type : {ms::TestType::unconfined_compression, ms::TestType::confined_compression,
                           ms::TestType::uniaxial_tension}) {
     const RigSpec s = rig_from_data(compression(type), 0);
@@ -112,7 +112,7 @@ TEST(DataRig, PlatenTestsTakeTheCylinderAndThePlatens) {
   }
 }
 
-TEST(DataRig, MissingOrRiglessMetadataNamesTheKey) {
+TEST(RigFromData, MissingOrRiglessMetadataNamesTheKey) {
   ms::DataSet d = indentation();
   d.meta.indenter.reset();
   expect_error(d, "ind.json: key 'indenter'");

@@ -1,5 +1,5 @@
-// Measured data -> rig (data_rig.hpp has the mapping).
-#include "calibration/rigs/data_rig.hpp"
+// Measured data -> rig (rig_from_data.hpp has the mapping).
+#include "calibration/rigs/rig_from_data.hpp"
 
 #include "core/base/error.hpp"
 
@@ -27,13 +27,13 @@ Support support(ms::Interface i) {
 
 }  // namespace
 
-double data_rig_time_shift(const DataSet& d, std::size_t k) {
+double rig_from_data_time_shift(const DataSet& d, std::size_t k) {
   const ms::Test& t = d.tests.at(k);
   if (t.size() < 2) return 0.0;
   return t.displacement_m.front() != 0.0 ? t.time_s[1] - t.time_s[0] : 0.0;
 }
 
-RigSpec rig_from_data(const DataSet& d, std::size_t k, const DataRigMesh& mesh) {
+RigSpec rig_from_data(const DataSet& d, std::size_t k, const RigFromDataMesh& mesh) {
   if (k >= d.tests.size())
     throw Error(d.meta.name + ": no test " + std::to_string(k + 1) + " (the data set has " +
                 std::to_string(d.tests.size()) + ")");
@@ -62,7 +62,7 @@ RigSpec rig_from_data(const DataSet& d, std::size_t k, const DataRigMesh& mesh) 
   }
 
   // The driving history: data time from the first sample, at rest at t = 0.
-  const double shift = data_rig_time_shift(d, k);
+  const double shift = rig_from_data_time_shift(d, k);
   s.history.t.clear();
   s.history.d.clear();
   if (shift > 0.0) {

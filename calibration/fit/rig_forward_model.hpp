@@ -1,6 +1,6 @@
 // The FE-rig forward model of a fit (issue 14, docs/identification.md "Forward models"): every test
 // of the data is simulated in-process with the fast model on the rig the data's JSON names
-// (calibration/rigs/data_rig.hpp), and the rig force at every sample is returned. No case file, no
+// (calibration/rigs/rig_from_data.hpp), and the rig force at every sample is returned. No case file, no
 // result directory: the mesh, the model, the boundary conditions and the solver are built through
 // the library APIs at each predict() (so predict() is const and thread-safe: concurrent calls share
 // only the read-only mesh, node sets and rigid bodies).
@@ -13,7 +13,7 @@
 // data's sampling interval (the solvers' begin_step/commit_step protocol). A load step that does not
 // converge is approached through intermediate, uncommitted targets: cut-backs find the starting
 // iterate and never refine the history's time steps, so the forces are a smooth function of the
-// parameters whatever the solver needed (fe_rig.cpp, load_step).
+// parameters whatever the solver needed (rig_forward_model.cpp, load_step).
 //
 // The model of each law (the fast model where the paper has one):
 //   stvk                 TensorMassStVK (the paper's tensor-mass model);
@@ -31,7 +31,7 @@
 #include "calibration/data/measured_data.hpp"
 #include "calibration/fit/forward_model.hpp"
 #include "calibration/fit/model_spec.hpp"
-#include "calibration/rigs/data_rig.hpp"
+#include "calibration/rigs/rig_from_data.hpp"
 
 #include <functional>
 #include <memory>
@@ -41,12 +41,12 @@
 
 namespace tmlab::fit {
 
-struct FeRigOptions {
-  rigs::DataRigMesh mesh;      ///< the rigs' mesh resolution
+struct RigForwardModelOptions {
+  rigs::RigFromDataMesh mesh;  ///< the rigs' mesh resolution
   int substeps = 1;            ///< static load steps per data sampling interval
   double newton_rtol = 1e-11;  ///< tight: the fit differentiates the forces numerically
   /// Newton iterations before a load step is cut back (a cut-back only finds a starting iterate:
-  /// it does not change the step's result, see fe_rig.cpp load_step).
+  /// it does not change the step's result, see rig_forward_model.cpp load_step).
   int newton_max_iterations = 40;
   /// Indentation: > 0 sets the contact stiffness eps = factor x the mean K_0 zz-diagonal over the
   /// top-face nodes within the contact radius at peak depth (sqrt(R d_max) for a sphere, R for a
@@ -74,11 +74,11 @@ struct FeRigOptions {
 /// the displacements and contact multipliers of a previous prediction at that sample; effort()
 /// counts solves, load steps, Newton and contact iterations, cut-backs); tmlab::Error (naming the data's JSON
 /// key) when a test has no rig.
-std::unique_ptr<ForwardModel> make_fe_rig_model(const measured::DataSet& data, const ModelSpec& spec,
-                                                const FeRigOptions& options = {});
+std::unique_ptr<ForwardModel> make_rig_forward_model(const measured::DataSet& data, const ModelSpec& spec,
+                                                     const RigForwardModelOptions& options = {});
 
 /// The solver effort of an FE-rig model, summed over its predictions so far.
-struct FeRigEffort {
+struct RigForwardModelEffort {
   long solves = 0, warm = 0;  ///< predictions, of which warm-started
   long steps = 0;             ///< load steps (accepted increments asked for)
   long newton = 0;            ///< Newton iterations (over every contact outer iteration and cut-back)
@@ -86,14 +86,15 @@ struct FeRigEffort {
   long cutbacks = 0;
 };
 /// The effort of `model`; tmlab::Error when it is not an FE-rig model.
-FeRigEffort fe_rig_effort(const ForwardModel& model);
+RigForwardModelEffort rig_forward_model_effort(const ForwardModel& model);
 
 /// The problem with the FE-rig model for the final numbers and, when the data and law have one, the
 /// closed-form surrogate (surrogates.hpp) as the global stage's model (Problem::global_model; its
 /// absence and the reason are in `why_no_surrogate`).
-Problem make_fe_rig_problem(const measured::DataSet& data, const ModelSpec& spec,
-                            const std::vector<std::pair<std::string, double>>& fixes = {},
-                            const std::vector<std::pair<std::string, double>>& weights = {},
-                            const FeRigOptions& options = {}, std::string* why_no_surrogate = nullptr);
+Problem make_rig_forward_problem(const measured::DataSet& data, const ModelSpec& spec,
+                                 const std::vector<std::pair<std::string, double>>& fixes = {},
+                                 const std::vector<std::pair<std::string, double>>& weights = {},
+                                 const RigForwardModelOptions& options = {},
+                                 std::string* why_no_surrogate = nullptr);
 
 }  // namespace tmlab::fit

@@ -28,7 +28,7 @@
 namespace tmlab::rigs {
 
 /// The mesh resolution of rigs made from data (the data say nothing about it).
-struct DataRigMesh {
+struct RigFromDataMesh {
   int cells = 12;        ///< cells across the smaller lateral size (cylinder: 2 per ring)
   int layers = 6;        ///< cells through the height
   double grading = 2.0;  ///< indentation: power of the grading towards the indenter
@@ -37,10 +37,10 @@ struct DataRigMesh {
 /// The rig of test `k` of `data`; tmlab::Error naming the data set's JSON key (or the test and
 /// sample) when something the rig needs is missing or has no rig (a cylinder indenter, an indented
 /// cylinder, platens missing from a compression test, a history that leaves the sample ...).
-RigSpec rig_from_data(const measured::DataSet& data, std::size_t k, const DataRigMesh& mesh = {});
+RigSpec rig_from_data(const measured::DataSet& data, std::size_t k, const RigFromDataMesh& mesh = {});
 
 /// The time shift the history of test `k` got: 0, or one sampling interval when the first sample is
 /// already loaded (data time t is rig time t - time_s[0] + shift).
-double data_rig_time_shift(const measured::DataSet& data, std::size_t k);
+double rig_from_data_time_shift(const measured::DataSet& data, std::size_t k);
 
 }  // namespace tmlab::rigs

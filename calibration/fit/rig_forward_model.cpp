@@ -1,5 +1,5 @@
-// The FE-rig forward model (fe_rig.hpp explains the choices).
-#include "calibration/fit/fe_rig.hpp"
+// The FE-rig forward model (rig_forward_model.hpp explains the choices).
+#include "calibration/fit/rig_forward_model.hpp"
 
 #include "calibration/fit/surrogates.hpp"
 #include "core/base/error.hpp"
@@ -60,13 +60,13 @@ std::vector<DirichletCondition> conditions_of(const nlohmann::json& boundary, co
 
 /// The state of one prediction, per test and sample: the displacements and (contact rigs) the
 /// committed contact state (multipliers, candidates) after the load step that reached the sample.
-struct FeRigState final : WarmStart {
+struct RigForwardModelState final : WarmStart {
   std::vector<std::vector<tm::VecX>> u;
   std::vector<std::vector<std::vector<double>>> contact;
 };
 
 /// The mean K_0 zz-diagonal over the top-face nodes within the contact radius at peak depth of the
-/// indenter's axis (FeRigOptions::contact_stiffness_factor), N/m.
+/// indenter's axis (RigForwardModelOptions::contact_stiffness_factor), N/m.
 double patch_stiffness(const TestRig& r, const tm::MechanicalSystem& sys) {
   const rigs::RigSpec& s = r.spec;
   const double rc = s.indenter == rigs::IndenterShape::Sphere
@@ -91,9 +91,10 @@ double patch_stiffness(const TestRig& r, const tm::MechanicalSystem& sys) {
   return sum / n;
 }
 
-class FeRigModel final : public ForwardModel {
+class RigForwardModel final : public ForwardModel {
  public:
-  FeRigModel(const ms::DataSet& d, ModelSpec spec, FeRigOptions o) : spec_(std::move(spec)), opt_(o) {
+  RigForwardModel(const ms::DataSet& d, ModelSpec spec, RigForwardModelOptions o)
+      : spec_(std::move(spec)), opt_(o) {
     if (opt_.substeps < 1) throw Error("fe_rig: substeps must be >= 1");
     if (opt_.newton_max_iterations < 1) throw Error("fe_rig: newton_max_iterations must be >= 1");
     if (!(opt_.jacobian_step > 0.0 && opt_.jacobian_step < 0.1))
@@ -109,7 +110,7 @@ class FeRigModel final : public ForwardModel {
       for (std::size_t i = 0; i < r->conditions.size(); ++i)
         if (r->conditions[i].name == "top_platen") r->top = i;
       if (c.contains("contact")) r->bodies = tm::parse_contact_section(c["contact"], where).bodies;
-      const double shift = rigs::data_rig_time_shift(d, k);
+      const double shift = rigs::rig_from_data_time_shift(d, k);
       const ms::Test& t = d.tests[k];
       for (std::size_t i = 0; i < t.size(); ++i) r->sample_times.push_back(t.time_s[i] - t.time_s[0] + shift);
       indentation_ = r->spec.test == rigs::RigTest::Indentation;
@@ -144,9 +145,9 @@ class FeRigModel final : public ForwardModel {
     const auto [young, nu] = small_strain_young_poisson(spec_, x);
     (void)nu;
     const auto [moduli, taus] = prony_terms(spec_, x);
-    const auto* start = dynamic_cast<const FeRigState*>(from);
+    const auto* start = dynamic_cast<const RigForwardModelState*>(from);
     if (start && start->u.size() != rigs_.size()) start = nullptr;
-    auto state = keep ? std::make_shared<FeRigState>() : nullptr;
+    auto state = keep ? std::make_shared<RigForwardModelState>() : nullptr;
     std::vector<double> out;
     for (std::size_t k = 0; k < rigs_.size(); ++k) {
       Trajectory tr;
@@ -174,13 +175,13 @@ class FeRigModel final : public ForwardModel {
     return out;
   }
 
-  FeRigEffort counts() const {
+  RigForwardModelEffort counts() const {
     return {effort_.solves.load(), effort_.warm.load(),  effort_.steps.load(),
             effort_.newton.load(), effort_.outer.load(), effort_.cutbacks.load()};
   }
 
   std::string effort() const override {
-    const FeRigEffort e = counts();
+    const RigForwardModelEffort e = counts();
     const double n = double(std::max(1L, e.solves));
     auto per = [n](long v) { return significant(double(v) / n, 3); };
     return std::to_string(e.solves) + " FE solves (" + std::to_string(e.warm) +
@@ -366,7 +367,7 @@ class FeRigModel final : public ForwardModel {
   };
 
   ModelSpec spec_;
-  FeRigOptions opt_;
+  RigForwardModelOptions opt_;
   mutable Effort effort_;
   std::vector<std::unique_ptr<TestRig>> rigs_;
   bool indentation_ = false;
@@ -375,24 +376,24 @@ class FeRigModel final : public ForwardModel {
 
 }  // namespace
 
-FeRigEffort fe_rig_effort(const ForwardModel& model) {
-  const auto* fe = dynamic_cast<const FeRigModel*>(&model);
-  if (!fe) throw Error("fe_rig_effort: '" + model.name() + "' is not an FE-rig model");
+RigForwardModelEffort rig_forward_model_effort(const ForwardModel& model) {
+  const auto* fe = dynamic_cast<const RigForwardModel*>(&model);
+  if (!fe) throw Error("rig_forward_model_effort: '" + model.name() + "' is not an FE-rig model");
   return fe->counts();
 }
 
-std::unique_ptr<ForwardModel> make_fe_rig_model(const ms::DataSet& d, const ModelSpec& spec,
-                                                const FeRigOptions& o) {
+std::unique_ptr<ForwardModel> make_rig_forward_model(const ms::DataSet& d, const ModelSpec& spec,
+                                                     const RigForwardModelOptions& o) {
   if (d.tests.empty()) throw Error(d.meta.name + ": the data set has no tests");
-  return std::make_unique<FeRigModel>(d, spec, o);
+  return std::make_unique<RigForwardModel>(d, spec, o);
 }
 
-Problem make_fe_rig_problem(const ms::DataSet& d, const ModelSpec& spec,
-                            const std::vector<std::pair<std::string, double>>& fixes,
-                            const std::vector<std::pair<std::string, double>>& weights, const FeRigOptions& o,
-                            std::string* why_no_surrogate) {
+Problem make_rig_forward_problem(const ms::DataSet& d, const ModelSpec& spec,
+                                 const std::vector<std::pair<std::string, double>>& fixes,
+                                 const std::vector<std::pair<std::string, double>>& weights,
+                                 const RigForwardModelOptions& o, std::string* why_no_surrogate) {
   Problem pr = make_data_problem(d, spec, fixes, weights);
-  pr.model = make_fe_rig_model(d, spec, o);
+  pr.model = make_rig_forward_model(d, spec, o);
   try {
     pr.global_model = make_surrogate_model(d, spec);
   } catch (const Error& e) {
