@@ -32,7 +32,7 @@ CommandSpec hereditary_spec() {
   return {
       "hereditary",
       {"[options]"},
-      "the Prony recursions (seed midpoint, exact_linear, backward_euler)\n"
+      "the Prony recursions (xu2011 midpoint, exact_linear, backward_euler)\n"
       "against the exact hereditary integral: strain histories, haptic\n"
       "steps, the liver relaxation; results/hereditary/ (docs/hereditary.md)",
       {text_list("--histories", "LIST", "strain history groups").def("ramp_hold,sine,random").role(kResult),

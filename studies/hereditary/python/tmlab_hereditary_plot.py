@@ -26,7 +26,7 @@ from tmlab_study_plot import input_file, label_axes, save  # noqa: E402
 
 SCHEMES = ["midpoint", "exact_linear", "backward_euler"]
 COLORS = {"midpoint": "tab:red", "exact_linear": "tab:blue", "backward_euler": "tab:green"}
-LABELS = {"midpoint": "midpoint (seed eq. 20)", "exact_linear": "exact_linear", "backward_euler": "backward_euler"}
+LABELS = {"midpoint": "midpoint (xu2011, eq. 20)", "exact_linear": "exact_linear", "backward_euler": "backward_euler"}
 
 
 def fail(msg):
