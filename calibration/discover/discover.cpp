@@ -752,15 +752,16 @@ nlohmann::json to_json(const Report& r) {
   for (const auto& e : effect_library())
     j["library"].push_back(
         {{"effect", e.name}, {"kind", to_string(e.kind)}, {"change", e.change}, {"signature", e.signature}});
-  j["options"] = {{"poisson", r.options.poisson},
-                  {"fix_poisson", r.options.fix_poisson},
-                  {"baseline", to_string(r.options.baseline_law) + "+prony:" + std::to_string(r.options.baseline_prony)},
-                  {"max_rounds", r.options.max_rounds},
-                  {"starts", r.options.starts},
-                  {"seed", r.options.seed},
-                  {"max_samples", r.options.max_samples},
-                  {"alpha", r.options.thresholds.alpha},
-                  {"test_control", r.options.test_control}};
+  j["options"] = {
+      {"poisson", r.options.poisson},
+      {"fix_poisson", r.options.fix_poisson},
+      {"baseline", to_string(r.options.baseline_law) + "+prony:" + std::to_string(r.options.baseline_prony)},
+      {"max_rounds", r.options.max_rounds},
+      {"starts", r.options.starts},
+      {"seed", r.options.seed},
+      {"max_samples", r.options.max_samples},
+      {"alpha", r.options.thresholds.alpha},
+      {"test_control", r.options.test_control}};
   j["wall_seconds"] = r.seconds;
   return j;
 }

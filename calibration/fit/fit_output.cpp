@@ -3,10 +3,10 @@
 
 #include "calibration/fit/relaxation_bands.hpp"
 #include "calibration/fit/surrogates.hpp"
-#include "core/constitutive/law_catalogue.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/json_number.hpp"
 

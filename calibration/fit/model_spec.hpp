@@ -10,9 +10,10 @@
 // e.g. "neo_hookean", "ogden:2,poisson=0.49", "stvk+prony:2,poisson=0.45".
 //
 // The parameters of each law, in physical units, in the law catalogue's order with its bounds and fit
-// starts (core/constitutive/law_catalogue.hpp; a list parameter "mu" becomes mu1..muN) (every law carries its small-strain Poisson's ratio
-// instead of a bulk modulus, so one fixed value, poisson=0.49, makes any law nearly incompressible:
-// kappa = 2 mu0 (1 + nu) / (3 (1 - 2 nu)) with mu0 the law's small-strain shear modulus):
+// starts (core/constitutive/law_catalogue.hpp; a list parameter "mu" becomes mu1..muN) (every law carries its
+// small-strain Poisson's ratio instead of a bulk modulus, so one fixed value, poisson=0.49, makes any law
+// nearly incompressible: kappa = 2 mu0 (1 + nu) / (3 (1 - 2 nu)) with mu0 the law's small-strain shear
+// modulus):
 //   stvk, neo_hookean   young (Pa, > 0), poisson (0 .. 0.4999)
 //   mooney_rivlin       c10, c01 (Pa, c10 + c01 > 0), poisson
 //   yeoh                c10 (Pa, > 0), c20, c30 (Pa), poisson

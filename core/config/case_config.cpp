@@ -142,8 +142,7 @@ double finite_number(ConfigReader& m, const std::string& key) {
 MaterialSpec parse_material(ConfigReader& root) {
   ConfigReader m = root.child("material");
   MaterialSpec material;
-  material.law =
-      read_choice(m, "law", MaterialLaw::StVK, material_law_from_string, law_name_list());
+  material.law = read_choice(m, "law", MaterialLaw::StVK, material_law_from_string, law_name_list());
   const MaterialLaw law = material.law;
   const LawDescriptor& descriptor = law_descriptor(law);
   const std::string law_name = to_string(law);

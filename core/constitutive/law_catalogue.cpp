@@ -34,31 +34,51 @@ constexpr LawParameterInfo scalar(const char* name, const char* unit, LawBound l
   return {name, name, unit, lo, hi, false, has_default, 0.0, false, field, nullptr, description, fit};
 }
 
-constexpr LawParameterInfo kYoung{"young",    "E",     "Pa",    kAboveZero, kOpenHigh,
-                                  false,      false,   0.0,     false,      &LawParameters::young,
-                                  nullptr,    "Young's modulus (long-term with Prony terms)",
+constexpr LawParameterInfo kYoung{"young",
+                                  "E",
+                                  "Pa",
+                                  kAboveZero,
+                                  kOpenHigh,
+                                  false,
+                                  false,
+                                  0.0,
+                                  false,
+                                  &LawParameters::young,
+                                  nullptr,
+                                  "Young's modulus (long-term with Prony terms)",
                                   decade(true, 1.0)};
-constexpr LawParameterInfo kPoisson{"poisson", "nu",  "1",   LawBound{-1.0, false}, LawBound{0.5, false},
-                                    false,     false, 0.0,   false,                 &LawParameters::poisson,
-                                    nullptr,   "Poisson's ratio",
+constexpr LawParameterInfo kPoisson{"poisson",
+                                    "nu",
+                                    "1",
+                                    LawBound{-1.0, false},
+                                    LawBound{0.5, false},
+                                    false,
+                                    false,
+                                    0.0,
+                                    false,
+                                    &LawParameters::poisson,
+                                    nullptr,
+                                    "Poisson's ratio",
                                     absolute(0.45, 0.05, 0.495, 0.0, 0.4999)};
 constexpr LawParameterInfo kKappa = scalar("kappa", "Pa", kAboveZero, kOpenHigh, &LawParameters::kappa,
                                            "bulk modulus of the decoupled laws", decade(false, 1.0));
 
 constexpr LawParameterInfo kYoungPoissonParameters[] = {kYoung, kPoisson};
 constexpr LawParameterInfo kMooneyRivlinParameters[] = {
-    scalar("c10", "Pa", kOpenLow, kOpenHigh, &LawParameters::c10, "coefficient of (I1b - 3)", spread(0.35, 0.5)),
-    scalar("c01", "Pa", kOpenLow, kOpenHigh, &LawParameters::c01, "coefficient of (I2b - 3)", spread(0.15, 0.5))};
+    scalar("c10", "Pa", kOpenLow, kOpenHigh, &LawParameters::c10, "coefficient of (I1b - 3)",
+           spread(0.35, 0.5)),
+    scalar("c01", "Pa", kOpenLow, kOpenHigh, &LawParameters::c01, "coefficient of (I2b - 3)",
+           spread(0.15, 0.5))};
 constexpr LawParameterInfo kYeohParameters[] = {
-    scalar("c10", "Pa", kAboveZero, kOpenHigh, &LawParameters::c10, "coefficient of (I1b - 3)", decade(false, 0.5)),
-    scalar("c20", "Pa", kOpenLow, kOpenHigh, &LawParameters::c20, "coefficient of (I1b - 3)^2", spread(0.0, 0.1),
-           true),
-    scalar("c30", "Pa", kOpenLow, kOpenHigh, &LawParameters::c30, "coefficient of (I1b - 3)^3", spread(0.0, 0.02),
-           true)};
+    scalar("c10", "Pa", kAboveZero, kOpenHigh, &LawParameters::c10, "coefficient of (I1b - 3)",
+           decade(false, 0.5)),
+    scalar("c20", "Pa", kOpenLow, kOpenHigh, &LawParameters::c20, "coefficient of (I1b - 3)^2",
+           spread(0.0, 0.1), true),
+    scalar("c30", "Pa", kOpenLow, kOpenHigh, &LawParameters::c30, "coefficient of (I1b - 3)^3",
+           spread(0.0, 0.02), true)};
 constexpr LawParameterInfo kOgdenParameters[] = {
     {"mu", "mu", "Pa", kOpenLow, kOpenHigh, false, false, 0.0, true, nullptr, &LawParameters::mu,
-     "moduli mu_p, one per term",
-     LawFit{FitStart::TermModulus, false, 0.0, 0.0, 0.0, 0.0, -kInf, kInf}},
+     "moduli mu_p, one per term", LawFit{FitStart::TermModulus, false, 0.0, 0.0, 0.0, 0.0, -kInf, kInf}},
     {"alpha", "alpha", "1", kOpenLow, kOpenHigh, true, false, 0.0, true, nullptr, &LawParameters::alpha,
      "exponents alpha_p (non-zero), one per term",
      LawFit{FitStart::TermExponent, false, 0.0, 1.5, 0.0, 0.0, -40.0, 40.0}}};
@@ -110,8 +130,8 @@ constexpr LawDescriptor kLaws[] = {
      "W = c10 (I1 - 3) + c01 (I2 - 3) + volumetric", kMooneyRivlinParameters, BulkResponse::KappaOrPoisson,
      shear_mooney_rivlin, mooney_rivlin_problem, false, true, true, kFastElements},
     {MaterialLaw::Yeoh, name_of(MaterialLaw::Yeoh), "Yeoh",
-     "W = c10 (I1-3) + c20 (I1-3)^2 + c30 (I1-3)^3 + volumetric", kYeohParameters, BulkResponse::KappaOrPoisson,
-     shear_yeoh, nullptr, false, true, true, kFastElements},
+     "W = c10 (I1-3) + c20 (I1-3)^2 + c30 (I1-3)^3 + volumetric", kYeohParameters,
+     BulkResponse::KappaOrPoisson, shear_yeoh, nullptr, false, true, true, kFastElements},
     {MaterialLaw::Ogden, name_of(MaterialLaw::Ogden), "Ogden",
      "W = sum mu_p/alpha_p (l1^a + l2^a + l3^a - 3) + volumetric", kOgdenParameters,
      BulkResponse::KappaOrPoisson, shear_ogden, ogden_problem, false, true, true, kFastElements},

@@ -70,11 +70,11 @@ struct LawParameterInfo {
   const char* case_key;  ///< key of a case file's material section
   const char* unit;      ///< "Pa" or "1"
   LawBound lower, upper;
-  bool nonzero;          ///< zero is refused (Ogden's exponents)
-  bool has_default;      ///< may be omitted: then default_value
+  bool nonzero;      ///< zero is refused (Ogden's exponents)
+  bool has_default;  ///< may be omitted: then default_value
   double default_value;
-  bool list;             ///< one value per term (N-term laws), else a single number
-  double LawParameters::*scalar;           ///< where a single number goes (list == false)
+  bool list;                                   ///< one value per term (N-term laws), else a single number
+  double LawParameters::*scalar;               ///< where a single number goes (list == false)
   std::vector<double> LawParameters::*values;  ///< where a list goes (list == true)
   const char* description;
   LawFit fit;
@@ -83,8 +83,8 @@ struct LawParameterInfo {
 /// One law.
 struct LawDescriptor {
   MaterialLaw law;
-  const char* name;   ///< kMaterialLawNames entry: case files, SPECs, summaries
-  const char* title;  ///< e.g. "Mooney-Rivlin"
+  const char* name;    ///< kMaterialLawNames entry: case files, SPECs, summaries
+  const char* title;   ///< e.g. "Mooney-Rivlin"
   const char* energy;  ///< the strain energy in plain text (docs/theory/hyperelastic-laws.md)
   /// The law's own parameters in order (for YoungPoisson laws: young, poisson; the decoupled laws'
   /// kappa / nu apart, see `bulk`).

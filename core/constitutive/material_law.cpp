@@ -28,7 +28,8 @@ LawParameterProblem law_parameter_problem(MaterialLaw law, const LawParameters& 
       if (!first_list) {
         first_list = &info;
         if (v.empty())
-          return {info.case_key, std::string("must be a non-empty list (one ") + info.case_key + "_p per term)"};
+          return {info.case_key,
+                  std::string("must be a non-empty list (one ") + info.case_key + "_p per term)"};
       } else if (v.size() != (p.*first_list->values).size()) {
         return {info.case_key, std::string("must have as many terms as ") + first_list->case_key + " (" +
                                    std::to_string((p.*first_list->values).size()) + ", got " +

@@ -3,8 +3,8 @@
 //
 // A closed set as a std::variant (no virtual calls, value semantics, the kernels hold one by
 // value), its alternatives in MaterialLaw order (core/constitutive/law_catalogue.hpp); a new law is one
-// more alternative here and one case in Law::of (law.cpp; docs/architecture.md, "Adding a law"). St Venant-Kirchhoff keeps
-// its own historical interface (tangent(dE) without E: it is constant); Law adapts it.
+// more alternative here and one case in Law::of (law.cpp; docs/architecture.md, "Adding a law"). St
+// Venant-Kirchhoff keeps its own historical interface (tangent(dE) without E: it is constant); Law adapts it.
 // Theory of each law: docs/theory/hyperelastic-laws.md.
 #pragma once
 
@@ -70,24 +70,23 @@ class Law {
   Variant v_;
 };
 
-static_assert(std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::StVK), Law::Variant>,
-                             StVenantKirchhoff> &&
-                  std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::NeoHookean),
-                                                            Law::Variant>,
-                                 NeoHookean> &&
-                  std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::MooneyRivlin),
-                                                            Law::Variant>,
-                                 MooneyRivlin> &&
-                  std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Yeoh),
-                                                            Law::Variant>,
-                                 Yeoh> &&
-                  std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Ogden),
-                                                            Law::Variant>,
-                                 Ogden> &&
-                  std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::VerondaWestmann),
-                                                            Law::Variant>,
-                                 VerondaWestmann> &&
-                  std::variant_size_v<Law::Variant> == std::size(kMaterialLawNames),
-              "Law's alternatives follow MaterialLaw");
+static_assert(
+    std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::StVK), Law::Variant>,
+                   StVenantKirchhoff> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::NeoHookean), Law::Variant>,
+            NeoHookean> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::MooneyRivlin), Law::Variant>,
+            MooneyRivlin> &&
+        std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Yeoh), Law::Variant>,
+                       Yeoh> &&
+        std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Ogden), Law::Variant>,
+                       Ogden> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::VerondaWestmann), Law::Variant>,
+            VerondaWestmann> &&
+        std::variant_size_v<Law::Variant> == std::size(kMaterialLawNames),
+    "Law's alternatives follow MaterialLaw");
 
 }  // namespace tmlab::tm

@@ -110,7 +110,8 @@ LameConstants lame(Reader& r, const std::string& where, const std::string& law) 
 /// The keys of a decoupled law as its refusals quote them: "\"c10\", \"c01\", \"kappa\"".
 std::string keys_of(const LawDescriptor& d) {
   std::string s;
-  for (const LawParameterInfo& info : d.parameters) s += (s.empty() ? "\"" : ", \"") + std::string(info.name) + "\"";
+  for (const LawParameterInfo& info : d.parameters)
+    s += (s.empty() ? "\"" : ", \"") + std::string(info.name) + "\"";
   return s + ", \"" + bulk_modulus_parameter().name + "\"";
 }
 

@@ -36,8 +36,9 @@ Law make_law(const std::string& name, const nlohmann::json& params, const std::s
 /// Builds the law of a case file's material section in plain form (core/constitutive/
 /// material_law.hpp: the vocabulary core/config parses into, which knows nothing of tm::Law), through
 /// make_law above: the laws given by E and nu from young/poisson, the others from their coefficients
-/// and kappa (each law's parameters as its catalogue row lists them). The same names and the same constructors' checks, so a case file and a parameter object
-/// give the same law. `where` prefixes errors (e.g. "case.json: material").
+/// and kappa (each law's parameters as its catalogue row lists them). The same names and the same
+/// constructors' checks, so a case file and a parameter object give the same law. `where` prefixes errors
+/// (e.g. "case.json: material").
 Law make_law(MaterialLaw law, const LawParameters& parameters, const std::string& where);
 
 }  // namespace tmlab::tm

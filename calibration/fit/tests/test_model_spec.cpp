@@ -93,20 +93,26 @@ TEST(ModelSpec, LawsAndParametersAreTheCatalogues) {
     for (const LawParameterInfo& info : d.parameters)
       for (int k = 0; k < (info.list ? 2 : 1); ++k, ++i) {
         ASSERT_LT(i, params.size()) << d.name;
-        EXPECT_EQ(params[i].name, std::string(info.name) + (info.list ? std::to_string(k + 1) : "")) << d.name;
+        EXPECT_EQ(params[i].name, std::string(info.name) + (info.list ? std::to_string(k + 1) : ""))
+            << d.name;
         EXPECT_EQ(params[i].unit, info.unit) << d.name;
         EXPECT_EQ(params[i].lower, info.fit.lower) << d.name << " " << params[i].name;
         EXPECT_EQ(params[i].upper, info.fit.upper) << d.name << " " << params[i].name;
       }
-    if (d.bulk == BulkResponse::KappaOrPoisson) EXPECT_EQ(params.at(i++).name, "poisson") << d.name;
+    if (d.bulk == BulkResponse::KappaOrPoisson) {
+      EXPECT_EQ(params.at(i++).name, "poisson") << d.name;
+    }
     EXPECT_EQ(params.size(), i) << d.name;
-    if (!d.has_terms()) EXPECT_THROW(parse_model_spec(std::string(d.name) + ":2"), Error) << d.name;
+    if (!d.has_terms()) {
+      EXPECT_THROW(parse_model_spec(std::string(d.name) + ":2"), Error) << d.name;
+    }
   }
   try {
     (void)parse_model_spec("hooke");
     FAIL() << "accepted";
   } catch (const Error& e) {
-    for (const std::string& n : law_name_list()) EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
+    for (const std::string& n : law_name_list())
+      EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
   }
 }
 

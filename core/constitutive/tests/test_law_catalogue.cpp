@@ -25,7 +25,7 @@ TEST(LawCatalogue, OneRowPerLawInEnumOrder) {
     EXPECT_EQ(law_name_list()[k], d.name);
     EXPECT_EQ(law_takes_young_poisson(d.law), d.bulk == BulkResponse::YoungPoisson) << d.name;
     EXPECT_TRUE(d.hyperelastic_tl && d.dealii_reference) << d.name;  // every law runs on both
-    EXPECT_EQ(d.tensor_mass, d.law == MaterialLaw::StVK) << d.name;   // the paper's kernel is St VK's
+    EXPECT_EQ(d.tensor_mass, d.law == MaterialLaw::StVK) << d.name;  // the paper's kernel is St VK's
     EXPECT_FALSE(d.parameters.empty()) << d.name;
     for (const LawParameterInfo& info : d.parameters) {
       EXPECT_TRUE(info.list ? info.values != nullptr : info.scalar != nullptr) << d.name << "." << info.name;
