@@ -80,7 +80,8 @@ FitRequest parse_fit_request(const ParsedOptions& p) {
     if (!(q.band_floor > 0.0 && q.band_ceiling > 0.0))
       throw UsageError("--relaxation-bands: FLOOR and CEILING must be positive, got '" + v + "'");
     if (q.spec.prony_terms == 0)
-      throw UsageError("--relaxation-bands needs Prony terms in --model (e.g. " + q.spec.law + "+prony:2)");
+      throw UsageError("--relaxation-bands needs Prony terms in --model (e.g. " + to_string(q.spec.law) +
+                       "+prony:2)");
   }
   return q;
 }

@@ -280,7 +280,7 @@ Fitted refit_from(const Prepared& p, const Fitted& cur, const Fitted& c, const O
 
 Structure without_effect(const Structure& s, const std::string& effect, const Structure& baseline) {
   Structure out = s;
-  if (!effect_law(effect).empty() && s.law != baseline.law && effect_law(effect) == s.law) {
+  if (effect_law(effect) && s.law != baseline.law && effect_law(effect) == s.law) {
     out.law = baseline.law;
   } else if (effect == "extra_prony_term" && s.prony_terms > baseline.prony_terms) {
     out.prony_terms -= 1;
@@ -752,15 +752,16 @@ nlohmann::json to_json(const Report& r) {
   for (const auto& e : effect_library())
     j["library"].push_back(
         {{"effect", e.name}, {"kind", to_string(e.kind)}, {"change", e.change}, {"signature", e.signature}});
-  j["options"] = {{"poisson", r.options.poisson},
-                  {"fix_poisson", r.options.fix_poisson},
-                  {"baseline", r.options.baseline_law + "+prony:" + std::to_string(r.options.baseline_prony)},
-                  {"max_rounds", r.options.max_rounds},
-                  {"starts", r.options.starts},
-                  {"seed", r.options.seed},
-                  {"max_samples", r.options.max_samples},
-                  {"alpha", r.options.thresholds.alpha},
-                  {"test_control", r.options.test_control}};
+  j["options"] = {
+      {"poisson", r.options.poisson},
+      {"fix_poisson", r.options.fix_poisson},
+      {"baseline", to_string(r.options.baseline_law) + "+prony:" + std::to_string(r.options.baseline_prony)},
+      {"max_rounds", r.options.max_rounds},
+      {"starts", r.options.starts},
+      {"seed", r.options.seed},
+      {"max_samples", r.options.max_samples},
+      {"alpha", r.options.thresholds.alpha},
+      {"test_control", r.options.test_control}};
   j["wall_seconds"] = r.seconds;
   return j;
 }

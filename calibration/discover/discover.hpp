@@ -53,7 +53,7 @@ struct Options {
   std::size_t max_samples = 1500;  ///< the data are decimated to about this many samples
   double poisson = 0.49;
   bool fix_poisson = true;
-  std::string baseline_law = "stvk";
+  MaterialLaw baseline_law = MaterialLaw::StVK;
   int baseline_prony = 2;
   int max_rounds = 4;
   double bic_threshold = 10.0;   ///< accept only when BIC falls by more than this

@@ -209,7 +209,7 @@ nlohmann::json options_fingerprint(const Options& o) {
   return {{"poisson", o.poisson},
           {"fix_poisson", o.fix_poisson},
           {"max_samples", o.max_samples},
-          {"baseline", o.baseline_law + "+prony:" + std::to_string(o.baseline_prony)},
+          {"baseline", to_string(o.baseline_law) + "+prony:" + std::to_string(o.baseline_prony)},
           {"rounds", o.max_rounds},
           {"bic_threshold", o.bic_threshold},
           {"held_out_ratio", o.held_out_ratio},

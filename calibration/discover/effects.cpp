@@ -6,6 +6,7 @@
 #include "calibration/fit/model_spec.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -21,8 +22,6 @@ namespace {
 using namespace tmlab::measured;
 constexpr double kPi = 3.14159265358979323846;
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-const std::vector<std::string> kLaws = {"neo_hookean", "mooney_rivlin", "yeoh", "ogden", "veronda_westmann"};
 
 fit::Parameter param(std::string name, std::string unit, double value, double lo, double hi, double s_lo,
                      double s_hi) {
@@ -42,7 +41,7 @@ fit::ModelSpec spec_of(const Structure& s) {
   spec.law = s.law;
   spec.ogden_terms = 1;
   spec.prony_terms = s.prony_terms;
-  spec.text = s.law + (s.prony_terms ? "+prony:" + std::to_string(s.prony_terms) : "");
+  spec.text = to_string(s.law) + (s.prony_terms ? "+prony:" + std::to_string(s.prony_terms) : "");
   return spec;
 }
 
@@ -132,16 +131,14 @@ std::vector<EffectInfo> effect_library() {
     v.push_back(
         {"extra_prony_term", m, "one more term e_j exp(-t/tau_j) of the relaxation function",
          "a decaying residual in the holds and a rate-dependent one in the ramps, at one time scale"});
-    const std::vector<std::pair<std::string, std::string>> laws = {
-        {"neo_hookean", "W = mu/2 (I1 - 3) + volumetric"},
-        {"mooney_rivlin", "W = c10 (I1 - 3) + c01 (I2 - 3) + volumetric"},
-        {"yeoh", "W = c10 (I1-3) + c20 (I1-3)^2 + c30 (I1-3)^3 + volumetric"},
-        {"ogden", "W = sum mu_p/alpha_p (l1^a + l2^a + l3^a - 3) + volumetric (one term)"},
-        {"veronda_westmann", "W = c1 (exp(c2 (I1 - 3)) - 1) - c1 c2 / 2 (I2 - 3) + volumetric"}};
-    for (const auto& [law, w] : laws)
+    // Every law of the catalogue but St VK, the library's starting law (N-term laws with one term).
+    for (const LawDescriptor& d : law_catalogue()) {
+      if (d.law == MaterialLaw::StVK) continue;
+      const std::string law = d.name, w = std::string(d.energy) + (d.has_terms() ? " (one term)" : "");
       v.push_back({law + "_hyperelastic", m, "the elastic law replaced by " + law + ": " + w,
                    "a residual that grows with strain, of one sign at large strain (stiffening or softening "
                    "the current law lacks), the same in every phase and test"});
+    }
     v.push_back(
         {"strain_dependent_relaxation", m,
          "Prony weights alpha_j (1 + a eps) with eps the strain (depth over radius for indentation)",
@@ -191,12 +188,12 @@ EffectInfo effect_info(const std::string& name) {
   throw Error("discover: unknown effect '" + name + "' (known: " + choice_list(names) + ")");
 }
 
-std::string effect_law(const std::string& effect) {
+std::optional<MaterialLaw> effect_law(const std::string& effect) {
   const std::string suffix = "_hyperelastic";
   if (effect.size() > suffix.size() &&
       effect.compare(effect.size() - suffix.size(), suffix.size(), suffix) == 0)
-    return effect.substr(0, effect.size() - suffix.size());
-  return "";
+    return material_law_from_string(effect.substr(0, effect.size() - suffix.size()));
+  return std::nullopt;
 }
 
 std::size_t Prepared::size() const {
@@ -280,7 +277,7 @@ bool Structure::has(const std::string& e) const {
 }
 
 std::string Structure::label() const {
-  std::string s = law + (prony_terms ? "+prony:" + std::to_string(prony_terms) : "");
+  std::string s = to_string(law) + (prony_terms ? "+prony:" + std::to_string(prony_terms) : "");
   for (const auto& e : effects) s += " + " + e;
   return s;
 }
@@ -289,7 +286,7 @@ fit::ModelSpec model_spec(const Structure& s) { return spec_of(s); }
 
 std::vector<std::string> effects_in(const Structure& s, const Structure& baseline) {
   std::vector<std::string> out;
-  if (s.law != baseline.law) out.push_back(s.law + "_hyperelastic");
+  if (s.law != baseline.law) out.push_back(to_string(s.law) + "_hyperelastic");
   for (int i = baseline.prony_terms; i < s.prony_terms; ++i) out.push_back("extra_prony_term");
   for (const auto& e : s.effects)
     if (!baseline.has(e)) out.push_back(e);
@@ -298,9 +295,8 @@ std::vector<std::string> effects_in(const Structure& s, const Structure& baselin
 
 Structure with_effect(const Structure& s, const std::string& effect) {
   Structure out = s;
-  const std::string law = effect_law(effect);
-  if (!law.empty())
-    out.law = law;
+  if (const std::optional<MaterialLaw> law = effect_law(effect))
+    out.law = *law;
   else if (effect == "extra_prony_term")
     out.prony_terms += 1;
   else
@@ -312,10 +308,9 @@ std::string not_applicable(const std::string& effect, const Structure& s, const 
   effect_info(effect);
   const bool platen =
       p.rig == Rig::platen_unconfined || p.rig == Rig::platen_confined || p.rig == Rig::tension;
-  const std::string law = effect_law(effect);
-  if (!law.empty()) {
+  if (const std::optional<MaterialLaw> law = effect_law(effect)) {
     if (!platen) return "the indentation closed forms see only the small-strain modulus (needs the FE rig)";
-    if (law == s.law) return "already the law";
+    if (*law == s.law) return "already the law";
     return "";
   }
   if (effect == "extra_prony_term") return s.prony_terms >= 4 ? "four Prony terms already" : "";

@@ -36,7 +36,9 @@
 #include "calibration/fit/forward_model.hpp"
 #include "calibration/fit/model_spec.hpp"
 #include "calibration/fit/parameter.hpp"
+#include "core/constitutive/material_law.hpp"
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,8 +58,8 @@ struct EffectInfo {
 std::vector<EffectInfo> effect_library();
 /// The library entry `name` (tmlab::Error listing the names when unknown).
 EffectInfo effect_info(const std::string& name);
-/// The law a *_hyperelastic effect swaps in ("" for other effects).
-std::string effect_law(const std::string& effect);
+/// The law a *_hyperelastic effect swaps in (nothing for other effects).
+std::optional<MaterialLaw> effect_law(const std::string& effect);
 
 enum class Rig { platen_unconfined, platen_confined, tension, sphere, punch };
 std::string to_string(Rig r);
@@ -92,7 +94,7 @@ Prepared prepare(const measured::DataSet& data, std::size_t max_samples);
 
 /// The model structure: the law, the number of Prony terms and the other effects added.
 struct Structure {
-  std::string law = "stvk";
+  MaterialLaw law = MaterialLaw::StVK;
   int prony_terms = 2;
   std::vector<std::string> effects;  ///< non-law effects other than extra_prony_term, in order added
   bool has(const std::string& e) const;

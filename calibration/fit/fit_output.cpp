@@ -6,6 +6,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/process.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/json_number.hpp"
 
@@ -47,7 +48,7 @@ nlohmann::json to_json(const FitResult& r, const Problem& pr, const FitOptions& 
   using nlohmann::json;
   json j;
   j["model"] = {{"spec", spec.text},
-                {"law", spec.law},
+                {"law", to_string(spec.law)},
                 {"forward_model", r.model_name},
                 {"description", r.model_description}};
   j["parameters"] = json::array();
@@ -200,7 +201,8 @@ void print_fit_plan(std::ostream& os, const std::string& data_name, const ModelS
 }
 
 std::string result_name(const std::string& data_name, const ModelSpec& spec) {
-  return data_name + "-" + spec.law + (spec.law == "ogden" ? std::to_string(spec.ogden_terms) : "") +
+  return data_name + "-" + to_string(spec.law) +
+         (law_descriptor(spec.law).has_terms() ? std::to_string(spec.ogden_terms) : "") +
          (spec.prony_terms ? "-prony" + std::to_string(spec.prony_terms) : "");
 }
 

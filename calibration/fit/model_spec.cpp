@@ -3,6 +3,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/number.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "tensormass/materials/law_factory.hpp"
 
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
 
 namespace tmlab::fit {
 
@@ -54,18 +56,10 @@ Parameter param(std::string name, std::string unit, double value, double lo, dou
   return p;
 }
 
-Parameter poisson_parameter() { return param("poisson", "1", 0.45, 0.0, 0.4999, 0.05, 0.495); }
-
 /// Positive modulus: start at v, sample starts over a factor 10 either way.
 Parameter modulus_parameter(const std::string& name, double v) {
   return param(name, "Pa", v, 0.0, kInf, v / 10.0, v * 10.0);
 }
-/// Signed modulus (unbounded): start at v, sample starts in v +- scale.
-Parameter signed_parameter(const std::string& name, double v, double scale) {
-  return param(name, "Pa", v, -kInf, kInf, v - scale, v + scale);
-}
-
-double kappa_from(double mu0, double nu) { return 2.0 * mu0 * (1.0 + nu) / (3.0 * (1.0 - 2.0 * nu)); }
 
 }  // namespace
 
@@ -89,15 +83,21 @@ ModelSpec parse_model_spec(const std::string& text) {
     spec.prony_terms = small_count(text, "the number of Prony terms", tail.substr(6));
   }
   const std::size_t colon = head.find(':');
-  spec.law = head.substr(0, colon);
-  const auto& names = tm::law_names();
-  if (std::find(names.begin(), names.end(), spec.law) == names.end()) {
+  const std::string law = head.substr(0, colon);
+  const std::optional<MaterialLaw> kind = material_law_from_string(law);
+  if (!kind) {
     std::string list;
-    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-    throw Error(label(text) + ": unknown law '" + printable(spec.law, 40) + "' (use " + list + ")");
+    for (const auto& n : law_name_list()) list += (list.empty() ? "" : ", ") + n;
+    throw Error(label(text) + ": unknown law '" + printable(law, 40) + "' (use " + list + ")");
   }
+  spec.law = *kind;
   if (colon != std::string::npos) {
-    if (spec.law != "ogden") throw Error(label(text) + ": ':N' (number of terms) is for ogden only");
+    if (!law_descriptor(spec.law).has_terms()) {
+      std::string list;
+      for (const LawDescriptor& d : law_catalogue())
+        if (d.has_terms()) list += (list.empty() ? "" : ", ") + std::string(d.name);
+      throw Error(label(text) + ": ':N' (number of terms) is for " + list + " only");
+    }
     spec.ogden_terms = small_count(text, "the number of Ogden terms", head.substr(colon + 1));
   }
   for (std::size_t i = 1; i < parts.size(); ++i) {
@@ -122,36 +122,49 @@ std::vector<Parameter> law_parameters(const ModelSpec& spec, double modulus, dou
   if (!(modulus > 0.0) || !std::isfinite(modulus))
     throw Error("fit: no positive modulus estimate from the data");
   const double mu0 = modulus / 3.0;  // nearly incompressible start
+  const LawDescriptor& d = law_descriptor(spec.law);
+  const int n = spec.ogden_terms;
   std::vector<Parameter> p;
-  if (spec.law == "stvk" || spec.law == "neo_hookean") {
-    p.push_back(modulus_parameter("young", modulus));
-  } else if (spec.law == "mooney_rivlin") {
-    p.push_back(signed_parameter("c10", 0.35 * mu0, 0.5 * mu0));
-    p.push_back(signed_parameter("c01", 0.15 * mu0, 0.5 * mu0));
-  } else if (spec.law == "yeoh") {
-    p.push_back(modulus_parameter("c10", 0.5 * mu0));
-    p.push_back(signed_parameter("c20", 0.0, 0.1 * mu0));
-    p.push_back(signed_parameter("c30", 0.0, 0.02 * mu0));
-  } else if (spec.law == "ogden") {
-    const int n = spec.ogden_terms;
-    std::vector<double> alpha;
-    for (int k = 0; k < n; ++k) alpha.push_back(k % 2 == 0 ? 2.0 + 2.0 * k : -2.0 * k);
-    for (int k = 0; k < n; ++k) {
-      const double m = 2.0 * mu0 / (n * alpha[k]);  // 1/2 sum mu_p alpha_p = mu0
-      p.push_back(signed_parameter("mu" + std::to_string(k + 1), m, std::abs(m)));
+  // An N-term law's exponents first (its moduli start from them), then the parameters in order.
+  std::vector<double> exponent;
+  for (const LawParameterInfo& info : d.parameters)
+    if (info.list && info.fit.start == FitStart::TermExponent)
+      for (int k = 0; k < n; ++k) exponent.push_back(k % 2 == 0 ? 2.0 + 2.0 * k : -2.0 * k);
+  auto add = [&](const LawParameterInfo& info, const std::string& name, int k) {
+    const LawFit& f = info.fit;
+    switch (f.start) {
+      case FitStart::Decade: {
+        const double v = f.scale * (f.of_young ? modulus : mu0);
+        p.push_back(param(name, info.unit, v, f.lower, f.upper, v / 10.0, v * 10.0));
+        break;
+      }
+      case FitStart::Spread: {
+        const double v = f.scale * mu0, scale = f.spread * mu0;
+        p.push_back(param(name, info.unit, v, f.lower, f.upper, v - scale, v + scale));
+        break;
+      }
+      case FitStart::Absolute:
+        p.push_back(param(name, info.unit, f.scale, f.lower, f.upper, f.start_low, f.start_high));
+        break;
+      case FitStart::TermExponent: {
+        const double a = exponent[std::size_t(k)];
+        p.push_back(param(name, info.unit, a, f.lower, f.upper, a - f.spread, a + f.spread));
+        break;
+      }
+      case FitStart::TermModulus: {
+        const double m = 2.0 * mu0 / (n * exponent[std::size_t(k)]);  // 1/2 sum mu_p alpha_p = mu0
+        p.push_back(param(name, info.unit, m, f.lower, f.upper, m - std::abs(m), m + std::abs(m)));
+        break;
+      }
     }
-    for (int k = 0; k < n; ++k) {
-      Parameter a =
-          param("alpha" + std::to_string(k + 1), "1", alpha[k], -40.0, 40.0, alpha[k] - 1.5, alpha[k] + 1.5);
-      p.push_back(a);
-    }
-  } else if (spec.law == "veronda_westmann") {
-    p.push_back(modulus_parameter("c1", mu0));
-    p.push_back(param("c2", "1", 1.0, 0.0, kInf, 0.1, 10.0));
-  } else {
-    throw Error("fit: law '" + spec.law + "' has no fit parameters defined");
+  };
+  for (const LawParameterInfo& info : d.parameters) {
+    if (info.list)
+      for (int k = 0; k < n; ++k) add(info, info.name + std::to_string(k + 1), k);
+    else
+      add(info, info.name, 0);
   }
-  p.push_back(poisson_parameter());
+  if (d.bulk == BulkResponse::KappaOrPoisson) add(poisson_parameter(), poisson_parameter().name, 0);
   const double t = duration > 0.0 ? duration : 1.0;
   for (int i = 0; i < spec.prony_terms; ++i)
     p.push_back(modulus_parameter("e" + std::to_string(i + 1), 0.5 * modulus / spec.prony_terms));
@@ -163,44 +176,45 @@ std::vector<Parameter> law_parameters(const ModelSpec& spec, double modulus, dou
   return p;
 }
 
+namespace {
+
+/// The law's parameters at `x` (in the order of law_parameters()); kappa is left 0.
+LawParameters law_values(const ModelSpec& spec, const std::vector<double>& x) {
+  const LawDescriptor& d = law_descriptor(spec.law);
+  LawParameters p;
+  std::size_t i = 0;
+  for (const LawParameterInfo& info : d.parameters) {
+    if (info.list) {
+      const std::size_t n = std::size_t(spec.ogden_terms);
+      p.*info.values = std::vector<double>(x.begin() + long(i), x.begin() + long(i + n));
+      i += n;
+    } else {
+      p.*info.scalar = x[i++];
+    }
+  }
+  if (d.bulk == BulkResponse::KappaOrPoisson) p.poisson = x[i];
+  return p;
+}
+
+}  // namespace
+
 std::pair<double, double> small_strain_young_poisson(const ModelSpec& spec, const std::vector<double>& x) {
-  const double nu = x[spec.law == "stvk" || spec.law == "neo_hookean" ? 1
-                      : spec.law == "mooney_rivlin"                   ? 2
-                      : spec.law == "yeoh"                            ? 3
-                      : spec.law == "ogden"                           ? std::size_t(2 * spec.ogden_terms)
-                                                                      : 2];
-  double mu0 = 0.0;
-  if (spec.law == "stvk" || spec.law == "neo_hookean") return {x[0], nu};
-  if (spec.law == "mooney_rivlin") mu0 = 2.0 * (x[0] + x[1]);
-  if (spec.law == "yeoh") mu0 = 2.0 * x[0];
-  if (spec.law == "ogden")
-    for (int k = 0; k < spec.ogden_terms; ++k) mu0 += 0.5 * x[k] * x[spec.ogden_terms + k];
-  if (spec.law == "veronda_westmann") mu0 = x[0] * x[1];
+  const LawDescriptor& d = law_descriptor(spec.law);
+  const LawParameters p = law_values(spec, x);
+  const double nu = p.poisson;
+  if (d.bulk == BulkResponse::YoungPoisson) return {p.young, nu};
+  const double mu0 = d.shear_modulus(p);
   if (!(mu0 > 0.0))
-    throw Error("fit: the small-strain shear modulus of '" + spec.law + "' is not positive here");
+    throw Error("fit: the small-strain shear modulus of '" + to_string(spec.law) + "' is not positive here");
   return {2.0 * mu0 * (1.0 + nu), nu};
 }
 
 tm::Law build_law(const ModelSpec& spec, const std::vector<double>& x) {
-  using nlohmann::json;
   const auto [young, nu] = small_strain_young_poisson(spec, x);
-  const double kappa = kappa_from(young / (2.0 * (1.0 + nu)), nu);
-  json j;
-  if (spec.law == "stvk" || spec.law == "neo_hookean") {
-    j = {{"young", young}, {"poisson", nu}};
-  } else if (spec.law == "mooney_rivlin") {
-    j = {{"c10", x[0]}, {"c01", x[1]}, {"kappa", kappa}};
-  } else if (spec.law == "yeoh") {
-    j = {{"c10", x[0]}, {"c20", x[1]}, {"c30", x[2]}, {"kappa", kappa}};
-  } else if (spec.law == "ogden") {
-    const int n = spec.ogden_terms;
-    j = {{"mu", std::vector<double>(x.begin(), x.begin() + n)},
-         {"alpha", std::vector<double>(x.begin() + n, x.begin() + 2 * n)},
-         {"kappa", kappa}};
-  } else {
-    j = {{"c1", x[0]}, {"c2", x[1]}, {"kappa", kappa}};
-  }
-  return tm::make_law(spec.law, j, "fit model '" + spec.text + "'");
+  LawParameters p = law_values(spec, x);
+  if (law_descriptor(spec.law).bulk == BulkResponse::KappaOrPoisson)
+    p.kappa = bulk_from_poisson(young / (2.0 * (1.0 + nu)), nu);
+  return tm::make_law(spec.law, p, "fit model '" + spec.text + "'");
 }
 
 std::pair<std::vector<double>, std::vector<double>> prony_terms(const ModelSpec& spec,

@@ -1,16 +1,19 @@
 // The model a fit identifies, named on the command line by a SPEC (docs/identification.md):
 //
 //   SPEC  = LAW [":" N] ["+prony:" M] { "," NAME "=" VALUE }
-//   LAW   = stvk | neo_hookean | mooney_rivlin | yeoh | ogden | veronda_westmann
-//   N     = the number of Ogden terms (ogden only; default 1)
+//   LAW   = a law of core/constitutive/law_catalogue.hpp: stvk | neo_hookean | mooney_rivlin | yeoh |
+//           ogden | veronda_westmann
+//   N     = the number of terms of an N-term law (ogden only; default 1)
 //   M     = the number of Prony terms of the relaxation modulus (default 0: elastic)
 //   NAME=VALUE fixes that parameter at VALUE (SI units: Pa, s, dimensionless)
 //
 // e.g. "neo_hookean", "ogden:2,poisson=0.49", "stvk+prony:2,poisson=0.45".
 //
-// The parameters of each law, in physical units (every law carries its small-strain Poisson's ratio
-// instead of a bulk modulus, so one fixed value, poisson=0.49, makes any law nearly incompressible:
-// kappa = 2 mu0 (1 + nu) / (3 (1 - 2 nu)) with mu0 the law's small-strain shear modulus):
+// The parameters of each law, in physical units, in the law catalogue's order with its bounds and fit
+// starts (core/constitutive/law_catalogue.hpp; a list parameter "mu" becomes mu1..muN) (every law carries its
+// small-strain Poisson's ratio instead of a bulk modulus, so one fixed value, poisson=0.49, makes any law
+// nearly incompressible: kappa = 2 mu0 (1 + nu) / (3 (1 - 2 nu)) with mu0 the law's small-strain shear
+// modulus):
 //   stvk, neo_hookean   young (Pa, > 0), poisson (0 .. 0.4999)
 //   mooney_rivlin       c10, c01 (Pa, c10 + c01 > 0), poisson
 //   yeoh                c10 (Pa, > 0), c20, c30 (Pa), poisson
@@ -20,6 +23,7 @@
 #pragma once
 
 #include "calibration/fit/parameter.hpp"
+#include "core/constitutive/material_law.hpp"
 #include "tensormass/materials/law.hpp"
 
 #include <string>
@@ -30,8 +34,8 @@ namespace tmlab::fit {
 
 struct ModelSpec {
   std::string text;  ///< the SPEC as given
-  std::string law;   ///< a tm::law_names() entry
-  int ogden_terms = 1;
+  MaterialLaw law = MaterialLaw::StVK;
+  int ogden_terms = 1;  ///< the number of terms of an N-term law (ogden)
   int prony_terms = 0;
   std::vector<std::pair<std::string, double>> fixed;  ///< NAME=VALUE, in order
 };

@@ -5,6 +5,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/time_function.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "tensormass/contact/contact_config.hpp"
 #include "tensormass/contact/contact_solver.hpp"
@@ -121,12 +122,13 @@ class RigForwardModel final : public ForwardModel {
   }
   std::string name() const override { return "fe_rig"; }
   std::string description() const override {
-    const bool stvk = spec_.law == "stvk";
+    const bool stvk = law_descriptor(spec_.law).tensor_mass;
+    const std::string law = to_string(spec_.law);
     std::string m =
         stvk ? (spec_.prony_terms ? "the viscoelastic tensor-mass model (ViscoelasticStVK, pk2)"
                                   : "the tensor-mass model (TensorMassStVK)")
-             : (spec_.prony_terms ? "ViscoelasticHyperelastic (pk2) on the " + spec_.law + " law"
-                                  : "the F-based P1 element (HyperelasticTL) with the " + spec_.law + " law");
+             : (spec_.prony_terms ? "ViscoelasticHyperelastic (pk2) on the " + law + " law"
+                                  : "the F-based P1 element (HyperelasticTL) with the " + law + " law");
     return "FE rig: " + m + " on the generated " + rigs::rig_test_name(rigs_.front()->spec.test) + " rig (" +
            std::to_string(rigs_.size()) + " test(s), " + std::to_string(tets_) + " tets in all" +
            (opt_.mesh_builder ? ", study mesh" : "") + "), quasi-static, " + std::to_string(opt_.substeps) +

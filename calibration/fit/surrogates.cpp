@@ -5,6 +5,7 @@
 #include "calibration/data/sign_convention.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -155,7 +156,7 @@ std::function<std::vector<double>(std::vector<double>)> canonical_order(
     const std::size_t a = params.size() - 2 * m;
     if (!any_fixed(a, 2 * m)) groups.push_back({a + m, a, m});  // sort key tau, partner e
   }
-  if (spec.law == "ogden" && spec.ogden_terms > 1) {
+  if (law_descriptor(spec.law).has_terms() && spec.ogden_terms > 1) {  // ogden: sorted by alpha
     const std::size_t n = std::size_t(spec.ogden_terms);
     if (!any_fixed(0, 2 * n)) groups.push_back({n, 0, n});  // sort key alpha, partner mu
   }
@@ -328,12 +329,12 @@ std::unique_ptr<ForwardModel> make_surrogate_model(const DataSet& d, const Model
     if (m.indenter->shape == IndenterShape::cylinder)
       throw Error(name +
                   ": no closed form for a cylinder indenter on its side (use a sphere or a flat punch)");
-    if (spec.law != "stvk" && spec.law != "neo_hookean")
+    if (law_descriptor(spec.law).bulk != BulkResponse::YoungPoisson)
       throw Error(name +
                   ": the closed-form indentation models are linear elastic and see only the small-strain "
                   "modulus; fit 'stvk' or 'neo_hookean' (E, nu and Prony terms) to indentation data with "
                   "the closed forms, or law '" +
-                  spec.law + "' with the FE rig (--forward fe_rig)");
+                  to_string(spec.law) + "' with the FE rig (--forward fe_rig)");
     const bool sphere = m.indenter->shape == IndenterShape::sphere;
     const double r = m.indenter->radius_m;
     for (std::size_t k = 0; k < d.tests.size(); ++k) {

@@ -4,6 +4,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/case_config.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/sample_meshes.hpp"
@@ -329,7 +330,7 @@ void validate_material(const RigSpec& s) {
     refuse(s, "model",
            "must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl' (got '" + printable(s.model, 40) + "')");
   const MaterialSpec m = parse_material_section(s.material, "rig '" + s.name + "'");
-  if (m.law != MaterialLaw::StVK && *model != CaseModel::HyperelasticTL)
+  if (!law_descriptor(m.law).tensor_mass && *model != CaseModel::HyperelasticTL)
     refuse(s, "model",
            "'" + s.model + "' runs St Venant-Kirchhoff only; material.law '" + to_string(m.law) +
                "' runs on the F-based kernel: use model hyperelastic_tl (--model hyperelastic_tl)");

@@ -5,6 +5,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/results/run_output.hpp"
 
@@ -129,25 +130,6 @@ ViscoelasticSpec parse_viscoelastic(ConfigReader& m) {
   return vs;
 }
 
-/// The case-file keys of each law's parameters (besides "law", "density" and "viscoelastic");
-/// "kappa" and "nu" are alternatives for the decoupled laws (exactly one of them).
-std::vector<std::string> law_keys(MaterialLaw law) {
-  switch (law) {
-    case MaterialLaw::StVK:
-    case MaterialLaw::NeoHookean:
-      return {"E", "nu"};
-    case MaterialLaw::MooneyRivlin:
-      return {"c10", "c01", "kappa", "nu"};
-    case MaterialLaw::Yeoh:
-      return {"c10", "c20", "c30", "kappa", "nu"};
-    case MaterialLaw::Ogden:
-      return {"mu", "alpha", "kappa", "nu"};
-    case MaterialLaw::VerondaWestmann:
-      break;
-  }
-  return {"c1", "c2", "kappa", "nu"};
-}
-
 double finite_number(ConfigReader& m, const std::string& key) {
   const double x = m.require<double>(key);
   if (!std::isfinite(x)) throw m.error(key, "must be finite");
@@ -160,11 +142,11 @@ double finite_number(ConfigReader& m, const std::string& key) {
 MaterialSpec parse_material(ConfigReader& root) {
   ConfigReader m = root.child("material");
   MaterialSpec material;
-  material.law =
-      read_choice(m, "law", MaterialLaw::StVK, material_law_from_string, enum_names(kMaterialLawNames));
+  material.law = read_choice(m, "law", MaterialLaw::StVK, material_law_from_string, law_name_list());
   const MaterialLaw law = material.law;
+  const LawDescriptor& descriptor = law_descriptor(law);
   const std::string law_name = to_string(law);
-  const std::vector<std::string> keys = law_keys(law);
+  const std::vector<std::string> keys = law_case_keys(law);
   std::string key_list;
   for (const std::string& k : keys) key_list += (key_list.empty() ? "" : ", ") + k;
   // A key of another law gets a message naming this law's keys; any other stray key is reported by
@@ -172,8 +154,8 @@ MaterialSpec parse_material(ConfigReader& root) {
   for (auto it = m.json().begin(); it != m.json().end(); ++it) {
     const std::string& k = it.key();
     bool other_law = false;
-    for (const char* name : kMaterialLawNames) {
-      const std::vector<std::string> ks = law_keys(*material_law_from_string(name));
+    for (const LawDescriptor& other : law_catalogue()) {
+      const std::vector<std::string> ks = law_case_keys(other.law);
       other_law = other_law || std::find(ks.begin(), ks.end(), k) != ks.end();
     }
     if (other_law && std::find(keys.begin(), keys.end(), k) == keys.end())
@@ -181,36 +163,27 @@ MaterialSpec parse_material(ConfigReader& root) {
           k, "is not a parameter of law '" + law_name + "' (its keys: " + key_list + "; docs/case-files.md)");
   }
   LawParameters& p = material.parameters;
+  for (const LawParameterInfo& info : descriptor.parameters) {
+    if (info.list)
+      p.*info.values = m.require<std::vector<double>>(info.case_key);
+    else if (info.has_default && !m.has(info.case_key))
+      p.*info.scalar = info.default_value;
+    else
+      p.*info.scalar = finite_number(m, info.case_key);
+  }
   std::optional<double> nu_for_kappa;
-  if (law_takes_young_poisson(law)) {
-    p.young = m.positive("E");
-    p.poisson = m.require<double>("nu");
-  } else {
-    if (law == MaterialLaw::MooneyRivlin) {
-      p.c10 = finite_number(m, "c10");
-      p.c01 = finite_number(m, "c01");
-    } else if (law == MaterialLaw::Yeoh) {
-      p.c10 = finite_number(m, "c10");
-      p.c20 = m.has("c20") ? finite_number(m, "c20") : 0.0;
-      p.c30 = m.has("c30") ? finite_number(m, "c30") : 0.0;
-    } else if (law == MaterialLaw::Ogden) {
-      p.mu = m.require<std::vector<double>>("mu");
-      p.alpha = m.require<std::vector<double>>("alpha");
-    } else {
-      p.c1 = finite_number(m, "c1");
-      p.c2 = finite_number(m, "c2");
-    }
+  if (descriptor.bulk == BulkResponse::KappaOrPoisson) {
     // The bulk modulus, or Poisson's ratio of the small-strain limit (kappa from the shear modulus).
-    if (m.has("kappa") == m.has("nu"))
-      throw m.error("kappa",
-                    "or 'nu': law '" + law_name +
-                        "' needs exactly one of the bulk modulus 'kappa' (Pa) and Poisson's ratio 'nu'");
-    if (m.has("kappa")) {
-      p.kappa = finite_number(m, "kappa");
+    const std::string kappa = bulk_modulus_parameter().case_key, nu = poisson_parameter().case_key;
+    if (m.has(kappa) == m.has(nu))
+      throw m.error(kappa, "or '" + nu + "': law '" + law_name + "' needs exactly one of the bulk modulus '" +
+                               kappa + "' (Pa) and Poisson's ratio '" + nu + "'");
+    if (m.has(kappa)) {
+      p.kappa = finite_number(m, kappa);
     } else {
-      nu_for_kappa = m.require<double>("nu");
-      if (!(*nu_for_kappa > -1.0 && *nu_for_kappa < 0.5))
-        throw m.error("nu", "must satisfy -1 < nu < 0.5 (got " + std::to_string(*nu_for_kappa) + ")");
+      nu_for_kappa = m.require<double>(nu);
+      if (const std::string why = parameter_refusal(poisson_parameter(), *nu_for_kappa); !why.empty())
+        throw m.error(nu, why);
       p.kappa = 1.0;  // checked below with the shear modulus; replaced by the kappa of nu
     }
   }
@@ -219,8 +192,9 @@ MaterialSpec parse_material(ConfigReader& root) {
   const SmallStrainModuli moduli = small_strain_moduli(law, p);
   if (nu_for_kappa) p.kappa = bulk_from_poisson(moduli.shear, *nu_for_kappa);
   // E and nu of the small-strain limit: as given for stvk and neo_hookean, derived for the others.
-  material.young = law_takes_young_poisson(law) ? p.young : small_strain_moduli(law, p).young();
-  material.poisson = law_takes_young_poisson(law) ? p.poisson : small_strain_moduli(law, p).poisson();
+  const bool given = descriptor.bulk == BulkResponse::YoungPoisson;
+  material.young = given ? p.young : small_strain_moduli(law, p).young();
+  material.poisson = given ? p.poisson : small_strain_moduli(law, p).poisson();
   material.density = m.positive("density");
   if (m.has("viscoelastic")) material.viscoelastic = parse_viscoelastic(m);
   m.finish();
@@ -442,25 +416,14 @@ json v3(const Vec3& v) { return json::array({v.x(), v.y(), v.z()}); }
 json material_json(const MaterialSpec& m) {
   json material = {{"law", to_string(m.law)}, {"density", m.density}};
   const LawParameters& p = m.parameters;
-  switch (m.law) {
-    case MaterialLaw::StVK:
-    case MaterialLaw::NeoHookean:
-      material["E"] = m.young, material["nu"] = m.poisson;
-      break;
-    case MaterialLaw::MooneyRivlin:
-      material["c10"] = p.c10, material["c01"] = p.c01;
-      break;
-    case MaterialLaw::Yeoh:
-      material["c10"] = p.c10, material["c20"] = p.c20, material["c30"] = p.c30;
-      break;
-    case MaterialLaw::Ogden:
-      material["mu"] = p.mu, material["alpha"] = p.alpha;
-      break;
-    case MaterialLaw::VerondaWestmann:
-      material["c1"] = p.c1, material["c2"] = p.c2;
-      break;
+  const LawDescriptor& descriptor = law_descriptor(m.law);
+  for (const LawParameterInfo& info : descriptor.parameters) {
+    if (info.list)
+      material[info.case_key] = p.*info.values;
+    else
+      material[info.case_key] = p.*info.scalar;
   }
-  if (!law_takes_young_poisson(m.law)) material["kappa"] = p.kappa;
+  if (descriptor.bulk == BulkResponse::KappaOrPoisson) material[bulk_modulus_parameter().case_key] = p.kappa;
   const ViscoelasticSpec& vs = m.viscoelastic;
   if (vs.enabled) {
     json terms = json::array();

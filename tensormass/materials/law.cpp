@@ -1,5 +1,9 @@
 #include "tensormass/materials/law.hpp"
 
+#include "core/base/error.hpp"
+
+#include <string>
+
 namespace tmlab::tm {
 
 namespace {
@@ -13,14 +17,25 @@ Overloaded(Ts...) -> Overloaded<Ts...>;
 
 }  // namespace
 
-std::string Law::name() const {
-  return std::visit(Overloaded{[](const StVenantKirchhoff&) { return std::string("stvk"); },
-                               [](const NeoHookean&) { return std::string("neo_hookean"); },
-                               [](const MooneyRivlin&) { return std::string("mooney_rivlin"); },
-                               [](const Yeoh&) { return std::string("yeoh"); },
-                               [](const Ogden&) { return std::string("ogden"); },
-                               [](const VerondaWestmann&) { return std::string("veronda_westmann"); }},
-                    v_);
+Law Law::of(MaterialLaw kind, const LawParameters& p, const LameConstants& l) {
+  switch (kind) {
+    case MaterialLaw::StVK:
+      if (!(l.mu > 0.0) || !(l.lambda + 2.0 * l.mu / 3.0 > 0.0))
+        throw Error("St Venant-Kirchhoff material needs mu > 0 and lambda + 2 mu/3 > 0, got lambda = " +
+                    std::to_string(l.lambda) + ", mu = " + std::to_string(l.mu));
+      return StVenantKirchhoff{l.lambda, l.mu};
+    case MaterialLaw::NeoHookean:
+      return NeoHookean(l.lambda, l.mu);
+    case MaterialLaw::MooneyRivlin:
+      return MooneyRivlin(p.c10, p.c01, p.kappa);
+    case MaterialLaw::Yeoh:
+      return Yeoh(p.c10, p.c20, p.c30, p.kappa);
+    case MaterialLaw::Ogden:
+      return Ogden(p.mu, p.alpha, p.kappa);
+    case MaterialLaw::VerondaWestmann:
+      break;
+  }
+  return VerondaWestmann(p.c1, p.c2, p.kappa);
 }
 
 LameConstants Law::small_strain() const {

@@ -2,11 +2,13 @@
 // offers (energy density, PK2 stress, tangent) as functions of the Green-Lagrange strain E.
 //
 // A closed set as a std::variant (no virtual calls, value semantics, the kernels hold one by
-// value); a new law is one more alternative here and in law_factory.cpp. St Venant-Kirchhoff keeps
-// its own historical interface (tangent(dE) without E: it is constant); Law adapts it.
+// value), its alternatives in MaterialLaw order (core/constitutive/law_catalogue.hpp); a new law is one
+// more alternative here and one case in Law::of (law.cpp; docs/architecture.md, "Adding a law"). St
+// Venant-Kirchhoff keeps its own historical interface (tangent(dE) without E: it is constant); Law adapts it.
 // Theory of each law: docs/theory/hyperelastic-laws.md.
 #pragma once
 
+#include "core/constitutive/material_law.hpp"
 #include "tensormass/materials/mooney_rivlin.hpp"
 #include "tensormass/materials/neo_hookean.hpp"
 #include "tensormass/materials/ogden.hpp"
@@ -15,7 +17,9 @@
 #include "tensormass/materials/veronda_westmann.hpp"
 #include "tensormass/materials/yeoh.hpp"
 
+#include <iterator>
 #include <string>
+#include <type_traits>
 #include <variant>
 
 namespace tmlab::tm {
@@ -31,8 +35,16 @@ class Law {
   Law(Ogden m) : v_(std::move(m)) {}   // NOLINT
   Law(VerondaWestmann m) : v_(m) {}    // NOLINT
 
-  /// "stvk", "neo_hookean", "mooney_rivlin", "yeoh", "ogden", "veronda_westmann" (law_factory names).
-  std::string name() const;
+  /// The law `kind` from its plain parameters: `p` for the decoupled laws, `lame` (the Lame constants
+  /// of the small-strain limit) for the laws given by E and nu (core/constitutive/law_catalogue.hpp,
+  /// BulkResponse). The one switch from MaterialLaw to the value types; throws tmlab::Error with the
+  /// value type's refusal (law_factory.hpp adds the location and the keys).
+  static Law of(MaterialLaw kind, const LawParameters& p, const LameConstants& lame);
+
+  /// Which law this is (the variant's alternatives are in MaterialLaw order).
+  MaterialLaw kind() const { return static_cast<MaterialLaw>(v_.index()); }
+  /// Its name in the law catalogue (core/constitutive/law_catalogue.hpp), e.g. "mooney_rivlin".
+  std::string name() const { return to_string(kind()); }
   const Variant& variant() const { return v_; }
   template <class T>
   const T* get_if() const {
@@ -57,5 +69,24 @@ class Law {
  private:
   Variant v_;
 };
+
+static_assert(
+    std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::StVK), Law::Variant>,
+                   StVenantKirchhoff> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::NeoHookean), Law::Variant>,
+            NeoHookean> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::MooneyRivlin), Law::Variant>,
+            MooneyRivlin> &&
+        std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Yeoh), Law::Variant>,
+                       Yeoh> &&
+        std::is_same_v<std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::Ogden), Law::Variant>,
+                       Ogden> &&
+        std::is_same_v<
+            std::variant_alternative_t<static_cast<std::size_t>(MaterialLaw::VerondaWestmann), Law::Variant>,
+            VerondaWestmann> &&
+        std::variant_size_v<Law::Variant> == std::size(kMaterialLawNames),
+    "Law's alternatives follow MaterialLaw");
 
 }  // namespace tmlab::tm

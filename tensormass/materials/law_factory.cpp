@@ -1,6 +1,7 @@
 #include "tensormass/materials/law_factory.hpp"
 
 #include "core/base/error.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -106,75 +107,55 @@ LameConstants lame(Reader& r, const std::string& where, const std::string& law) 
   return m.small_strain();
 }
 
+/// The keys of a decoupled law as its refusals quote them: "\"c10\", \"c01\", \"kappa\"".
+std::string keys_of(const LawDescriptor& d) {
+  std::string s;
+  for (const LawParameterInfo& info : d.parameters)
+    s += (s.empty() ? "\"" : ", \"") + std::string(info.name) + "\"";
+  return s + ", \"" + bulk_modulus_parameter().name + "\"";
+}
+
 }  // namespace
 
-std::vector<std::string> law_names() {
-  return {"stvk", "neo_hookean", "mooney_rivlin", "yeoh", "ogden", "veronda_westmann"};
-}
+std::vector<std::string> law_names() { return law_name_list(); }
 
 Law make_law(const std::string& name, const nlohmann::json& params, const std::string& where,
              const std::vector<std::string>& ignored) {
-  const auto& names = law_names();
-  if (std::find(names.begin(), names.end(), name) == names.end())
-    throw Error(where + ".law '" + name + "' is unknown (use " + join(names) + ")");
+  const std::optional<MaterialLaw> kind = material_law_from_string(name);
+  if (!kind) throw Error(where + ".law '" + name + "' is unknown (use " + join(law_names()) + ")");
   if (!params.is_object())
     throw Error(where + " must be a JSON object of law parameters, got " + params.dump());
+  const LawDescriptor& d = law_descriptor(*kind);
   Reader r(params, where, name);
   std::optional<Law> law;
-  if (name == "stvk") {
+  if (d.bulk == BulkResponse::YoungPoisson) {
     const LameConstants l = lame(r, where, name);
-    if (!(l.mu > 0.0) || !(l.lambda + 2.0 * l.mu / 3.0 > 0.0))
-      throw Error(where +
-                  " (law 'stvk', keys \"lambda\", \"mu\"): St Venant-Kirchhoff material needs mu > 0 and "
-                  "lambda + 2 mu/3 > 0, got lambda = " +
-                  std::to_string(l.lambda) + ", mu = " + std::to_string(l.mu));
-    law = StVenantKirchhoff{l.lambda, l.mu};
-  } else if (name == "neo_hookean") {
-    const LameConstants l = lame(r, where, name);
-    law = construct(where, name, "\"lambda\", \"mu\"", [&] { return Law(NeoHookean(l.lambda, l.mu)); });
-  } else if (name == "mooney_rivlin") {
-    const double c10 = r.number("c10"), c01 = r.number("c01"), kappa = r.number("kappa");
-    law = construct(where, name, "\"c10\", \"c01\", \"kappa\"",
-                    [&] { return Law(MooneyRivlin(c10, c01, kappa)); });
-  } else if (name == "yeoh") {
-    const double c10 = r.number("c10"), c20 = r.number_or("c20", 0.0), c30 = r.number_or("c30", 0.0);
-    const double kappa = r.number("kappa");
-    law = construct(where, name, "\"c10\", \"c20\", \"c30\", \"kappa\"",
-                    [&] { return Law(Yeoh(c10, c20, c30, kappa)); });
-  } else if (name == "ogden") {
-    std::vector<double> mu = r.numbers("mu"), alpha = r.numbers("alpha");
-    const double kappa = r.number("kappa");
-    law = construct(where, name, "\"mu\", \"alpha\", \"kappa\"",
-                    [&] { return Law(Ogden(std::move(mu), std::move(alpha), kappa)); });
-  } else {  // veronda_westmann
-    const double c1 = r.number("c1"), c2 = r.number("c2"), kappa = r.number("kappa");
-    law = construct(where, name, "\"c1\", \"c2\", \"kappa\"",
-                    [&] { return Law(VerondaWestmann(c1, c2, kappa)); });
+    law = construct(where, name, "\"lambda\", \"mu\"", [&] { return Law::of(*kind, {}, l); });
+  } else {
+    LawParameters p;
+    for (const LawParameterInfo& info : d.parameters) {
+      if (info.list)
+        p.*info.values = r.numbers(info.name);
+      else
+        p.*info.scalar = info.has_default ? r.number_or(info.name, info.default_value) : r.number(info.name);
+    }
+    p.kappa = r.number(bulk_modulus_parameter().name);
+    law = construct(where, name, keys_of(d), [&] { return Law::of(*kind, p, {}); });
   }
   r.check_unknown(ignored);
   return *law;
 }
 
 Law make_law(MaterialLaw law, const LawParameters& p, const std::string& where) {
-  json params;
-  switch (law) {
-    case MaterialLaw::StVK:
-    case MaterialLaw::NeoHookean:
-      params = {{"young", p.young}, {"poisson", p.poisson}};
-      break;
-    case MaterialLaw::MooneyRivlin:
-      params = {{"c10", p.c10}, {"c01", p.c01}, {"kappa", p.kappa}};
-      break;
-    case MaterialLaw::Yeoh:
-      params = {{"c10", p.c10}, {"c20", p.c20}, {"c30", p.c30}, {"kappa", p.kappa}};
-      break;
-    case MaterialLaw::Ogden:
-      params = {{"mu", p.mu}, {"alpha", p.alpha}, {"kappa", p.kappa}};
-      break;
-    case MaterialLaw::VerondaWestmann:
-      params = {{"c1", p.c1}, {"c2", p.c2}, {"kappa", p.kappa}};
-      break;
+  const LawDescriptor& d = law_descriptor(law);
+  json params = json::object();
+  for (const LawParameterInfo& info : d.parameters) {
+    if (info.list)
+      params[info.name] = p.*info.values;
+    else
+      params[info.name] = p.*info.scalar;
   }
+  if (d.bulk == BulkResponse::KappaOrPoisson) params[bulk_modulus_parameter().name] = p.kappa;
   return make_law(to_string(law), params, where);
 }
 

@@ -1,7 +1,8 @@
 // Builds a hyperelastic Law from its name and a parameter object (the case file's `material`
 // section, as nlohmann::json), with errors naming the offending key.
 //
-// Names and keys (all values in SI units, Pa unless noted; docs/theory/hyperelastic-laws.md):
+// Names and keys, from the law catalogue (core/constitutive/law_catalogue.hpp; SI units, Pa unless
+// noted; docs/theory/hyperelastic-laws.md):
 //   stvk, neo_hookean   {"young", "poisson"}  or  {"lambda", "mu"}
 //   mooney_rivlin       {"c10", "c01", "kappa"}
 //   yeoh                {"c10", "kappa"} and optional "c20", "c30" (default 0)
@@ -21,7 +22,7 @@
 
 namespace tmlab::tm {
 
-/// The accepted law names, in the order above.
+/// The accepted law names, in the catalogue's order (law_name_list()).
 std::vector<std::string> law_names();
 
 /// Builds the law `name` from `params` (a JSON object). `where` prefixes every message and names
@@ -34,9 +35,10 @@ Law make_law(const std::string& name, const nlohmann::json& params, const std::s
 
 /// Builds the law of a case file's material section in plain form (core/constitutive/
 /// material_law.hpp: the vocabulary core/config parses into, which knows nothing of tm::Law), through
-/// make_law above: stvk and neo_hookean from young/poisson, the others from their coefficients and
-/// kappa. The same names and the same constructors' checks, so a case file and a parameter object
-/// give the same law. `where` prefixes errors (e.g. "case.json: material").
+/// make_law above: the laws given by E and nu from young/poisson, the others from their coefficients
+/// and kappa (each law's parameters as its catalogue row lists them). The same names and the same
+/// constructors' checks, so a case file and a parameter object give the same law. `where` prefixes errors
+/// (e.g. "case.json: material").
 Law make_law(MaterialLaw law, const LawParameters& parameters, const std::string& where);
 
 }  // namespace tmlab::tm

@@ -45,7 +45,7 @@ std::vector<double> values(const std::vector<fit::Parameter>& ps) {
 TEST(Effects, ElasticPlatenEqualsTheClosedForm) {
   const Prepared p = prepare(ramp_platen(), 1000);
   Structure s;
-  s.law = "yeoh";
+  s.law = MaterialLaw::Yeoh;
   s.prony_terms = 0;
   auto ps = structure_parameters(s, p, 0.49, true);
   auto x = values(ps);
@@ -54,7 +54,7 @@ TEST(Effects, ElasticPlatenEqualsTheClosedForm) {
   x[2] = 1e3;
   const auto f = DiscoverModel(p, s).predict_series(x)[0];
   fit::ModelSpec spec;
-  spec.law = "yeoh";
+  spec.law = MaterialLaw::Yeoh;
   const tm::Law law = fit::build_law(spec, x);
   for (std::size_t i = 1; i < f.size(); i += 10)
     EXPECT_DOUBLE_EQ(f[i], closed_forms::platen_state(law, closed_forms::PlatenTest::Unconfined, 0.01,
@@ -161,7 +161,7 @@ TEST(Effects, ExperimentEffectsDoWhatTheirEquationsSay) {
   x[fit::index_of(ps, "compliance")] = c;
   f = DiscoverModel(p, s).predict_series(x)[0];
   fit::ModelSpec spec;
-  spec.law = "stvk";
+  spec.law = MaterialLaw::StVK;
   const tm::Law law = fit::build_law(spec, x);
   for (std::size_t i = 5; i < f.size(); i += 7) {
     const double ds = p.series[0].d[i] - c * f[i];
@@ -251,8 +251,8 @@ TEST(Effects, ApplicabilityAndLibrary) {
   EXPECT_EQ(not_applicable("yeoh_hyperelastic", s, p), "");
   EXPECT_NE(not_applicable("finite_layer_thickness", s, p), "");
   EXPECT_NE(not_applicable("poroelastic_relaxation", s, p), "");
-  EXPECT_EQ(effect_law("ogden_hyperelastic"), "ogden");
-  EXPECT_EQ(effect_law("contact_offset"), "");
+  EXPECT_EQ(effect_law("ogden_hyperelastic"), MaterialLaw::Ogden);
+  EXPECT_FALSE(effect_law("contact_offset"));
   EXPECT_THROW(effect_info("no_such_effect"), Error);
   for (const auto& e : effect_library()) {
     EXPECT_FALSE(e.signature.empty()) << e.name;

@@ -2,6 +2,7 @@
 #include "calibration/fit/model_spec.hpp"
 
 #include "core/base/error.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@ namespace {
 
 TEST(ModelSpec, ParsesLawTermsPronyAndFixedValues) {
   const ModelSpec s = parse_model_spec("ogden:2+prony:3,poisson=0.49,tau1=0.5");
-  EXPECT_EQ(s.law, "ogden");
+  EXPECT_EQ(s.law, MaterialLaw::Ogden);
   EXPECT_EQ(s.ogden_terms, 2);
   EXPECT_EQ(s.prony_terms, 3);
   ASSERT_EQ(s.fixed.size(), 2u);
@@ -78,6 +79,40 @@ TEST(ModelSpec, EveryLawHasTheStartingSmallStrainModulus) {
     EXPECT_EQ(nu, 0.45);
     const tm::Law l = build_law(s, x);
     EXPECT_NEAR(l.small_strain().mu, young / (2 * (1 + nu)), 1e-9 * young) << law;
+  }
+}
+
+// The SPEC takes exactly the catalogue's laws, its parameters under the catalogue's names (lists as
+// name1..nameN) with the catalogue's fit boxes, then "poisson" for the decoupled laws.
+TEST(ModelSpec, LawsAndParametersAreTheCatalogues) {
+  for (const LawDescriptor& d : law_catalogue()) {
+    const ModelSpec s = parse_model_spec(std::string(d.name) + (d.has_terms() ? ":2" : ""));
+    EXPECT_EQ(s.law, d.law);
+    const std::vector<Parameter> params = law_parameters(s, 9000.0, 10.0);
+    std::size_t i = 0;
+    for (const LawParameterInfo& info : d.parameters)
+      for (int k = 0; k < (info.list ? 2 : 1); ++k, ++i) {
+        ASSERT_LT(i, params.size()) << d.name;
+        EXPECT_EQ(params[i].name, std::string(info.name) + (info.list ? std::to_string(k + 1) : ""))
+            << d.name;
+        EXPECT_EQ(params[i].unit, info.unit) << d.name;
+        EXPECT_EQ(params[i].lower, info.fit.lower) << d.name << " " << params[i].name;
+        EXPECT_EQ(params[i].upper, info.fit.upper) << d.name << " " << params[i].name;
+      }
+    if (d.bulk == BulkResponse::KappaOrPoisson) {
+      EXPECT_EQ(params.at(i++).name, "poisson") << d.name;
+    }
+    EXPECT_EQ(params.size(), i) << d.name;
+    if (!d.has_terms()) {
+      EXPECT_THROW(parse_model_spec(std::string(d.name) + ":2"), Error) << d.name;
+    }
+  }
+  try {
+    (void)parse_model_spec("hooke");
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    for (const std::string& n : law_name_list())
+      EXPECT_NE(std::string(e.what()).find(n), std::string::npos) << e.what();
   }
 }
 

@@ -1,6 +1,8 @@
 // Case-file parsing: defaults, strictness (unknown keys), and messages naming file and key path.
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
+#include "core/constitutive/law_catalogue.hpp"
+#include "core/testing/law_samples.hpp"
 
 #include <gtest/gtest.h>
 
@@ -287,6 +289,32 @@ TEST_F(CaseConfigTest, BadLawParametersNameFileAndKey) {
     j["material"]["density"] = 1000.0;
     EXPECT_NE(error_of(j).find(b.message), std::string::npos) << b.material.dump() << "\n" << error_of(j);
   }
+}
+
+// The material section takes exactly the catalogue's laws under their case keys (lists as lists, the
+// decoupled laws with kappa), and names every law when the law is unknown.
+TEST_F(CaseConfigTest, MaterialLawsAreTheCatalogues) {
+  for (const LawDescriptor& d : law_catalogue()) {
+    const LawParameters p = testing::sample_parameters(d.law);
+    nlohmann::json m = {{"law", d.name}, {"density", 1000.0}};
+    for (const LawParameterInfo& info : d.parameters) {
+      if (info.list)
+        m[info.case_key] = p.*info.values;
+      else
+        m[info.case_key] = p.*info.scalar;
+    }
+    if (d.bulk == BulkResponse::KappaOrPoisson) m["kappa"] = p.kappa;
+    auto j = minimal();
+    j["material"] = m;
+    const CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+    EXPECT_EQ(c.material.law, d.law);
+    EXPECT_EQ(small_strain_moduli(d.law, c.material.parameters).shear, d.shear_modulus(p)) << d.name;
+  }
+  auto j = minimal();
+  j["material"] = {{"law", "hooke"}, {"E", 1000.0}, {"nu", 0.3}, {"density", 1000.0}};
+  const std::string e = error_of(j);
+  EXPECT_NE(e.find("'material.law'"), std::string::npos) << e;
+  for (const std::string& n : law_name_list()) EXPECT_NE(e.find(n), std::string::npos) << e;
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
 // The law factory: every law from its keys, errors naming the key (missing, non-numeric, unknown,
 // refused by the law), and the name list.
 #include "core/base/error.hpp"
+#include "core/constitutive/law_catalogue.hpp"
+#include "core/testing/law_samples.hpp"
 #include "tensormass/materials/law_factory.hpp"
 
 #include <gtest/gtest.h>
@@ -121,6 +123,46 @@ TEST(LawFactory, PlainParametersOfTheCaseFileGiveTheSameLaw) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("case.json: material (law 'ogden'"), std::string::npos) << e.what();
   }
+}
+
+// The law catalogue and the laws agree: every row builds from its sample values (the fit's starting
+// values, defaults where given) by both factories, is the variant alternative of its enum, and
+// linearises to the catalogue's small-strain shear modulus: the central difference of S_12 under a
+// tiny simple shear F = I + g e1 (x) e2 (S_12 = G g + O(g^3) at F = I).
+TEST(LawFactory, EveryCatalogueLawBuildsAndLinearisesToItsShearModulus) {
+  for (const LawDescriptor& d : law_catalogue()) {
+    const LawParameters p = testing::sample_parameters(d.law);
+    const Law law = make_law(d.law, p, "catalogue");
+    EXPECT_EQ(law.kind(), d.law);
+    EXPECT_EQ(law.name(), d.name);
+    const double G = small_strain_moduli(d.law, p).shear;
+    EXPECT_EQ(G, d.shear_modulus(p)) << d.name;
+    EXPECT_NEAR(law.small_strain().mu, G, 1e-12 * G) << d.name;
+    const double g = 1e-5;
+    auto s12 = [&](double shear) {
+      Mat3 F = Mat3::Identity();
+      F(0, 1) = shear;
+      const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
+      return law.pk2_stress(E)(0, 1);
+    };
+    const double G_fd = (s12(g) - s12(-g)) / (2.0 * g);
+    EXPECT_NEAR(G_fd, G, 1e-6 * G) << d.name;
+    // The parameter object under the catalogue's names gives the same law.
+    json j = json::object();
+    for (const LawParameterInfo& info : d.parameters) {
+      if (info.list)
+        j[info.name] = p.*info.values;
+      else
+        j[info.name] = p.*info.scalar;
+    }
+    if (d.bulk == BulkResponse::KappaOrPoisson) j["kappa"] = p.kappa;
+    EXPECT_EQ(make_law(d.name, j, "catalogue").small_strain().mu, law.small_strain().mu) << d.name;
+  }
+  // Exactly the catalogue's names: another is refused with the list.
+  EXPECT_EQ(law_names(), law_name_list());
+  const std::string e = error_of("hooke", json::object());
+  for (const LawDescriptor& d : law_catalogue())
+    EXPECT_NE(e.find(std::string("\"") + d.name + "\""), std::string::npos) << e;
 }
 
 }  // namespace
