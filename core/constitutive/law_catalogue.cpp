@@ -87,7 +87,8 @@ constexpr LawParameterInfo kVerondaWestmannParameters[] = {
     scalar("c2", "1", kAboveZero, kOpenHigh, &LawParameters::c2, "exponential stiffening c2 (dimensionless)",
            absolute(1.0, 0.1, 10.0, 0.0, kInf))};
 
-// Small-strain shear moduli (the arithmetic every caller has used: keep it bit for bit).
+// Small-strain shear moduli (the arithmetic small_strain_moduli has used: keep it bit for bit; the
+// fit keeps its own Ogden loop, see calibration/fit/model_spec.cpp shear_modulus_at).
 double shear_young_poisson(const LawParameters& p) { return p.young / (2.0 * (1.0 + p.poisson)); }
 double shear_mooney_rivlin(const LawParameters& p) { return 2.0 * (p.c10 + p.c01); }
 double shear_yeoh(const LawParameters& p) { return 2.0 * p.c10; }
