@@ -9,6 +9,7 @@
 
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 
 #ifdef TMLAB_HAVE_BENCH
 #include "bench/bench_report.hpp"
@@ -44,24 +45,20 @@ int cmd_bench(const std::vector<std::string>& args, const std::string& command_l
   opt.log = &std::cerr;
   const fs::path dir = fs::path(results_root(p)) / "bench";
   RunOutput out(dir);
-  try {
-    nlohmann::json config = p.config(kManifest);
-    config["meshes"] = opt.meshes;  // the default set when --meshes is not given
-    out.write_json("manifest.json", make_manifest({split_words(command_line),
-                                                   config,
-                                                   {fs::path(opt.tmlab_root) / "meshes" / "liver.msh"}}));
-    nlohmann::json bench = tm::run_bench(opt);
-    bench["command"] = command_line;
-    const std::string md = tm::bench_markdown(bench);
-    out.finalize(tm::write_bench_report(std::move(bench), out.staging_dir(), !p.flag("--no-plots"),
-                                        opt.tmlab_root, &std::cerr));
-    std::cout << md << "\nresults     " << dir.string()
-              << (p.flag("--no-plots") ? "/ (bench.json, bench.md; no plots: --no-plots)\n"
-                                       : "/ (bench.json, bench.md, *.png)\n");
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
+  nlohmann::json config = p.config(kManifest);
+  config["meshes"] = opt.meshes;  // the default set when --meshes is not given
+  std::string md;
+  run_with_protocol(
+      out, {split_words(command_line), config, {fs::path(opt.tmlab_root) / "meshes" / "liver.msh"}}, [&] {
+        nlohmann::json bench = tm::run_bench(opt);
+        bench["command"] = command_line;
+        md = tm::bench_markdown(bench);
+        return tm::write_bench_report(std::move(bench), out.staging_dir(), !p.flag("--no-plots"),
+                                      opt.tmlab_root, &std::cerr);
+      });
+  std::cout << md << "\nresults     " << dir.string()
+            << (p.flag("--no-plots") ? "/ (bench.json, bench.md; no plots: --no-plots)\n"
+                                     : "/ (bench.json, bench.md, *.png)\n");
   return 0;
 #endif
 }

@@ -68,6 +68,8 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   // summary.json last, one writer, FAILED/INTERRUPTED on failure): <results>/<case>-compare/ against
   // the reference, <results>/<case>-compare-tl_oracle/ against the oracle, so neither replaces the other.
   RunOutput out(fs::path(opt.results_root) / compare_dir_name(cfg.name, against), &std::cerr);
+  // Not run_with_protocol: the manifest names both runs' folders, known only after they ran, and
+  // the comparison keeps no checkpoint (each run has its own).
   try {
     CaseConfig tm_cfg = cfg;
     // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.

@@ -8,6 +8,7 @@
 
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 #include "studies/common/study_plot.hpp"
 #include "studies/depth_limit/depth_limit.hpp"
 #include "tensormass/materials/law_factory.hpp"
@@ -61,10 +62,11 @@ int cmd_depth_limit(const std::vector<std::string>& args, const std::string& com
   if (p.flag("--resume")) o.resume = read_checkpoint(o.checkpoint, "depth_limit", config);
   RunOutput out(dir, nullptr,
                 p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
-  try {
-    const std::vector<tm::DepthLimitRun> runs = tm::run_depth_limit_study(o);  // validates the options
-    nlohmann::json doc = tm::depth_limit_json(o, runs);
-    out.write_json("manifest.json", make_manifest({split_words(command_line), doc, {}}));
+  // The manifest records the effective options (the fingerprint); the runs are the result.
+  std::vector<tm::DepthLimitRun> runs;
+  run_with_protocol(out, {split_words(command_line), config, {}}, [&] {
+    runs = tm::run_depth_limit_study(o);  // validates the options
+    const nlohmann::json doc = tm::depth_limit_json(o, runs);
     out.write_json("depth_limit.json", doc);
     remove_checkpoint(o.checkpoint);  // a complete result holds no checkpoint
     {
@@ -87,12 +89,9 @@ int cmd_depth_limit(const std::vector<std::string>& args, const std::string& com
                                  {"inversion_depth_m", r["inversion_depth_m"]},
                                  {"deepest_converged_m", r["deepest_converged_m"]},
                                  {"deepest_min_J", r["deepest_min_J"]}});
-    out.finalize(summary);
-    std::cout << tm::depth_limit_markdown(o, runs, command_line);
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
+    return summary;
+  });
+  std::cout << tm::depth_limit_markdown(o, runs, command_line);
   std::cout << "results " << dir.string()
             << "/ (depth_limit.json, depth_limit.md, summary.json, depth_limit.png)\n";
   return 0;

@@ -10,6 +10,7 @@
 #include "core/base/format.hpp"
 #include "core/constitutive/prony.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 #include "studies/hereditary/hereditary_report.hpp"
 
 #include <cmath>
@@ -59,17 +60,11 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   if (p.flag("--resume")) o.resume = read_checkpoint(o.checkpoint, "hereditary", config);
   RunOutput out(dir, nullptr,
                 p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
-  try {
-    std::vector<fs::path> inputs;
-    if (o.liver) inputs.push_back(o.params_file);
-    out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
-    const nlohmann::json summary = tm::write_hereditary_study(o, out.staging_dir());
-    remove_checkpoint(o.checkpoint);  // a complete result holds no checkpoint
-    out.finalize(summary);
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
+  std::vector<fs::path> inputs;
+  if (o.liver) inputs.push_back(o.params_file);
+  run_with_protocol(out, {split_words(command_line), config, inputs},
+                    [&] { return tm::write_hereditary_study(o, out.staging_dir()); },
+                    {[&] { remove_checkpoint(o.checkpoint); }, {}});
   std::cout << "results " << dir.string() << "/ (hereditary.h5, hereditary.md, summary.json, *.png)\n";
   return 0;
 }

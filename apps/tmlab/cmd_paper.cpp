@@ -8,6 +8,7 @@
 
 #include "core/config/config_reader.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 #include "studies/paper/paper_fit.hpp"
 #include "studies/paper/paper_run.hpp"
 
@@ -39,15 +40,14 @@ int paper_fit(const ParsedOptions& p, const std::string& target, const std::stri
   // Same protocol as the figures below; --resume reuses the fits an interrupted run finished.
   RunOutput out(dir, &std::cerr,
                 o.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
-  try {
-    ManifestInput mi;
-    mi.command_line = split_words(command_line);
-    mi.config = p.config(kManifest);
-    mi.config.update({{"target", target}, {"params", params}});
-    mi.input_files = {o.params_file};
-    out.write_json("manifest.json", make_manifest(mi));
-    const nlohmann::json summary = tm::run_paper_fit(target, s, o, out.staging_dir());
-    out.finalize(summary);
+  ManifestInput mi;
+  mi.command_line = split_words(command_line);
+  mi.config = p.config(kManifest);
+  mi.config.update({{"target", target}, {"params", params}});
+  mi.input_files = {o.params_file};
+  nlohmann::json summary;
+  run_with_protocol(out, mi, [&] { return summary = tm::run_paper_fit(target, s, o, out.staging_dir()); });
+  {
     const bool elastic = target == "fig2" || target == "table1";
     std::ifstream md(out.dir() / (elastic ? "table1.md" : "table2.md"));
     std::cout << md.rdbuf() << "\n"
@@ -55,9 +55,6 @@ int paper_fit(const ParsedOptions& p, const std::string& target, const std::stri
               << " FE forward solves + " << summary["closed_form_solves"].get<long>()
               << " closed-form solves, " << summary["fit_wall_seconds"].get<double>() << " s of fitting\n"
               << "written: " << out.dir().string() << "/\n";
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
   }
   return 0;
 }
@@ -93,14 +90,13 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
   o.resume = p.flag("--resume");
   RunOutput out(dir, &std::cerr,
                 o.resume ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
-  try {
-    ManifestInput mi;
-    mi.command_line = o.command_line;
-    mi.config = {{"figure", fig.name}, {"params", params}};  // --quick is refused for the figures
-    mi.input_files = {o.params_file};
-    out.write_json("manifest.json", make_manifest(mi));
-    const nlohmann::json summary = tm::run_paper_figure(fig, o, out.staging_dir());
-    out.finalize(summary);
+  ManifestInput mi;
+  mi.command_line = o.command_line;
+  mi.config = {{"figure", fig.name}, {"params", params}};  // --quick is refused for the figures
+  mi.input_files = {o.params_file};
+  nlohmann::json summary;
+  run_with_protocol(out, mi, [&] { return summary = tm::run_paper_figure(fig, o, out.staging_dir()); });
+  {
     if (summary.contains("energy")) {
       std::cout << "hysteresis: loop area = dissipated + stored at the end of the cycle\n";
       for (const auto& row : summary["energy"])
@@ -110,9 +106,6 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
                   << " J, relative residual " << row["relative_residual"].get<double>() << "\n";
     }
     std::cout << "written: " << out.dir().string() << "/\n";
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
   }
   return 0;
 }

@@ -13,6 +13,7 @@
 #include "core/base/format.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 #include "realtime/live_server.hpp"
 #include "realtime/realtime_loop.hpp"
 #include "realtime/realtime_record.hpp"
@@ -152,22 +153,18 @@ int cmd_realtime(const std::vector<std::string>& args, const std::string& comman
   const fs::path dir = fs::path(results_root(p)) / "realtime";
   RunOutput out(dir);
   nlohmann::json doc;
-  try {
-    // The options as given, with the case's duration and coupling when they were not.
-    nlohmann::json config = p.config(kManifest);
-    config.update({{"case", file}, {"duration", duration}, {"coupling", rt::to_string(c.rendered)}});
-    out.write_json("manifest.json", make_manifest({split_words(command_line), config, {file, c.mesh_file}}));
-    rt::RecordOptions ro;
-    ro.duration = duration;
-    ro.frames = !p.flag("--no-frames");
-    ro.log = [](const std::string& m) { std::cerr << "tmlab realtime: " << m << "\n"; };
+  // The options as given, with the case's duration and coupling when they were not.
+  nlohmann::json config = p.config(kManifest);
+  config.update({{"case", file}, {"duration", duration}, {"coupling", rt::to_string(c.rendered)}});
+  rt::RecordOptions ro;
+  ro.duration = duration;
+  ro.frames = !p.flag("--no-frames");
+  ro.log = [](const std::string& m) { std::cerr << "tmlab realtime: " << m << "\n"; };
+  run_with_protocol(out, {split_words(command_line), config, {file, c.mesh_file}}, [&] {
     doc = rt::record_realtime(c, ro, out.staging_dir());
     out.write_json("timing.json", doc);
-    out.finalize(doc);
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
+    return doc;
+  });
   std::cout << "timing (wall clock, this machine's load included):\n";
   for (const char* name : {"haptic", "control", "visual"}) {
     const auto& t = doc["threads"][name];

@@ -85,6 +85,9 @@ int cmd_verify(const std::vector<std::string>& args, const std::string& command_
     // Checkpoint: each finished case's result, beside the result directory (which a new run
     // empties), so that an interrupted suite continues with --resume (docs/robustness.md).
     // The suite's identity is its configuration: the cases dir, --full and the cases in order.
+    // Not run_with_protocol (core/results/run_protocol.hpp): the suite's checkpoint lives beside the
+    // report, not inside it, so it is removed only after the report is final (a failed finish can
+    // still be resumed), and a stop names the cases it holds.
     verify::SuiteCheckpoint checkpoint(root_dir / "verification.checkpoint.h5", config, p.flag("--resume"));
     if (p.flag("--resume"))
       std::cerr << "tmlab verify: resuming: " << checkpoint.stored() << " of " << cases.size()

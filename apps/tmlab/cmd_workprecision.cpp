@@ -8,6 +8,7 @@
 #include "command_specs.hpp"
 
 #include "core/results/run_output.hpp"
+#include "core/results/run_protocol.hpp"
 #include "studies/workprecision/work_precision.hpp"
 
 #include <filesystem>
@@ -40,23 +41,21 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
   if (p.flag("--resume")) opt.resume = read_checkpoint(opt.checkpoint, "workprecision", config);
   RunOutput out(dir, nullptr,
                 p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
-  try {
-    std::vector<fs::path> inputs;
-    for (const auto& name : opt.problems)
-      if (name == "liver")
-        inputs = {fs::path(opt.tmlab_root) / "meshes" / "liver.msh",
-                  fs::path(opt.tmlab_root) / "cases" / "paper" / "xu2011_liver.json"};
-    out.write_json("manifest.json", make_manifest({split_words(command_line), config, inputs}));
-    const std::vector<tm::WorkPrecisionProblem> results = tm::run_work_precision(opt);
-    remove_checkpoint(opt.checkpoint);  // a complete result holds no checkpoint
-    out.finalize(tm::write_work_precision(results, command_line, out.staging_dir(), !p.flag("--no-plots"),
-                                          opt.tmlab_root, &std::cerr));
-    std::cout << tm::work_precision_table(results) << "results     " << dir.string()
-              << "/ (workprecision.h5, workprecision.md, *.png)\n";
-  } catch (const std::exception& e) {
-    out.abandon(e);
-    throw;
-  }
+  std::vector<fs::path> inputs;
+  for (const auto& name : opt.problems)
+    if (name == "liver")
+      inputs = {fs::path(opt.tmlab_root) / "meshes" / "liver.msh",
+                fs::path(opt.tmlab_root) / "cases" / "paper" / "xu2011_liver.json"};
+  std::vector<tm::WorkPrecisionProblem> results;
+  // The checkpoint goes before the files are written (a complete result holds none), as before.
+  run_with_protocol(out, {split_words(command_line), config, inputs}, [&] {
+    results = tm::run_work_precision(opt);
+    remove_checkpoint(opt.checkpoint);
+    return tm::write_work_precision(results, command_line, out.staging_dir(), !p.flag("--no-plots"),
+                                    opt.tmlab_root, &std::cerr);
+  });
+  std::cout << tm::work_precision_table(results) << "results     " << dir.string()
+            << "/ (workprecision.h5, workprecision.md, *.png)\n";
   return 0;
 }
 

@@ -1,8 +1,11 @@
 // One run under the result protocol (issue 27): the manifest, the computation, the checkpoint
 // removed (a complete result holds none), summary.json last; on a stop request (tmlab::Interrupted)
 // INTERRUPTED with where the checkpoint is, on any other error FAILED, and the exception passed on.
-// Every command that computes into a RunOutput (tmlab run's run_case, fit, discover, discover
-// --benchmark) runs through it, so the order of these steps is written once.
+// The commands that compute into a RunOutput run through it (tmlab run's run_case, fit, discover,
+// discover --benchmark, paper, hereditary, workprecision, depth-limit, bench, realtime --record), so
+// the order of these steps is written once. Two keep their own order, each saying why: verify (its
+// checkpoint lives beside the report and goes only after the report is final) and compare (its
+// manifest names the two runs' folders, known only after they ran).
 #pragma once
 
 #include "core/base/interrupt.hpp"
