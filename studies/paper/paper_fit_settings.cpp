@@ -3,6 +3,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/constitutive/law_catalogue.hpp"
 
 #include <cmath>
 
@@ -84,9 +85,12 @@ PaperFitSettings paper_fit_settings(const json& params_in, const std::string& wh
     ConfigReader f = r.child("identification");
     s.laws = f.require<std::vector<std::string>>("laws");
     if (s.laws.empty()) throw f.error("laws", "needs at least one law");
-    for (const auto& l : s.laws)
-      if (l != "stvk" && l != "neo_hookean")
+    // The closed-form references see E and nu only: the laws the catalogue gives by E and nu.
+    for (const auto& l : s.laws) {
+      const std::optional<MaterialLaw> law = material_law_from_string(l);
+      if (!law || law_descriptor(*law).bulk != BulkResponse::YoungPoisson)
         throw f.error("laws", "'" + l + "': the indentation study fits stvk and neo_hookean only");
+    }
     s.starts = f.require<int>("starts");
     s.local_runs = f.require<int>("local_runs");
     s.max_iterations = f.require<int>("max_iterations");
