@@ -28,9 +28,9 @@ namespace tmlab::discover {
 
 struct FeRefitOptions {
   rigs::RigFromDataMesh mesh{8, 4, 2.0};  ///< coarser than tmlab fit's default: two refits per data set
-  int substeps = 1;                   ///< static load steps per (decimated) sampling interval
-  int max_iterations = 8;             ///< Levenberg-Marquardt iterations of each refit
-  std::size_t max_samples = 300;      ///< the loop's data decimated further for the rig
+  int substeps = 1;                       ///< static load steps per (decimated) sampling interval
+  int max_iterations = 8;                 ///< Levenberg-Marquardt iterations of each refit
+  std::size_t max_samples = 300;          ///< the loop's data decimated further for the rig
 };
 
 struct FeRefit {

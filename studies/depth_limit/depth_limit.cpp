@@ -72,7 +72,8 @@ DirichletSet quarter_supports(const Mesh& mesh, double W) {
 
 void check_options(const DepthLimitOptions& o) {
   auto positive = [](double v, const char* key) {
-    if (!(v > 0.0) || !std::isfinite(v)) throw Error(std::string("depth-limit study: ") + key + " must be > 0");
+    if (!(v > 0.0) || !std::isfinite(v))
+      throw Error(std::string("depth-limit study: ") + key + " must be > 0");
   };
   positive(o.radius, "radius");
   positive(o.half_width, "half_width");
@@ -275,7 +276,8 @@ DepthLimitRun run_inversion(const DepthLimitOptions& o, const DepthLimitLaw& law
 
 nlohmann::json depth_limit_fingerprint(const DepthLimitOptions& o) {
   using nlohmann::json;
-  const std::vector<DepthLimitLaw> laws = o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
+  const std::vector<DepthLimitLaw> laws =
+      o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
   json jl = json::array();
   for (const DepthLimitLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
   return {{"radius_m", o.radius},       {"half_width_m", o.half_width},
@@ -308,7 +310,8 @@ std::vector<DepthLimitRun> run_depth_limit_study(const DepthLimitOptions& option
 nlohmann::json depth_limit_json(const DepthLimitOptions& o, const std::vector<DepthLimitRun>& runs) {
   using nlohmann::json;
   auto num = [](double v) { return std::isfinite(v) ? json(v) : json(nullptr); };
-  const std::vector<DepthLimitLaw> laws = o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
+  const std::vector<DepthLimitLaw> laws =
+      o.laws.empty() ? default_depth_limit_laws(o.young, o.poisson) : o.laws;
   json jl = json::array();
   for (const DepthLimitLaw& l : laws) jl.push_back({{"law", l.name}, {"parameters", l.parameters}});
   json out = {{"geometry",
@@ -353,7 +356,7 @@ nlohmann::json depth_limit_json(const DepthLimitOptions& o, const std::vector<De
 }
 
 std::string depth_limit_markdown(const DepthLimitOptions& o, const std::vector<DepthLimitRun>& runs,
-                               const std::string& command_line) {
+                                 const std::string& command_line) {
   std::ostringstream m;
   m << "# Inversion depth of each law under a sphere indentation\n\n"
     << "Sphere R = " << fmt_mm(o.radius, 1) << " mm into a " << fmt_mm(2 * o.half_width, 0) << " x "

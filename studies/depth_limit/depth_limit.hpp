@@ -59,7 +59,7 @@ struct DepthLimitOptions {
   double grading = 2.0;                         ///< p of the graded map (1 = uniform)
   double max_depth = 0.008;                     ///< m
   double increment = 0.5e-3;                    ///< depth increment, m
-  std::vector<DepthLimitLaw> laws;               ///< empty: default_depth_limit_laws(young, poisson)
+  std::vector<DepthLimitLaw> laws;              ///< empty: default_depth_limit_laws(young, poisson)
   std::vector<int> cells = {4, 6, 9};           ///< cells per axis of the quarter block (>= 2 each)
   std::function<void(const std::string&)> log;  ///< progress lines (may be empty)
   /// Checkpoints (empty: none): after every finished (law, mesh) run the finished runs are written
@@ -122,6 +122,6 @@ std::vector<DepthLimitRun> run_depth_limit_study(const DepthLimitOptions& option
 /// The study as JSON (options, and per run the outcome and samples) and as a markdown table.
 nlohmann::json depth_limit_json(const DepthLimitOptions& options, const std::vector<DepthLimitRun>& runs);
 std::string depth_limit_markdown(const DepthLimitOptions& options, const std::vector<DepthLimitRun>& runs,
-                               const std::string& command_line);
+                                 const std::string& command_line);
 
 }  // namespace tmlab::tm

@@ -43,8 +43,8 @@ struct PaperFitSettings {
     double time_floor = 0.0, time_ceiling = 0.0;
     /// the FE rig's relative finite-difference step (fit::RigForwardModelOptions)
     double jacobian_step = 1e-6;
-    double xtol = 1e-9;           ///< Levenberg-Marquardt's step test (fit::FitOptions::xtol)
-    int max_iterations = 0;       ///< Levenberg-Marquardt iterations; 0: identification.max_iterations
+    double xtol = 1e-9;      ///< Levenberg-Marquardt's step test (fit::FitOptions::xtol)
+    int max_iterations = 0;  ///< Levenberg-Marquardt iterations; 0: identification.max_iterations
   } relaxation;
   // When St VK counts as usable at a depth (all must hold).
   double max_rms_percent = 3.0;              ///< residual RMS, % of peak

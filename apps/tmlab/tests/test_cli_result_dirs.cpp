@@ -138,10 +138,10 @@ std::vector<Command> commands() {
                  "ramp_hold",  "--no-plots", "--results",  o};
        },
        none},
-      {"depth-limit", "depth-limit",
+      {"depth_limit", "depth-limit",
        [](const fs::path&, const std::string& o) -> std::vector<std::string> {
          return {"depth-limit", "--laws",      "neo_hookean,stvk", "--cells",    "3",         "--max-depth",
-                 "0.001",     "--increment", "0.0005",           "--no-plots", "--results", o};
+                 "0.001",       "--increment", "0.0005",           "--no-plots", "--results", o};
        },
        none},
       {"fit", "",

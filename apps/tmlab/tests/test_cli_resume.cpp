@@ -741,8 +741,8 @@ TEST_F(CliFitResume, InterruptedBenchmarkResumesToTheSameResult) {
 /// equal the uninterrupted study's except the clock times.
 TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
   const std::vector<std::string> args = {"depth-limit", "--laws",      "stvk,neo_hookean", "--cells",
-                                         "3,4",       "--max-depth", "0.0025",           "--increment",
-                                         "0.0005",    "--no-plots"};
+                                         "3,4",         "--max-depth", "0.0025",           "--increment",
+                                         "0.0005",      "--no-plots"};
   auto with = [&](const fs::path& res, bool resume) {
     std::vector<std::string> a = args;
     a.insert(a.end(), {"--results", res.string()});
@@ -750,8 +750,9 @@ TEST_F(CliStudyResume, InterruptedInversionStudyResumes) {
     return a;
   };
   auto result = [](const fs::path& res) {
-    nlohmann::json j = {{"inversion", nlohmann::json::parse(read_file(res / "depth-limit" / "depth_limit.json"))},
-                        {"summary", nlohmann::json::parse(read_file(res / "depth-limit" / "summary.json"))}};
+    nlohmann::json j = {
+        {"inversion", nlohmann::json::parse(read_file(res / "depth-limit" / "depth_limit.json"))},
+        {"summary", nlohmann::json::parse(read_file(res / "depth-limit" / "summary.json"))}};
     strip_times(j);
     return j;
   };

@@ -35,9 +35,9 @@ TEST(CommandSpecs, HelpListsEveryOptionOfEveryCommand) {
     }
   }
   for (const char* c :
-       {"demo",       "run",           "compare",   "cases",    "mesh info", "mesh check",   "paper",
+       {"demo",       "run",           "compare",     "cases",    "mesh info", "mesh check",   "paper",
         "hereditary", "workprecision", "depth-limit", "realtime", "verify",    "data convert", "data show",
-        "rig",        "fit",           "bench",     "discover", "version",   "help"})
+        "rig",        "fit",           "bench",       "discover", "version",   "help"})
     EXPECT_EQ(names.count(c), 1u) << c;
   EXPECT_EQ(specs_of("data").size(), 2u);
   EXPECT_EQ(specs_of("fit").size(), 1u);
