@@ -92,8 +92,8 @@ int cmd_depth_limit(const std::vector<std::string>& args, const std::string& com
     return summary;
   });
   std::cout << tm::depth_limit_markdown(o, runs, command_line);
-  std::cout << "results " << dir.string()
-            << "/ (depth_limit.json, depth_limit.md, summary.json, depth_limit.png)\n";
+  std::cout << "results " << dir.string() << "/ (depth_limit.json, depth_limit.md, summary.json"
+            << (p.flag("--no-plots") ? ")\n" : ", depth_limit.png)\n");
   return 0;
 }
 

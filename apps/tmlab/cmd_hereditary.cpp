@@ -31,6 +31,8 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   ParsedOptions p = parse(hereditary_spec(), args);
   if (!p.positional.empty()) throw UsageError("hereditary takes no positional arguments");
   if (p.flag("--liver") && p.flag("--no-liver")) throw UsageError("give --liver or --no-liver, not both");
+  if (p.flag("--no-liver") && p.given("--liver-history"))
+    throw UsageError("--liver-history chooses the liver study's history: it has no use with --no-liver");
   tm::HereditaryRunOptions o;
   o.study.quick = p.flag("--quick");
   o.liver = !p.flag("--no-liver");
@@ -65,7 +67,8 @@ int cmd_hereditary(const std::vector<std::string>& args, const std::string& comm
   run_with_protocol(out, {split_words(command_line), config, inputs},
                     [&] { return tm::write_hereditary_study(o, out.staging_dir()); },
                     {[&] { remove_checkpoint(o.checkpoint); }, {}});
-  std::cout << "results " << dir.string() << "/ (hereditary.h5, hereditary.md, summary.json, *.png)\n";
+  std::cout << "results " << dir.string() << "/ (hereditary.h5, hereditary.md, summary.json"
+            << (p.flag("--no-plots") ? ")\n" : ", *.png)\n");
   return 0;
 }
 

@@ -30,6 +30,8 @@ int cmd_cases(const std::vector<std::string>& args) {
       if (e.path().extension() == ".json") files.push_back(e.path());
   std::sort(files.begin(), files.end());
   std::cout << "shipped cases (" << dir.string() << "); run one with 'tmlab run NAME':\n";
+  std::size_t width = 0;  // the longest name, so every description starts in one column
+  for (const auto& f : files) width = std::max(width, f.stem().string().size());
   for (const auto& f : files) {
     std::string desc;
     try {
@@ -38,7 +40,8 @@ int cmd_cases(const std::vector<std::string>& args) {
     } catch (const Error& e) {
       desc = std::string("(unreadable: ") + e.what() + ")";
     }
-    std::cout << "  " << std::left << std::setw(28) << f.stem().string() << desc << "\n";
+    std::cout << "  " << std::left << std::setw(static_cast<int>(width + 2)) << f.stem().string() << desc
+              << "\n";
   }
   return 0;
 }

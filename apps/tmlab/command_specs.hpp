@@ -44,6 +44,11 @@ std::vector<CommandSpec> specs_of(const std::string& command);
 /// `tmlab help`: every command with every option.
 std::string usage_text();
 
+/// What to say of a word that is no command: a renamed command's new name ("inversion" ->
+/// "depth-limit"), else the nearest command within two edits ("fti" -> "did you mean 'fit'?"), then
+/// where the list of commands is. One short message: the full help would scroll it away.
+std::string unknown_command_message(const std::string& word);
+
 /// Options shared by several commands, declared once.
 OptionSpec results_option();     ///< --results DIR
 OptionSpec no_plots_option();    ///< --no-plots

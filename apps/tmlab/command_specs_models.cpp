@@ -2,6 +2,12 @@
 // list of every command (command_specs.hpp).
 #include "command_specs.hpp"
 
+#include "core/base/format.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
 namespace tmlab::cli {
 
 OptionSpec results_option() { return text("--results", "DIR", "results root (default: <tmlab>/results)"); }
@@ -94,6 +100,42 @@ std::string usage_text() {
   std::string s = "usage: tmlab <command> [options]\n\ncommands:\n";
   for (const CommandSpec& c : command_specs()) s += command_help(c);
   return s + "\nThe ./tmlab script also offers: ./tmlab test [ctest args], ./tmlab build.\n";
+}
+
+namespace {
+
+/// Levenshtein distance (single-character insertions, deletions and substitutions).
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+}  // namespace
+
+std::string unknown_command_message(const std::string& word) {
+  const std::string tail = "\n(see 'tmlab help' for the commands and their options)\n";
+  if (word == "inversion")
+    return "unknown command 'inversion': tmlab inversion is now tmlab depth-limit (the same options; "
+           "results in <results>/depth-limit/; see 'tmlab help depth-limit')\n";
+  std::string best;
+  std::size_t best_distance = 3;  // suggest within two edits only
+  for (const CommandSpec& c : command_specs()) {
+    const std::string name = c.name.substr(0, c.name.find(' '));  // "mesh info" -> "mesh"
+    const std::size_t d = edit_distance(word, name);
+    if (d < best_distance) best = name, best_distance = d;
+  }
+  return "unknown command '" + printable(word, 60) + "'" +
+         (best.empty() ? "" : " (did you mean '" + best + "'?)") + tail;
 }
 
 }  // namespace tmlab::cli

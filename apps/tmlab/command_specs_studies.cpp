@@ -72,9 +72,10 @@ CommandSpec depth_limit_spec() {
       "results/depth-limit/ (depth_limit.json, .md, PNG; docs/contact.md)",
       {text_list("--laws", "L1,L2", "the laws (default: every law)"),
        whole_list("--cells", "N1,N2", 2, 64, "cells per axis of each mesh (default 4,6,9; 4 with --quick)"),
-       decimal("--max-depth", "M", Interval{}, "deepest indentation, m").def("0.008"),
-       decimal("--increment", "M", Interval{}, "depth increment, m").def("0.0005"),
-       decimal("--grading", "P", Interval{}, "grading towards the sphere (1 = uniform)").def("2"),
+       decimal("--max-depth", "M", open(0.0, 0.02), "deepest indentation, m (below the 20 mm block)")
+           .def("0.008"),
+       decimal("--increment", "M", open(0.0, 0.02), "depth increment, m (at most --max-depth)").def("0.0005"),
+       decimal("--grading", "P", closed(1.0, 20.0), "grading towards the sphere (1 = uniform)").def("2"),
        flag("--quick", "the 4-cell mesh only"), results_option(), no_plots_option(), study_resume()}};
 }
 

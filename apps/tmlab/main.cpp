@@ -46,7 +46,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (print_command_help({args.begin() + 1, args.end()})) return 0;
-    std::cerr << "tmlab help: no command '" << args[1] << "'\n\n" << tmlab::cli::usage_text();
+    std::cerr << "tmlab help: " << tmlab::cli::unknown_command_message(args[1]);
     return 2;
   }
   const std::string cmd = args[0];
@@ -76,9 +76,6 @@ int main(int argc, char** argv) {
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
     if (cmd == "depth-limit") return tmlab::cli::cmd_depth_limit(args, command_line);
-    if (cmd == "inversion")
-      throw tmlab::cli::UsageError(
-          "tmlab inversion is now tmlab depth-limit (the same options; results in <results>/depth-limit/)");
     if (cmd == "bench") return tmlab::cli::cmd_bench(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);
@@ -86,7 +83,7 @@ int main(int argc, char** argv) {
     if (cmd == "fit") return tmlab::cli::cmd_fit(args, command_line);
     if (cmd == "realtime") return tmlab::cli::cmd_realtime(args, command_line);
     if (cmd == "discover") return tmlab::cli::cmd_discover(args, command_line);
-    std::cerr << "tmlab: unknown command '" << cmd << "'\n\n" << tmlab::cli::usage_text();
+    std::cerr << "tmlab: " << tmlab::cli::unknown_command_message(cmd);
     return 2;
   } catch (...) {
     // The last defence for a message that quotes user text: ESC and the other C0 control characters

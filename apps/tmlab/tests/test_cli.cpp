@@ -37,6 +37,16 @@ TEST_F(Cli, HelpAndUsageErrors) {
   const Result bad = run("frobnicate");
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.output.find("unknown command 'frobnicate'"), std::string::npos) << bad.output;
+  // A mistyped command gets one short message with the nearest command, not the whole help.
+  const Result typo = run("fti");
+  EXPECT_EQ(typo.status, 2);
+  EXPECT_NE(typo.output.find("unknown command 'fti' (did you mean 'fit'?)"), std::string::npos)
+      << typo.output;
+  EXPECT_EQ(typo.output.find("commands:"), std::string::npos) << typo.output;
+  const Result old_name = run("help inversion");
+  EXPECT_EQ(old_name.status, 2);
+  EXPECT_NE(old_name.output.find("tmlab inversion is now tmlab depth-limit"), std::string::npos)
+      << old_name.output;
   EXPECT_EQ(run("run").status, 2);
   EXPECT_EQ(run("run liver-probe --bogus").status, 2);
   const auto fig9 = run("paper fig9");

@@ -82,4 +82,26 @@ TEST(CliStudies, TheOldInversionCommandNamesItsNewName) {
   EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(CliStudies, DepthLimitRangesAreCheckedBeforeAnythingIsWritten) {
+  // The depth, increment and grading are declared with their ranges: an impossible value is a usage
+  // error naming the option (exit 2), and no result folder is made.
+  const fs::path out = fs::temp_directory_path() / ("tmlab_depth_limit_range_" + std::to_string(::getpid()));
+  for (const char* bad : {"--max-depth 0", "--max-depth 0.03", "--increment -1", "--grading 0.5"}) {
+    const Result r =
+        run(std::string("depth-limit --quick --no-plots ") + bad + " --results '" + out.string() + "'");
+    EXPECT_EQ(r.status, 2) << bad << "\n" << r.output;
+    EXPECT_NE(r.output.find(std::string(bad).substr(0, std::string(bad).find(' '))), std::string::npos)
+        << r.output;
+  }
+  EXPECT_FALSE(fs::exists(out));
+  fs::remove_all(out);
+}
+
+TEST(CliStudies, HereditaryLiverHistoryNeedsTheLiver) {
+  const Result r =
+      run("hereditary --quick --no-liver --liver-history pk2 --no-plots --results /nonexistent-tmlab");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("--liver-history"), std::string::npos) << r.output;
+}
+
 }  // namespace
