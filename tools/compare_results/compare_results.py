@@ -69,10 +69,11 @@ def cmp_h5(pa, pb, out):
         fa.visit(names_a.append)
         fb.visit(names_b.append)
         for n in names_a:
-            if n not in fb:
+            nb = root_fix(n)  # --root renames apply to object names too
+            if nb not in fb:
                 out.append(f"{n}: missing in new")
                 continue
-            oa, ob = fa[n], fb[n]
+            oa, ob = fa[n], fb[nb]
             if isinstance(oa, h5py.Dataset):
                 if is_clock_key(n.split("/")[-1]):
                     continue
@@ -93,8 +94,9 @@ def cmp_h5(pa, pb, out):
                     out.append(f"{n}@{k}: attribute missing in new")
                 elif root_fix(repr(oa.attrs[k])) != repr(ob.attrs[k]):
                     out.append(f"{n}@{k}: {oa.attrs[k]!r} -> {ob.attrs[k]!r}")
+        renamed = {root_fix(n) for n in names_a}
         for n in names_b:
-            if n not in fa:
+            if n not in renamed:
                 out.append(f"{n}: extra in new")
 
 
