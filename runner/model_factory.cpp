@@ -2,6 +2,7 @@
 #include "runner/model_factory.hpp"
 
 #include "core/base/error.hpp"
+#include "core/config/fast_model.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
@@ -14,7 +15,7 @@ namespace tmlab::tm::runner {
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
                                          const StVenantKirchhoff& material, const Law& law,
                                          const ViscoelasticBase*& visco) {
-  if (cfg.material.law != MaterialLaw::StVK && cfg.model != CaseModel::HyperelasticTL)
+  if (fast_model_for(cfg.material.law) != CaseModel::TensorMass && cfg.model != CaseModel::HyperelasticTL)
     throw Error(
         cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
         (cfg.model == CaseModel::TensorMass ? "the paper's St Venant-Kirchhoff tensor-mass model"

@@ -47,15 +47,13 @@ int paper_fit(const ParsedOptions& p, const std::string& target, const std::stri
   mi.input_files = {o.params_file};
   nlohmann::json summary;
   run_with_protocol(out, mi, [&] { return summary = tm::run_paper_fit(target, s, o, out.staging_dir()); });
-  {
-    const bool elastic = target == "fig2" || target == "table1";
-    std::ifstream md(out.dir() / (elastic ? "table1.md" : "table2.md"));
-    std::cout << md.rdbuf() << "\n"
-              << summary["fits"].get<std::size_t>() << " fits, " << summary["fe_forward_solves"].get<long>()
-              << " FE forward solves + " << summary["closed_form_solves"].get<long>()
-              << " closed-form solves, " << summary["fit_wall_seconds"].get<double>() << " s of fitting\n"
-              << "written: " << out.dir().string() << "/\n";
-  }
+  const bool elastic = target == "fig2" || target == "table1";
+  std::ifstream md(out.dir() / (elastic ? "table1.md" : "table2.md"));
+  std::cout << md.rdbuf() << "\n"
+            << summary["fits"].get<std::size_t>() << " fits, " << summary["fe_forward_solves"].get<long>()
+            << " FE forward solves + " << summary["closed_form_solves"].get<long>() << " closed-form solves, "
+            << summary["fit_wall_seconds"].get<double>() << " s of fitting\n"
+            << "written: " << out.dir().string() << "/\n";
   return 0;
 }
 
@@ -96,17 +94,15 @@ int cmd_paper(const std::vector<std::string>& args, const std::string& command_l
   mi.input_files = {o.params_file};
   nlohmann::json summary;
   run_with_protocol(out, mi, [&] { return summary = tm::run_paper_figure(fig, o, out.staging_dir()); });
-  {
-    if (summary.contains("energy")) {
-      std::cout << "hysteresis: loop area = dissipated + stored at the end of the cycle\n";
-      for (const auto& row : summary["energy"])
-        std::cout << "  " << std::left << std::setw(24) << row["run"].get<std::string>() << " loop "
-                  << row["loop_area_J"].get<double>() << " J, dissipated "
-                  << row["dissipation_J"].get<double>() << " J, stored " << row["stored_end_J"].get<double>()
-                  << " J, relative residual " << row["relative_residual"].get<double>() << "\n";
-    }
-    std::cout << "written: " << out.dir().string() << "/\n";
+  if (summary.contains("energy")) {
+    std::cout << "hysteresis: loop area = dissipated + stored at the end of the cycle\n";
+    for (const auto& row : summary["energy"])
+      std::cout << "  " << std::left << std::setw(24) << row["run"].get<std::string>() << " loop "
+                << row["loop_area_J"].get<double>() << " J, dissipated " << row["dissipation_J"].get<double>()
+                << " J, stored " << row["stored_end_J"].get<double>() << " J, relative residual "
+                << row["relative_residual"].get<double>() << "\n";
   }
+  std::cout << "written: " << out.dir().string() << "/\n";
   return 0;
 }
 

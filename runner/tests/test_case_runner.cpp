@@ -2,10 +2,10 @@
 // form, the result-directory protocol, and clear failures (inverted element, unstable explicit step).
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
-#include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
 #include "runner/case_runner.hpp"
+#include "runner/tests/runner_test_case.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,42 +17,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class CaseRunnerTest : public ::testing::Test {
+/// The cube and its uniaxial case from runner_test_case.hpp, run through run_case.
+class CaseRunnerTest : public runner::RunnerTestCase {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("tmlab_runner_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
-    write_gmsh22(make_box_mesh(Vec3(0, 0, 0), Vec3(0.01, 0.01, 0.01), 3, 3, 3), (dir_ / "cube.msh").string());
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-
-  /// Uniaxial stretch by `d` of a 1 cm cube with symmetry planes x=0, y=0, z=0.
-  nlohmann::json uniaxial(double d) const {
-    return nlohmann::json::parse(R"({
-      "name": "uniaxial", "model": "tensor_mass",
-      "mesh": {"file": "cube.msh"},
-      "material": {"E": 10000, "nu": 0.3, "density": 1000},
-      "boundary": [
-        {"name": "x0", "nodes": {"plane": {"axis": "x", "value": 0}}, "components": "x"},
-        {"name": "y0", "nodes": {"plane": {"axis": "y", "value": 0}}, "components": "y"},
-        {"name": "z0", "nodes": {"plane": {"axis": "z", "value": 0}}, "components": "z"},
-        {"name": "pull", "nodes": {"plane": {"axis": "x", "value": 0.01}}, "components": "x",
-         "value": [)" + std::to_string(d) +
-                                 R"(, 0, 0], "function": {"type": "ramp", "t0": 0, "t1": 1}}
-      ],
-      "solver": {"type": "static", "steps": 4},
-      "output": {"probes": [{"name": "corner", "point": [0.01, 0.01, 0.01]}]}
-    })");
-  }
   RunResult run(const nlohmann::json& j) const {
-    const CaseConfig c = parse_case(j, (dir_ / "case.json").string(), {dir_.string()});
     RunOptions o;
     o.results_root = (dir_ / "results").string();
     o.plots = false;
-    return run_case(c, o);
+    return run_case(config(j), o);
   }
-  fs::path dir_;
 };
 
 TEST_F(CaseRunnerTest, UniaxialStretchReactionMatchesClosedForm) {

@@ -5,11 +5,10 @@
 // stops the run with an error naming the case key and leaves no complete-looking result.
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
-#include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
-#include "core/testing/temp_dir.hpp"
 #include "runner/case_runner.hpp"
+#include "runner/tests/runner_test_case.hpp"
 
 #include <gtest/gtest.h>
 
@@ -25,36 +24,20 @@ using json = nlohmann::json;
 
 constexpr double kL = 0.01, kE = 10000.0, kNu = 0.3;
 
-class ContactRunnerTest : public testing::TempDirTest {
+/// A cube on rollers (x = 0, y = 0, z = 0) pressed by a frictionless plane moving down by d: the
+/// platen case of runner_test_case.hpp with the solver each test chooses.
+class ContactRunnerTest : public runner::RunnerTestCase {
  protected:
-  void SetUp() override {
-    TempDirTest::SetUp();
-    write_gmsh22(make_box_mesh(Vec3(0, 0, 0), Vec3(kL, kL, kL), 3, 3, 3), (dir_ / "cube.msh").string());
-  }
-
-  /// A cube on rollers (x = 0, y = 0, z = 0) pressed by a frictionless plane moving down by d.
   json platen(double d, const json& solver) const {
-    json j = json::parse(R"({
-      "name": "platen", "mesh": {"file": "cube.msh"},
-      "material": {"E": 10000, "nu": 0.3, "density": 1000},
-      "boundary": [
-        {"name": "x0", "nodes": {"plane": {"axis": "x", "value": 0}}, "components": "x"},
-        {"name": "y0", "nodes": {"plane": {"axis": "y", "value": 0}}, "components": "y"},
-        {"name": "z0", "nodes": {"plane": {"axis": "z", "value": 0}}, "components": "z"}
-      ],
-      "contact": {"bodies": [{"name": "top", "type": "plane", "point": [0, 0, 0.01], "normal": [0, 0, -1],
-                              "function": {"type": "ramp", "t0": 0, "t1": 1}}]}
-    })");
-    j["contact"]["bodies"][0]["displacement"] = json::array({0.0, 0.0, -d});
+    json j = RunnerTestCase::platen(d);
     j["solver"] = solver;
     return j;
   }
   RunResult run(const json& j) const {
-    const CaseConfig c = parse_case(j, (dir_ / "case.json").string(), {dir_.string()});
     RunOptions o;
     o.results_root = (dir_ / "results").string();
     o.plots = false;
-    return run_case(c, o);
+    return run_case(config(j), o);
   }
   /// The error of a run that must fail; also checks that no summary.json was written.
   std::string failure(const json& j) const {
