@@ -21,7 +21,9 @@
 // q' dJbar_e (x) dJbar_e couples all patch nodes with each other, the assembled tangent couples two
 // nodes when they are at most three edges apart in the mesh graph (P1: one edge). tangent() assembles
 // that widened pattern (built once at construction) and refills it in place; tangent_apply() is
-// matrix-free (the same passes as the force, linearised). Nonzeros and cost: docs/elements.md.
+// matrix-free (the same passes as the force, linearised). Measured: 9.9x P1's nonzeros on a 16^3
+// block (5,958,999 vs 602,649), internal force 1.5x HyperelasticTL's time (neo-Hookean, 24,576 and
+// 196,608 tets; bench_kernels BM_ElementForce).
 //
 // No stabilisation parameter. The deviatoric part is each tet's own F_e (only the volumetric part is
 // averaged), so a displacement with zero stiffness must have, in every tet, a linearised strain that
