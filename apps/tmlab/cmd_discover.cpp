@@ -111,6 +111,10 @@ int run_discover_command(const ParsedOptions& p, discover::Options o, const disc
   }
   log.finished = [&units](const discover::FitOutcome& f) { units.finished(f); };
   o.fit_log = &log;
+  if (forward == "fe_rig")  // effects that only stand in for the rig's discretisation error are refused
+    o.discretisation = [&data, &fe](const discover::Prepared& prep, const discover::Fitted& baseline) {
+      return discover::baseline_discretisation(data, prep, baseline, fe);
+    };
   RunOutput out(dir, &std::cerr,
                 p.flag("--resume") ? RunOutput::Previous::ResumeInterrupted : RunOutput::Previous::Discard);
   ManifestInput mi;

@@ -9,9 +9,11 @@
 
 #include "calibration/data/measured_data.hpp"
 #include "calibration/data/sign_convention.hpp"
+#include "calibration/fit/discretisation.hpp"
 #include "calibration/fit/fit_checkpoint.hpp"
 #include "calibration/fit/fit_output.hpp"
 #include "calibration/fit/relaxation_bands.hpp"
+#include "calibration/fit/rig_forward_model.hpp"
 #include "core/base/error.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/run_protocol.hpp"
@@ -21,6 +23,8 @@
 
 #include <filesystem>
 #include <iostream>
+#include <memory>
+#include <optional>
 
 namespace tmlab::cli {
 
@@ -54,6 +58,36 @@ fs::path result_dir(const ParsedOptions& p, const measured::DataSet& data, const
   return fs::path(tmlab_root()) / "results" / "fit" / name;
 }
 
+/// The refined rig's model of the discretisation check (issue 28; docs/identification.md
+/// "Discretisation shift"), or null when there is none: on by default for an FE-rig forward model;
+/// --discretisation-check on or --refine-ratio with a closed form, or --refine-ratio with the check
+/// off, refused (UsageError), as a ratio that rounds to the same mesh; built before the result
+/// folder exists, so a refined rig that cannot be built (too large) leaves none.
+std::unique_ptr<fit::ForwardModel> refined_model(const ParsedOptions& p, const measured::DataSet& data,
+                                                 const FitRequest& q, const fit::Problem& problem,
+                                                 double& ratio) {
+  const bool fe = problem.model->name() == "fe_rig";
+  const bool asked_on = p.given("--discretisation-check") && p.text("--discretisation-check") == "on";
+  const bool off = p.given("--discretisation-check") && p.text("--discretisation-check") == "off";
+  if (!fe && (asked_on || p.given("--refine-ratio")))
+    throw UsageError(std::string(asked_on ? "--discretisation-check on" : "--refine-ratio") +
+                     " is for the FE rig forward model (--forward fe_rig): this fit's forward model is the "
+                     "closed form '" +
+                     problem.model->name() + "', which has no mesh to refine");
+  if (off && p.given("--refine-ratio"))
+    throw UsageError(
+        "--refine-ratio sets the discretisation check's refined rig: not with --discretisation-check off");
+  if (!fe || off) return nullptr;
+  ratio = p.given("--refine-ratio") ? p.decimal("--refine-ratio") : fit::kDefaultRefineRatio;
+  fit::RigForwardModelOptions fine;
+  try {
+    fine = fit::refined_rig(q.fe, ratio);
+  } catch (const Error& e) {
+    throw UsageError(e.what());
+  }
+  return fit::make_rig_forward_model(data, q.spec, fine);
+}
+
 }  // namespace
 
 int cmd_fit(const std::vector<std::string>& args, const std::string& command_line) {
@@ -67,6 +101,8 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
   measured::check_force_sign(data, csv.string());
   std::string why_closed_form;
   const fit::Problem problem = build_problem(p, data, q, why_closed_form);
+  double refine_ratio = fit::kDefaultRefineRatio;
+  const std::unique_ptr<fit::ForwardModel> fine = refined_model(p, data, q, problem, refine_ratio);
   const fs::path dir = result_dir(p, data, q.spec);
   // Checkpoints after the global stage, each local run and each profile point (docs/robustness.md);
   // --resume reads the checkpoint before the result directory is touched, so a refused resume
@@ -90,14 +126,17 @@ int cmd_fit(const std::vector<std::string>& args, const std::string& command_lin
       out, mi,
       [&] {
         const fit::FitResult r = fit::fit(problem, options);
-        out.write_json("fit.json", fit::to_json(r, problem, q.options, q.spec));
+        std::optional<fit::DiscretisationReport> disc;
+        if (fine) disc = fit::discretisation_report(r, problem, *fine, refine_ratio, q.options.progress);
+        const fit::DiscretisationReport* dp = disc ? &*disc : nullptr;
+        out.write_json("fit.json", fit::to_json(r, problem, q.options, q.spec, dp));
         fit::write_fit_h5(out.file("fit.h5"), data, r);
         if (!p.flag("--no-plots")) {
           plots = fit::write_fit_plots(out.staging_dir(), tmlab_root(),
                                        data.meta.name + ": " + q.spec.text + " (" + r.model_name + ")");
           if (plots != "ok") std::cerr << "tmlab fit: plots " << plots << "\n";
         }
-        fit::print_fit_report(std::cout, r, problem, q.options);
+        fit::print_fit_report(std::cout, r, problem, q.options, dp);
         return fit::summary_json(r, q.spec, plots);
       },
       protocol_checkpoint(ck.file()));

@@ -3,6 +3,8 @@
 
 #include "calibration/rigs/rig.hpp"
 
+#include <limits>
+
 namespace tmlab::cli {
 
 namespace {
@@ -90,6 +92,14 @@ CommandSpec fit_spec() {
            .role(kResult),
        text("--mesh", "C,L", "FE rig: cells, layers").def("12,6").role(kResult),
        whole("--substeps", "N", 1, 10000, "FE rig: load steps per sampling interval").def("1").role(kResult),
+       choice("--discretisation-check", {"on", "off"},
+              "FE rig: one solve on the refined rig at the optimum and each\n"
+              "parameter's discretisation shift (default on for fe_rig; not\n"
+              "applicable to a closed-form forward model: refused there)")
+           .role(kResult),
+       decimal("--refine-ratio", "R", open(1.0, std::numeric_limits<double>::infinity()),
+               "FE rig: the refined rig's mesh ratio in h (default 2: --mesh x 2)")
+           .role(kResult),
        choice("--global", {"multistart", "siman"}, "the global stage").def("multistart").role(kResult),
        text("--prior", "NAME=MEAN:SD", "a Gaussian prior").repeat().role(kResult),
        decimal("--noise", "SIGMA", positive(), "the force noise, N (default: from the residual)")

@@ -427,6 +427,13 @@ std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
       st.reason = "BIC falls by " + significant(-st.delta_bic, 3) + " <= " + significant(o.bic_threshold, 3);
       continue;
     }
+    // The FE rig's own discretisation error bounds what the data can be said to show (issue 28).
+    st.improvement_rms = rms_improvement(cur.fit.rms, cand[i].fit.rms);
+    if (stands_in_for_discretisation(r.discretisation, cur.fit.rms, cand[i].fit.rms)) {
+      st.reason = discretisation_reason(r.discretisation, cur.fit.rms, cand[i].fit.rms);
+      say(o, "round " + std::to_string(round) + " " + st.effect + ": " + st.reason);
+      continue;
+    }
     if (tried >= 3) {
       st.reason = "not held-out tested (three better-BIC candidates failed it)";
       continue;
@@ -450,6 +457,12 @@ std::string decide(const Prepared& p, Fitted& cur, std::vector<Fitted>& cand,
       }
       r.control = test_scale_control(p, cur);  // of the current model as it now stands
       r.control.round = round;
+      st.improvement_rms = rms_improvement(cur.fit.rms, cand[i].fit.rms);
+      if (stands_in_for_discretisation(r.discretisation, cur.fit.rms, cand[i].fit.rms)) {
+        st.reason = discretisation_reason(r.discretisation, cur.fit.rms, cand[i].fit.rms);
+        say(o, "round " + std::to_string(round) + " " + st.effect + ": " + st.reason);
+        continue;
+      }
     }
     // A shared effect must explain more than a factor per test (TestScaleControl).
     if (o.test_control && r.control.applicable && r.control.bic < cand[i].fit.bic - o.bic_threshold) {
@@ -510,6 +523,23 @@ std::string below_noise(const Fitted& cur, const Thresholds& th) {
 
 }  // namespace
 
+double rms_improvement(double rms_current, double rms_candidate) {
+  return std::sqrt(std::max(0.0, rms_current * rms_current - rms_candidate * rms_candidate));
+}
+
+bool stands_in_for_discretisation(const DiscretisationGate& g, double rms_current, double rms_candidate) {
+  return g.applied && !(rms_improvement(rms_current, rms_candidate) > g.factor * g.change_rms);
+}
+
+std::string discretisation_reason(const DiscretisationGate& g, double rms_current, double rms_candidate) {
+  return "stands in for discretisation error: its improvement of the RMS, sqrt(" +
+         significant(rms_current, 4) + "^2 - " + significant(rms_candidate, 4) +
+         "^2) = " + significant(rms_improvement(rms_current, rms_candidate), 3) + " N, is not more than " +
+         significant(g.factor, 3) + " x the change of the baseline's FE-rig force from the rig " + g.rig +
+         " to the rig refined " + significant(g.refine_ratio, 3) + "x in h (" + significant(g.change_rms, 3) +
+         " N)";
+}
+
 Report run(const measured::DataSet& data, const Options& o) {
   const auto t0 = std::chrono::steady_clock::now();
   Report r;
@@ -535,6 +565,16 @@ Report run(const measured::DataSet& data, const Options& o) {
              significant(r.baseline.fit.rms_percent_peak, 3) + " % of peak), BIC " +
              significant(r.baseline.fit.bic, 7) +
              (r.baseline.study.structured ? ", residual structured" : ", residual is noise"));
+  if (o.discretisation) {
+    r.discretisation = o.discretisation(p, r.baseline);
+    const DiscretisationGate& g = r.discretisation;
+    say(o, g.applied
+               ? "discretisation gate: the baseline's FE-rig force changes by RMS " +
+                     significant(g.change_rms, 4) + " N from the rig " + g.rig + " to the refined rig " +
+                     g.refined_rig + "; an effect must improve the RMS by more than " +
+                     significant(g.factor * g.change_rms, 4) + " N"
+               : "discretisation gate not applied: " + g.note);
+  }
   Fitted cur = r.baseline;
   r.stop_reason = "round limit (" + std::to_string(o.max_rounds) + ")";
   bool redone = false;
@@ -716,6 +756,7 @@ nlohmann::json to_json(const Report& r) {
                             {"current_held_out_rms_N", num(s.current_held_out_rms)},
                             {"current_held_out_rms_by_test_N", nums(s.current_held_out_by_test)},
                             {"current_refit_from_candidate_rms_N", num(s.current_refit_rms)},
+                            {"improvement_rms_N", num(s.improvement_rms)},
                             {"held_out_ratio_required", r.options.held_out_ratio}}},
                           {"accepted", s.accepted},
                           {"reason", s.reason}});
@@ -744,6 +785,27 @@ nlohmann::json to_json(const Report& r) {
                         "test) by more than the threshold"
                       : " (the test-consistency control off)") +
       "; after each acceptance every earlier effect that would not be accepted now is removed";
+  if (r.options.discretisation) {
+    const DiscretisationGate& g = r.discretisation;
+    j["discretisation_gate"] = {
+        {"applied", g.applied},
+        {"baseline_force_change_rms_N", num(g.change_rms)},
+        {"factor", g.factor},
+        {"refine_ratio", g.refine_ratio},
+        {"rig", g.rig},
+        {"refined_rig", g.refined_rig},
+        {"samples", g.samples},
+        {"note", g.note},
+        {"rule",
+         "a candidate is accepted only when its improvement sqrt(RMS_current^2 - RMS_candidate^2) exceeds "
+         "factor x the RMS change of the baseline's FE-rig force between the rig and the refined rig at the "
+         "baseline's optimum; otherwise it stands in for discretisation error"}};
+    if (g.applied)
+      j["selection_rule"] = j["selection_rule"].get<std::string>() + "; and its RMS improvement exceeds " +
+                            significant(g.factor, 3) +
+                            " x the FE rig's discretisation change of the baseline (" +
+                            significant(g.change_rms, 3) + " N)";
+  }
   j["held_out"] = r.held_out_scheme;
   j["notes"] = r.notes;
   j["not_applicable"] = json::array();

@@ -49,6 +49,33 @@ struct FitLog {
   std::function<void(const FitOutcome&)> finished;
 };
 
+struct Fitted;
+
+/// The discretisation gate of `tmlab discover --forward fe_rig` (issue 28; docs/discover.md): the
+/// change of the baseline's FE-rig force between the rig and the rig refined 2x in h, at the
+/// baseline's optimum, as an RMS over the samples the rig sees (fe_refit.hpp,
+/// baseline_discretisation). A candidate effect is accepted only when its improvement of the
+/// residual, sqrt(RMS_current^2 - RMS_candidate^2) (the RMS of the force change that explains part
+/// of the residual; exact for nested least-squares fits), exceeds `factor` x that change: an effect
+/// whose improvement the rig's own discretisation error could make stands in for it.
+struct DiscretisationGate {
+  bool applied = false;
+  double change_rms = kNaN;  ///< N
+  double factor = 2.0;
+  double refine_ratio = 2.0;
+  std::string rig, refined_rig;  ///< "cells,layers (N tets)"
+  std::size_t samples = 0;       ///< samples the rig saw
+  std::string note;              ///< why it is not applied (empty when it is)
+};
+
+/// sqrt(max(0, rms_current^2 - rms_candidate^2)), N.
+double rms_improvement(double rms_current, double rms_candidate);
+/// True when the gate is applied and the candidate's improvement over the current model is not more
+/// than gate.factor x gate.change_rms.
+bool stands_in_for_discretisation(const DiscretisationGate& gate, double rms_current, double rms_candidate);
+/// The reason a step gets when the gate refuses it ("stands in for discretisation error: ...").
+std::string discretisation_reason(const DiscretisationGate& gate, double rms_current, double rms_candidate);
+
 struct Options {
   std::size_t max_samples = 1500;  ///< the data are decimated to about this many samples
   double poisson = 0.49;
@@ -66,6 +93,9 @@ struct Options {
   std::vector<std::string> effects;  ///< restrict the library to these (empty: all)
   std::function<void(const std::string&)> progress;
   FitLog* fit_log = nullptr;  ///< checkpoints (tmlab discover --resume); null: none
+  /// --forward fe_rig: the discretisation gate of the baseline (DiscretisationGate), computed once
+  /// after the baseline's fit; empty: no gate (the closed-form loop alone).
+  std::function<DiscretisationGate(const Prepared&, const Fitted&)> discretisation;
 };
 
 struct Fitted {
@@ -89,6 +119,7 @@ struct Step {
   double held_out_rms = kNaN, current_held_out_rms = kNaN;
   std::vector<double> held_out_by_test, current_held_out_by_test;  ///< per test, when held out
   double current_refit_rms = kNaN;  ///< the current model re-fitted from this candidate's optimum
+  double improvement_rms = kNaN;    ///< rms_improvement over the current model (the gate's measure)
   bool accepted = false;            ///< added (or, for a removal, removed)
   std::string reason;
 };
@@ -129,7 +160,8 @@ struct Report {
   std::string stop_reason;
   std::string forward_model, exactness;
   std::string held_out_scheme;
-  std::vector<std::string> notes;  ///< what the data cannot separate, and similar caveats
+  std::vector<std::string> notes;     ///< what the data cannot separate, and similar caveats
+  DiscretisationGate discretisation;  ///< --forward fe_rig (not applied otherwise)
   double seconds = 0.0;
 };
 

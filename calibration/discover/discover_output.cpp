@@ -75,6 +75,17 @@ std::string report_html(const nlohmann::json& j, bool plots) {
                                    : "; no candidate was refused by it")
       << ".</p>\n";
   }
+  if (j.contains("discretisation_gate")) {
+    const auto& g = j["discretisation_gate"];
+    h << "<p><b>Discretisation gate</b> (--forward fe_rig): ";
+    if (g["applied"].get<bool>())
+      h << "the baseline's FE-rig force changes by RMS " << cell(g["baseline_force_change_rms_N"])
+        << " N from the rig " << cell(g["rig"]) << " to the refined rig " << cell(g["refined_rig"])
+        << "; a candidate whose RMS improvement is not more than " << cell(g["factor"])
+        << " x that stands in for discretisation error and is not accepted.</p>\n";
+    else
+      h << "not applied: " << cell(g["note"]) << ".</p>\n";
+  }
   for (const auto& n : j["notes"]) h << "<p><b>Note:</b> " << cell(n) << "</p>\n";
   h << "<p>Forward model <code>" << cell(j["forward_model"]["name"])
     << "</code>: " << cell(j["forward_model"]["exact_where"]) << ".</p>\n";
@@ -266,10 +277,21 @@ void print_discover_report(std::ostream& os, const Report& r, const std::vector<
   os << "baseline " << r.baseline.structure.label() << ": RMS " << significant(r.baseline.fit.rms, 4)
      << " N (" << significant(r.baseline.fit.rms_percent_peak, 3) << " % of peak), max "
      << significant(r.baseline.max_abs, 4) << " N\n";
+  if (r.options.discretisation)
+    os << "discretisation gate: "
+       << (r.discretisation.applied
+               ? "baseline FE-rig force change RMS " + significant(r.discretisation.change_rms, 4) +
+                     " N (rig " + r.discretisation.rig + " -> " + r.discretisation.refined_rig +
+                     "); an effect must improve the RMS by more than " +
+                     significant(r.discretisation.factor, 3) + " x that"
+               : "not applied: " + r.discretisation.note)
+       << "\n";
   for (const auto& s : r.steps)
     if (s.accepted)
       os << "round " << s.round << (s.removal ? ": removed " : ": added ") << s.effect << " (" << s.reason
          << ")\n";
+    else if (s.reason.rfind("stands in for discretisation error", 0) == 0)
+      os << "round " << s.round << ": not added " << s.effect << " (" << s.reason << ")\n";
   os << "final " << r.final.structure.label() << ": RMS " << significant(r.final.fit.rms, 4) << " N ("
      << significant(r.final.fit.rms_percent_peak, 3) << " % of peak), max " << significant(r.final.max_abs, 4)
      << " N\n"

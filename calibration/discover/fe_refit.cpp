@@ -1,5 +1,6 @@
 #include "calibration/discover/fe_refit.hpp"
 
+#include "calibration/fit/discretisation.hpp"
 #include "calibration/fit/rig_forward_model.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
@@ -133,6 +134,47 @@ FeRefit refit_one(const measured::DataSet& dec, const std::vector<std::vector<st
 }
 
 }  // namespace
+
+DiscretisationGate baseline_discretisation(const measured::DataSet& data, const Prepared& p, const Fitted& f,
+                                           const FeRefitOptions& fo, double refine_ratio, double factor) {
+  DiscretisationGate g;
+  g.factor = factor;
+  g.refine_ratio = refine_ratio;
+  if (!f.structure.effects.empty()) {
+    g.note = "the baseline has effects the FE rig does not model";
+    return g;
+  }
+  const bool indentation = p.rig == Rig::sphere || p.rig == Rig::punch;
+  try {
+    const measured::DataSet dec = decimated_data(data, p, indentation, fo.max_samples, nullptr);
+    const fit::ModelSpec spec = model_spec(f.structure);
+    fit::RigForwardModelOptions feo;
+    feo.mesh = fo.mesh;
+    feo.substeps = fo.substeps;
+    const fit::Problem pr = fit::make_rig_forward_problem(dec, spec, {}, {}, feo);
+    std::vector<double> x;
+    for (const fit::Parameter& q : pr.parameters) x.push_back(f.x[fit::index_of(f.parameters, q.name)]);
+    const auto fine = fit::make_rig_forward_model(dec, spec, fit::refined_rig(feo, refine_ratio));
+    const auto text = [](const fit::RigForwardModelSize& s) {
+      return std::to_string(s.mesh.cells) + "," + std::to_string(s.mesh.layers) + " (" +
+             std::to_string(s.tets) + " tets)";
+    };
+    g.rig = text(fit::rig_forward_model_size(*pr.model));
+    g.refined_rig = text(fit::rig_forward_model_size(*fine));
+    const std::vector<double> fc = pr.model->predict(x), ff = fine->predict(x);
+    double ss = 0.0;
+    for (std::size_t i = 0; i < fc.size(); ++i) ss += (ff[i] - fc[i]) * (ff[i] - fc[i]);
+    g.samples = fc.size();
+    g.change_rms = fc.empty() ? 0.0 : std::sqrt(ss / double(fc.size()));
+    g.applied = std::isfinite(g.change_rms);
+    if (!g.applied) g.note = "the rigs' forces are not finite at the baseline's optimum";
+  } catch (const Error& e) {
+    g.note =
+        std::string("the FE rig or its refined rig cannot be built or solved at the baseline's optimum: ") +
+        e.what();
+  }
+  return g;
+}
 
 std::vector<FeRefit> fe_rig_refit(const measured::DataSet& data, const Report& r, const Options& o,
                                   const FeRefitOptions& fo) {

@@ -54,6 +54,15 @@ struct FeRefit {
 measured::DataSet decimated_data(const measured::DataSet& data, const Prepared& p, bool loading_only,
                                  std::size_t max_samples, std::vector<std::vector<std::size_t>>* kept);
 
+/// The discretisation gate of `tmlab discover --forward fe_rig` (DiscretisationGate, issue 28): the
+/// baseline's FE-rig force at its (closed-form) optimum on the rig of `fo` and on that rig refined
+/// `refine_ratio` x in h (fit::refined_rig), on the samples the refit uses (decimated_data), and the
+/// RMS of their difference. Not applied (with the reason in `note`) when the rig cannot be built or
+/// solved there.
+DiscretisationGate baseline_discretisation(const measured::DataSet& data, const Prepared& p,
+                                           const Fitted& baseline, const FeRefitOptions& fo,
+                                           double refine_ratio = 2.0, double factor = 2.0);
+
 /// FE-rig refits of the baseline and (when it differs) the final model of `r`.
 std::vector<FeRefit> fe_rig_refit(const measured::DataSet& data, const Report& r, const Options& o,
                                   const FeRefitOptions& fo);

@@ -44,7 +44,8 @@ std::string local_runs_note(const FitResult& r, const FitOptions& o) {
          ")";
 }
 
-nlohmann::json to_json(const FitResult& r, const Problem& pr, const FitOptions& o, const ModelSpec& spec) {
+nlohmann::json to_json(const FitResult& r, const Problem& pr, const FitOptions& o, const ModelSpec& spec,
+                       const DiscretisationReport* disc) {
   using nlohmann::json;
   json j;
   j["model"] = {{"spec", spec.text},
@@ -57,6 +58,10 @@ nlohmann::json to_json(const FitResult& r, const Problem& pr, const FitOptions& 
     for (const auto& q : pr.parameters)
       if (q.name == p.name) bounds = &q;
     j["parameters"].push_back(parameter_json(p, bounds));
+    if (disc)
+      for (const ParameterShift& s : disc->parameters)
+        if (s.name == p.name)
+          j["parameters"].back()["discretisation"] = parameter_discretisation_json(s, *disc);
   }
   j["correlation"] = {{"parameters", r.free_names}, {"matrix", r.correlation}};
   j["cost"] = {{"kind", r.cost_name}, {"value", r.cost}};
@@ -104,6 +109,10 @@ nlohmann::json to_json(const FitResult& r, const Problem& pr, const FitOptions& 
     j["confounded"].push_back({{"a", c.a}, {"b", c.b}, {"correlation", c.correlation}, {"note", c.note}});
   j["notes"] = r.notes;
   if (const std::string n = local_runs_note(r, o); !n.empty()) j["notes"].push_back(n);
+  if (disc) {
+    j["discretisation"] = discretisation_json(*disc);
+    for (const std::string& w : disc->warnings) j["notes"].push_back("WARNING: " + w);
+  }
   if (!r.profile.parameter.empty()) {
     json pts = json::array();
     for (const auto& q : r.profile.points)
@@ -156,18 +165,36 @@ void write_fit_h5(const fs::path& path, const measured::DataSet& data, const Fit
   h5.close();
 }
 
-void print_fit_report(std::ostream& os, const FitResult& r, const Problem& problem, const FitOptions& o) {
+void print_fit_report(std::ostream& os, const FitResult& r, const Problem& problem, const FitOptions& o,
+                      const DiscretisationReport* disc) {
   os << std::left << std::setw(10) << "parameter" << std::right << std::setw(14) << "value" << std::setw(6)
-     << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval"
-     << "\n";
-  for (const auto& q : r.parameters)
+     << "unit" << std::setw(14) << "std error" << std::setw(30) << "95 % interval";
+  if (disc) os << std::setw(24) << "discretisation shift";
+  os << "\n";
+  for (std::size_t i = 0; i < r.parameters.size(); ++i) {
+    const ParameterResult& q = r.parameters[i];
     os << std::left << std::setw(10) << q.name << std::right << std::setw(14) << significant(q.value, 6)
        << std::setw(6) << q.unit << std::setw(14)
        << (q.fixed                           ? "fixed"
            : std::isfinite(q.standard_error) ? significant(q.standard_error, 3)
                                              : "inf")
        << std::setw(30)
-       << (q.fixed ? "" : "[" + significant(q.lower95, 5) + ", " + significant(q.upper95, 5) + "]") << "\n";
+       << (q.fixed ? "" : "[" + significant(q.lower95, 5) + ", " + significant(q.upper95, 5) + "]");
+    if (disc && i < disc->parameters.size()) {
+      const ParameterShift& s = disc->parameters[i];
+      os << std::setw(24)
+         << (s.known ? significant(s.shift, 3) + " (" + significant(100.0 * s.shift_relative, 2) + " %, " +
+                           significant(s.shift_per_se, 2) + " SE)"
+                     : std::string(q.fixed ? "" : "n/a"));
+    }
+    os << "\n";
+  }
+  if (disc) {
+    os << "discretisation shift: the linearised move of each parameter on the rig refined "
+       << significant(disc->refine_ratio, 3) << "x in h (" << discretisation_option_text(*disc)
+       << "); force change at the optimum RMS " << significant(disc->change_rms, 4) << " N\n";
+    for (const std::string& w : disc->warnings) os << "WARNING: " << w << "\n";
+  }
   os << "cost (" << r.cost_name << ") " << significant(r.cost, 6) << "; residual RMS "
      << significant(r.rms, 4) << " N = " << significant(r.rms_percent_peak, 3) << " % of peak "
      << significant(problem.data.peak_force, 5) << " N; AIC " << significant(r.aic, 7) << ", BIC "

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "calibration/data/measured_data.hpp"
+#include "calibration/fit/discretisation.hpp"
 #include "calibration/fit/fitter.hpp"
 #include "calibration/fit/model_spec.hpp"
 #include "calibration/fit/rig_forward_model.hpp"
@@ -26,9 +27,11 @@ namespace tmlab::fit {
 nlohmann::json parameter_json(const ParameterResult& p, const Parameter* bounds);
 
 /// fit.json: the model, the parameters, correlations, cost, residual, AIC/BIC, the global stage,
-/// priors, confounded pairs, notes, the profile, the tests with their weights.
+/// priors, confounded pairs, notes, the profile, the tests with their weights; with `disc` (an
+/// FE-rig fit's discretisation check) each parameter's "discretisation" object, the block
+/// "discretisation" and its warnings among the notes.
 nlohmann::json to_json(const FitResult& r, const Problem& problem, const FitOptions& options,
-                       const ModelSpec& spec);
+                       const ModelSpec& spec, const DiscretisationReport* disc = nullptr);
 
 /// When fewer local runs ran than FitOptions::local_runs asked for (one per candidate start, and
 /// there were fewer starts, or fewer the model could evaluate): what ran and why; "" otherwise.
@@ -38,9 +41,11 @@ std::string local_runs_note(const FitResult& r, const FitOptions& options);
 /// profile (/profile, attribute parameter); the correlation matrix.
 void write_fit_h5(const std::filesystem::path& path, const measured::DataSet& data, const FitResult& r);
 
-/// The parameter table, the cost and its forward model, the profile, the confounded pairs and notes.
-void print_fit_report(std::ostream& os, const FitResult& r, const Problem& problem,
-                      const FitOptions& options);
+/// The parameter table, the cost and its forward model, the profile, the confounded pairs and notes;
+/// with `disc` a column of discretisation shifts, the refined rig and a WARNING line per parameter
+/// whose shift exceeds its standard error.
+void print_fit_report(std::ostream& os, const FitResult& r, const Problem& problem, const FitOptions& options,
+                      const DiscretisationReport* disc = nullptr);
 
 /// What the fit is about to do: the data, the SPEC and its forward model; the global stage (`global`,
 /// the --global word) on the closed form when the FE rig has one beside it, or on the FE rig itself

@@ -497,6 +497,8 @@ struct Covariance {
   double tq = kInf;
   std::vector<bool> identifiable;
   std::vector<double> data_only_variance;  ///< internal, per free parameter, without the prior rows
+  Eigen::MatrixXd J;                       ///< the central-difference Jacobian (every row)
+  Eigen::MatrixXd normal_inverse;          ///< (J^T J)^{-1} as Ct = s^2 normal_inverse uses it
 };
 
 Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vector<double>& t,
@@ -537,6 +539,7 @@ Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vec
   }
   c.Cs = V * inv2.asDiagonal() * V.transpose();
   c.Ct = s2 * scale.cwiseInverse().asDiagonal() * c.Cs * scale.cwiseInverse().asDiagonal();
+  c.normal_inverse = scale.cwiseInverse().asDiagonal() * c.Cs * scale.cwiseInverse().asDiagonal();
   c.tq = nd > p ? gsl_cdf_tdist_Pinv(0.975, double(nd - p)) : kInf;
   if (n > nd) {
     // The data alone (the prior rows dropped): what the priors changed in the standard errors.
@@ -557,7 +560,27 @@ Covariance covariance(const FitOptions& opt, const Evaluator& ev, const std::vec
     }
   }
 
+  c.J = std::move(J);
   return c;
+}
+
+// The fit linearised at the optimum (FitResult::linearisation) from the covariance's Jacobian.
+Linearisation linearisation(const Problem& pr, const Evaluator& ev, const std::vector<double>& t,
+                            const Covariance& c) {
+  Linearisation l;
+  const std::size_t p = ev.p(), nd = ev.n_data();
+  l.free = ev.free;
+  l.t = t;
+  l.n_data = nd;
+  for (std::size_t j = 0; j < p; ++j) l.dxdt.push_back(pr.parameters[ev.free[j]].derivative(t[j]));
+  l.jacobian.resize(nd * p);
+  for (std::size_t i = 0; i < nd; ++i)
+    for (std::size_t j = 0; j < p; ++j) l.jacobian[i * p + j] = c.J(Eigen::Index(i), Eigen::Index(j));
+  l.normal_inverse.resize(p * p);
+  for (std::size_t a = 0; a < p; ++a)
+    for (std::size_t b = 0; b < p; ++b)
+      l.normal_inverse[a * p + b] = c.normal_inverse(Eigen::Index(a), Eigen::Index(b));
+  return l;
 }
 
 // The parameters in physical units (delta method through each transform, Wald intervals clipped to
@@ -928,6 +951,7 @@ FitResult fit(const Problem& pr, const FitOptions& opt) {
   const std::vector<double> e0 = optimum_stats(pr, ev, t, res, optimum_state);
   const Covariance c = covariance(opt, ev, t, e0, res, optimum_state.get());
   parameter_results(pr, ev, t, c, res);
+  res.linearisation = linearisation(pr, ev, t, c);
   confounding_report(pr, c.identifiable, res);
   check_interrupt("after the local stage of the fit");
   if (opt.profile && ev.n_data() > ev.p()) profile_likelihood(pr, opt, ev, t, c, res, log);

@@ -124,6 +124,23 @@ struct Confounding {
   std::string note;
 };
 
+/// The fit linearised at its optimum, as its covariance sees it: what a caller needs to carry a
+/// perturbation of the model's forces into the parameters (calibration/fit/discretisation.hpp)
+/// without another forward solve. Internal (transformed) coordinates of the free parameters.
+struct Linearisation {
+  std::vector<std::size_t> free;  ///< indices into the problem's parameters
+  std::vector<double> t;          ///< the optimum, internal coordinates
+  std::vector<double> dxdt;       ///< dx/dt at the optimum per free parameter (the transforms)
+  /// d e_i / d t_j of the weighted force errors e_i = w (F_i - data_i) (the data rows of the
+  /// covariance's central-difference Jacobian), row-major, n_data x p.
+  std::vector<double> jacobian;
+  /// (J^T J)^{-1} of the covariance (every row of J, the priors' included; singular directions
+  /// floored as the covariance floors them), p x p row-major: the covariance is s^2 times it.
+  std::vector<double> normal_inverse;
+  std::size_t n_data = 0;
+  bool empty() const { return free.empty(); }
+};
+
 struct FitResult {
   std::string model_name, model_description;
   std::string cost_name;
@@ -159,6 +176,7 @@ struct FitResult {
   Profile profile;
   std::vector<Confounding> confounded;
   std::vector<std::string> notes;  ///< what was fixed, what is not identifiable
+  Linearisation linearisation;     ///< at the optimum (not kept by checkpoints: empty when restored)
 };
 
 /// True when `stop_reason` (FitResult::stop_reason) is one of the local stage's convergence tests

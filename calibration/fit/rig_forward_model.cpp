@@ -177,6 +177,8 @@ class RigForwardModel final : public ForwardModel {
     return out;
   }
 
+  RigForwardModelSize size() const { return {rigs_.size(), nodes_, tets_, opt_.mesh}; }
+
   RigForwardModelEffort counts() const {
     return {effort_.solves.load(), effort_.warm.load(),  effort_.steps.load(),
             effort_.newton.load(), effort_.outer.load(), effort_.cutbacks.load()};
@@ -388,6 +390,12 @@ std::unique_ptr<ForwardModel> make_rig_forward_model(const ms::DataSet& d, const
                                                      const RigForwardModelOptions& o) {
   if (d.tests.empty()) throw Error(d.meta.name + ": the data set has no tests");
   return std::make_unique<RigForwardModel>(d, spec, o);
+}
+
+RigForwardModelSize rig_forward_model_size(const ForwardModel& model) {
+  const auto* fe = dynamic_cast<const RigForwardModel*>(&model);
+  if (!fe) throw Error("rig_forward_model_size: '" + model.name() + "' is not an FE-rig model");
+  return fe->size();
 }
 
 Problem make_rig_forward_problem(const ms::DataSet& d, const ModelSpec& spec,

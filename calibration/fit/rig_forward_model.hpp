@@ -88,6 +88,14 @@ struct RigForwardModelEffort {
 /// The effort of `model`; tmlab::Error when it is not an FE-rig model.
 RigForwardModelEffort rig_forward_model_effort(const ForwardModel& model);
 
+/// The size of an FE-rig model's meshes, summed over its tests.
+struct RigForwardModelSize {
+  std::size_t tests = 0, nodes = 0, tets = 0;
+  rigs::RigFromDataMesh mesh;  ///< the resolution it was built with (RigForwardModelOptions::mesh)
+};
+/// The size of `model`; tmlab::Error when it is not an FE-rig model.
+RigForwardModelSize rig_forward_model_size(const ForwardModel& model);
+
 /// The problem with the FE-rig model for the final numbers and, when the data and law have one, the
 /// closed-form surrogate (surrogates.hpp) as the global stage's model (Problem::global_model; its
 /// absence and the reason are in `why_no_surrogate`).

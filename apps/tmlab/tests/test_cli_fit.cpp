@@ -329,4 +329,91 @@ TEST_F(CliFit, ResumeOfAFinishedFitSaysItFinished) {
   EXPECT_FALSE(fs::exists(out / "RUNNING"));
 }
 
+/// A tiny platen data set (20 x 20 x 10 mm block between bonded platens, 10 % strain in 1 s, 6
+/// samples, forces of a neo-Hookean E = 5 kPa block roughly): an FE-rig fit of it on a 2 x 2 x 2
+/// rig takes a second.
+fs::path write_block_data(const fs::path& dir) {
+  fs::create_directories(dir);
+  const fs::path csv = dir / "block.csv";
+  {
+    std::ofstream o(csv);
+    o << "time_s,displacement_m,force_N\n";
+    for (int i = 0; i <= 5; ++i)
+      o << 0.2 * i << "," << 2e-4 * i << "," << (i == 0 ? 0.0 : 0.045 * i + 0.0007 * i * i) << "\n";
+  }
+  std::ofstream(dir / "block.json")
+      << R"({"format": "tmlab-measured/1", "name": "block", "test": "unconfined_compression",
+             "sample": {"shape": "block", "size_m": [0.02, 0.02, 0.01], "platens": "bonded"}})";
+  return csv;
+}
+
+TEST_F(CliFit, AnFeRigFitReportsItsDiscretisationShift) {
+  const fs::path csv = write_block_data(dir_ / "block");
+  const fs::path out = dir_ / "fe";
+  const Result r = tmlab({"fit", csv.string(), "--model", "neo_hookean,poisson=0.45", "--forward", "fe_rig",
+                          "--mesh", "2,2", "--starts", "2", "--local-runs", "1", "--no-profile", "--no-plots",
+                          "--out", out.string()});
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("discretisation check: one solve on the refined rig 4,4"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("discretisation shift"), std::string::npos) << r.output;
+  const nlohmann::json j = nlohmann::json::parse(read_file(out / "fit.json"));
+  ASSERT_TRUE(j.contains("discretisation")) << j.dump(1);
+  const auto& d = j["discretisation"];
+  for (const char* k : {"method", "refine_ratio", "option", "rig", "refined_rig", "force_change_rms_N",
+                        "force_change_max_N", "refined_solve_seconds", "warning_rule", "warnings"})
+    EXPECT_TRUE(d.contains(k)) << k;
+  EXPECT_EQ(d["refine_ratio"].get<double>(), 2.0);
+  EXPECT_EQ(d["rig"]["cells"], 2);
+  EXPECT_EQ(d["refined_rig"]["cells"], 4);
+  EXPECT_EQ(d["refined_rig"]["layers"], 4);
+  EXPECT_GT(d["force_change_rms_N"].get<double>(), 0.0);  // bonded platens: the mesh matters
+  const auto& young = j["parameters"][0];
+  ASSERT_EQ(young["name"], "young");
+  ASSERT_TRUE(young.contains("discretisation")) << young;
+  for (const char* k : {"shift", "shift_relative", "shift_per_standard_error",
+                        "interval95_with_discretisation", "warning", "refined_mesh", "option"})
+    EXPECT_TRUE(young["discretisation"].contains(k)) << k;
+  EXPECT_TRUE(young["discretisation"]["shift"].is_number());
+  EXPECT_NE(young["discretisation"]["option"].get<std::string>().find("--refine-ratio 2"), std::string::npos);
+  EXPECT_TRUE(j["parameters"][1]["discretisation"]["shift"].is_null());  // poisson is fixed
+  // Every warning is printed and in the notes.
+  for (const auto& w : d["warnings"]) {
+    EXPECT_NE(r.output.find("WARNING: " + w.get<std::string>()), std::string::npos) << r.output;
+    EXPECT_NE(j["notes"].dump().find(w.get<std::string>()), std::string::npos);
+  }
+  // Off: no block, no column.
+  const fs::path off = dir_ / "fe-off";
+  const Result r2 = tmlab({"fit", csv.string(), "--model", "neo_hookean,poisson=0.45", "--forward", "fe_rig",
+                           "--mesh", "2,2", "--starts", "2", "--local-runs", "1", "--no-profile",
+                           "--no-plots", "--discretisation-check", "off", "--out", off.string()});
+  ASSERT_EQ(r2.status, 0) << r2.output;
+  const nlohmann::json j2 = nlohmann::json::parse(read_file(off / "fit.json"));
+  EXPECT_FALSE(j2.contains("discretisation"));
+  EXPECT_FALSE(j2["parameters"][0].contains("discretisation"));
+  EXPECT_EQ(r2.output.find("discretisation"), std::string::npos) << r2.output;
+}
+
+TEST_F(CliFit, DiscretisationOptionsOutsideAnFeRigFitAreRefused) {
+  const fs::path csv = write_block_data(dir_ / "block");
+  const auto refused = [&](const std::vector<std::string>& extra, const std::string& what) {
+    std::vector<std::string> args = {"fit",   csv.string(),          "--model",   "neo_hookean,poisson=0.45",
+                                     "--out", (dir_ / "x").string(), "--no-plots"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Result r = tmlab(args);
+    EXPECT_EQ(r.status, 2) << r.output;
+    EXPECT_NE(r.output.find(what), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "x")) << r.output;
+  };
+  refused({"--discretisation-check", "on"},
+          "--discretisation-check on is for the FE rig forward model (--forward fe_rig): this fit's forward "
+          "model is the closed form 'platen_unconfined'");
+  refused({"--refine-ratio", "3"}, "--refine-ratio is for the FE rig forward model");
+  refused({"--forward", "fe_rig", "--mesh", "2,2", "--refine-ratio", "1"}, "--refine-ratio");
+  refused({"--forward", "fe_rig", "--mesh", "2,2", "--refine-ratio", "1.1"}, "unrefined after rounding");
+  refused({"--forward", "fe_rig", "--mesh", "2,2", "--discretisation-check", "off", "--refine-ratio", "3"},
+          "not with --discretisation-check off");
+  refused({"--forward", "fe_rig", "--discretisation-check", "maybe"}, "--discretisation-check");
+}
+
 }  // namespace

@@ -28,6 +28,7 @@ TEST(Discover, NoiseOnlyAddsNothing) {
                         "unexplained_signature"})
     EXPECT_TRUE(j.contains(k)) << k;
   EXPECT_TRUE(j["baseline"].contains("rel_rms"));
+  EXPECT_FALSE(j.contains("discretisation_gate"));  // no gate without --forward fe_rig
 }
 
 TEST(Discover, LawSwappedInFromTheFittedBaselineReachesTheNoise) {
@@ -73,6 +74,54 @@ TEST(Discover, AGainTheCurrentModelReachesItselfIsNotCreditedToTheEffect) {
   for (const auto& st : r.steps) checked |= std::isfinite(st.current_refit_rms);
   EXPECT_TRUE(checked);
   EXPECT_EQ(to_json(r)["steps"][0]["criterion"].count("current_refit_from_candidate_rms_N"), 1u);
+}
+
+TEST(Discover, TheDiscretisationGateComparesTheRmsImprovementWithTheRigsChange) {
+  EXPECT_DOUBLE_EQ(rms_improvement(5.0, 3.0), 4.0);
+  EXPECT_EQ(rms_improvement(3.0, 5.0), 0.0);  // a worse candidate improves nothing
+  DiscretisationGate g;
+  EXPECT_FALSE(stands_in_for_discretisation(g, 5.0, 0.0));  // not applied: no gate
+  g.applied = true;
+  g.change_rms = 1.0;
+  g.factor = 2.0;
+  EXPECT_FALSE(stands_in_for_discretisation(g, 5.0, 3.0));  // 4 > 2 x 1
+  EXPECT_TRUE(stands_in_for_discretisation(g, 5.0, 4.8));   // sqrt(25 - 23.04) = 1.4 <= 2
+  EXPECT_EQ(discretisation_reason(g, 5.0, 4.8).rfind("stands in for discretisation error", 0), 0u);
+}
+
+TEST(Discover, AnEffectWhoseGainTheRigsDiscretisationCouldMakeIsNotAccepted) {
+  // The set of AGainTheCurrentModelReachesItselfIsNotCreditedToTheEffect, where extra_prony_term is
+  // accepted. A gate whose discretisation change is the baseline's own RMS: no candidate can improve
+  // the RMS by more than the current RMS (<= the baseline's), so by 2 x that none can, and each that
+  // passes BIC is refused with the reason.
+  Options o;
+  int calls = 0;
+  o.discretisation = [&calls](const Prepared&, const Fitted& baseline) {
+    ++calls;
+    DiscretisationGate g;
+    g.applied = true;
+    g.change_rms = baseline.fit.rms;
+    g.rig = "coarse";
+    g.refined_rig = "fine";
+    return g;
+  };
+  const Report r = run(make_set("extra_prony_term", 1).data, o);
+  EXPECT_EQ(calls, 1);
+  EXPECT_TRUE(r.selected.empty());
+  bool refused = false;
+  for (const auto& st : r.steps)
+    if (st.reason.rfind("stands in for discretisation error", 0) == 0) {
+      refused = true;
+      EXPECT_FALSE(st.accepted);
+      EXPECT_LE(st.improvement_rms, 2.0 * r.discretisation.change_rms);
+    }
+  EXPECT_TRUE(refused);
+  const auto j = to_json(r);
+  ASSERT_TRUE(j.contains("discretisation_gate"));
+  EXPECT_TRUE(j["discretisation_gate"]["applied"].get<bool>());
+  EXPECT_EQ(j["discretisation_gate"]["factor"].get<double>(), 2.0);
+  EXPECT_NE(j["selection_rule"].get<std::string>().find("discretisation"), std::string::npos);
+  EXPECT_EQ(j["steps"][0]["criterion"].count("improvement_rms_N"), 1u);
 }
 
 TEST(Discover, BackwardStepRemovesAnEffectThatNoLongerEarnsItsPlace) {
