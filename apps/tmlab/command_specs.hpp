@@ -28,10 +28,11 @@ CommandSpec depth_limit_spec();
 CommandSpec realtime_spec();
 CommandSpec verify_spec();
 CommandSpec bench_spec();
-// Measured data: command_specs_calibration.cpp.
+// Measured data, rigs and their convergence: command_specs_calibration.cpp.
 CommandSpec data_convert_spec();
 CommandSpec data_show_spec();
 CommandSpec rig_spec();
+CommandSpec converge_spec();
 CommandSpec fit_spec();
 CommandSpec discover_spec();
 

@@ -11,7 +11,24 @@ namespace {
 
 OptionSpec overwrite_option() { return flag("--overwrite", "replace files already in DIR"); }
 
-/// The mesh and material options of both forms of `tmlab rig`.
+/// The sample, fixture and loading options of a rig (`tmlab rig TEST`, `tmlab converge TEST`).
+void add_rig_sample_loading(std::vector<OptionSpec>& o) {
+  o.push_back(text("--shape", "block|cylinder", "the sample's shape"));
+  o.push_back(numbers("--size", "X,Y,Z", 3, "block size, m"));
+  o.push_back(decimal("--radius", "R", Interval{}, "cylinder radius, m"));
+  o.push_back(decimal("--height", "H", Interval{}, "sample height, m"));
+  o.push_back(text("--indenter", "sphere|flat_punch", "the indenter"));
+  o.push_back(decimal("--indenter-radius", "R", Interval{}, "indenter radius, m"));
+  o.push_back(numbers("--at", "CX,CY", 2, "where the indenter presses, m"));
+  o.push_back(text("--bottom", "bonded|frictionless", "the support under the sample"));
+  o.push_back(text("--platens", "bonded|frictionless", "the platens' interface"));
+  o.push_back(decimal("--depth", "D", Interval{}, "indentation or compression depth, m (default 10 % of H)"));
+  o.push_back(decimal("--ramp", "T", Interval{}, "ramp time, s (default 1)"));
+  o.push_back(decimal("--hold", "T", Interval{}, "hold time, s (default 0)"));
+  o.push_back(whole("--cycles", "N", 1, 100000, "load-unload cycles instead of ramp and hold"));
+}
+
+/// The mesh and material options of both forms of `tmlab rig` (and of `tmlab converge TEST`).
 void add_rig_mesh_material(std::vector<OptionSpec>& o) {
   o.push_back(
       whole("--cells", "N", rigs::kMinCells, rigs::kMaxCells, "cells across the sample (default: per test)"));
@@ -47,31 +64,49 @@ CommandSpec data_show_spec() {
 }
 
 CommandSpec rig_spec() {
-  CommandSpec c{
-      "rig",
-      {"indentation|unconfined|confined|tension --out DIR [options]",
-       "--data NAME.csv [--test ID] --out DIR [mesh and material options]"},
-      "a test rig as DIR/NAME.msh + DIR/NAME.json, an ordinary case file for\n"
-      "tmlab run / compare (docs/rigs.md); --data: the rig of a tmlab-measured/1\n"
-      "test (sample, fixture and indenter from NAME.json, driven by its measured\n"
-      "displacement column)",
-      {text("--out", "DIR", "where NAME.json and NAME.msh go"),
-       text("--name", "N", "the case's name (default: the test's)"), overwrite_option(),
-       text("--data", "NAME.csv", "the rig of a measured data set"),
-       text("--test", "ID", "the test of the data set (with --data)"),
-       text("--shape", "block|cylinder", "the sample's shape"),
-       numbers("--size", "X,Y,Z", 3, "block size, m"),
-       decimal("--radius", "R", Interval{}, "cylinder radius, m"),
-       decimal("--height", "H", Interval{}, "sample height, m"),
-       text("--indenter", "sphere|flat_punch", "the indenter"),
-       decimal("--indenter-radius", "R", Interval{}, "indenter radius, m"),
-       numbers("--at", "CX,CY", 2, "where the indenter presses, m"),
-       text("--bottom", "bonded|frictionless", "the support under the sample"),
-       text("--platens", "bonded|frictionless", "the platens' interface"),
-       decimal("--depth", "D", Interval{}, "indentation or compression depth, m (default 10 % of H)"),
-       decimal("--ramp", "T", Interval{}, "ramp time, s (default 1)"),
-       decimal("--hold", "T", Interval{}, "hold time, s (default 0)"),
-       whole("--cycles", "N", 1, 100000, "load-unload cycles instead of ramp and hold")}};
+  CommandSpec c{"rig",
+                {"indentation|unconfined|confined|tension --out DIR [options]",
+                 "--data NAME.csv [--test ID] --out DIR [mesh and material options]"},
+                "a test rig as DIR/NAME.msh + DIR/NAME.json, an ordinary case file for\n"
+                "tmlab run / compare (docs/rigs.md); --data: the rig of a tmlab-measured/1\n"
+                "test (sample, fixture and indenter from NAME.json, driven by its measured\n"
+                "displacement column)",
+                {text("--out", "DIR", "where NAME.json and NAME.msh go"),
+                 text("--name", "N", "the case's name (default: the test's)"), overwrite_option(),
+                 text("--data", "NAME.csv", "the rig of a measured data set"),
+                 text("--test", "ID", "the test of the data set (with --data)")}};
+  add_rig_sample_loading(c.options);
+  add_rig_mesh_material(c.options);
+  return c;
+}
+
+CommandSpec converge_spec() {
+  CommandSpec c{"converge",
+                {"indentation|unconfined|confined|tension [rig options] [options]", "CASE [options]"},
+                "a mesh-convergence study: the rig (the options of tmlab rig) or the case\n"
+                "on --levels meshes refined by --ratio (a case's mesh: every tet split\n"
+                "into 8), each quantity's observed order, Richardson extrapolation,\n"
+                "errors and GCI; results/converge/NAME/ (converge.json, .md, PNG;\n"
+                "docs/convergence.md)",
+                {whole("--levels", "N", 3, 8, "number of meshes, coarsest first").def("3").role(kResult),
+                 decimal("--ratio", "R", open(1.0, 10.0),
+                         "refinement ratio of cells and layers per level (rig; a case: 2)")
+                     .def("2")
+                     .role(kResult),
+                 text("--quantity", "NAME",
+                      "a series of timeseries.h5 (default: the contact force and radius, else\n"
+                      "the moving condition's reaction, and each probe's displacement)")
+                     .repeat()
+                     .role(kResult),
+                 decimal("--time", "T", Interval{},
+                         "when to take the quantities, s (default: the end of the loading\n"
+                         "and the last time)")
+                     .repeat()
+                     .role(kResult),
+                 text("--out", "DIR", "the result folder (default <results>/converge/NAME)"),
+                 text("--name", "N", "the rig's name (default: the test's)").role(kManifest),
+                 results_option(), no_plots_option()}};
+  add_rig_sample_loading(c.options);
   add_rig_mesh_material(c.options);
   return c;
 }

@@ -86,7 +86,8 @@ std::vector<CommandSpec> command_specs() {
   return {demo_spec(),       run_spec(),    compare_spec(),      cases_spec(),         mesh_info_spec(),
           mesh_check_spec(), paper_spec(),  hereditary_spec(),   workprecision_spec(), depth_limit_spec(),
           realtime_spec(),   verify_spec(), data_convert_spec(), data_show_spec(),     rig_spec(),
-          fit_spec(),        bench_spec(),  discover_spec(),     version_spec(),       help_spec()};
+          converge_spec(),   fit_spec(),    bench_spec(),        discover_spec(),      version_spec(),
+          help_spec()};
 }
 
 std::vector<CommandSpec> specs_of(const std::string& command) {

@@ -34,6 +34,8 @@ int cmd_workprecision(const std::vector<std::string>& args, const std::string& c
 int cmd_verify(const std::vector<std::string>& args, const std::string& command_line);
 // Measured-data work: the test rigs (cmd_rig.cpp).
 int cmd_rig(const std::vector<std::string>& args);
+// A mesh-convergence study of a rig or a case (cmd_converge.cpp, docs/convergence.md).
+int cmd_converge(const std::vector<std::string>& args, const std::string& command_line);
 // Measured data sets (cmd_data.cpp, docs/measured-data.md).
 int cmd_data(const std::vector<std::string>& args);
 // Inverse identification (cmd_fit.cpp, docs/identification.md).

@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
     if (cmd == "hereditary") return tmlab::cli::cmd_hereditary(args, command_line);
     if (cmd == "workprecision") return tmlab::cli::cmd_workprecision(args, command_line);
     if (cmd == "depth-limit") return tmlab::cli::cmd_depth_limit(args, command_line);
+    if (cmd == "converge") return tmlab::cli::cmd_converge(args, command_line);
     if (cmd == "bench") return tmlab::cli::cmd_bench(args, command_line);
     if (cmd == "verify") return tmlab::cli::cmd_verify(args, command_line);
     if (cmd == "data") return tmlab::cli::cmd_data(args);

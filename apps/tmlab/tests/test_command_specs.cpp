@@ -37,7 +37,7 @@ TEST(CommandSpecs, HelpListsEveryOptionOfEveryCommand) {
   for (const char* c :
        {"demo",       "run",           "compare",     "cases",    "mesh info", "mesh check",   "paper",
         "hereditary", "workprecision", "depth-limit", "realtime", "verify",    "data convert", "data show",
-        "rig",        "fit",           "bench",       "discover", "version",   "help"})
+        "rig",        "converge",      "fit",         "bench",    "discover",  "version",      "help"})
     EXPECT_EQ(names.count(c), 1u) << c;
   EXPECT_EQ(specs_of("data").size(), 2u);
   EXPECT_EQ(specs_of("fit").size(), 1u);
@@ -72,6 +72,8 @@ TEST(CommandSpecs, NoCommandReadsAnOptionOutsideItsTable) {
       {"cmd_verify.cpp", {"verify"}},
       {"cmd_data.cpp", {"data convert", "data show"}},
       {"cmd_rig.cpp", {"rig"}},
+      {"rig_options.cpp", {"rig"}},
+      {"cmd_converge.cpp", {"converge"}},
       {"cmd_fit.cpp", {"fit"}},
       {"fit_request.cpp", {"fit"}},
       {"cmd_bench.cpp", {"bench"}},
@@ -86,6 +88,15 @@ TEST(CommandSpecs, NoCommandReadsAnOptionOutsideItsTable) {
       for (const OptionSpec& o : specs.at(c).options) declared.insert(o.name);
     for (const std::string& o : options_named(dir / file))
       EXPECT_EQ(declared.count(o), 1u) << file << " names " << o << ", which is not in its table";
+  }
+}
+
+TEST(CommandSpecs, ConvergeTakesEveryRigOptionOfTheSampleMeshAndMaterial) {
+  // rig_options.cpp reads them for both commands (checked against rig's table above).
+  const CommandSpec rig = specs_of("rig").at(0), converge = specs_of("converge").at(0);
+  for (const OptionSpec& o : rig.options) {
+    if (o.name == "--out" || o.name == "--overwrite" || o.name == "--data" || o.name == "--test") continue;
+    EXPECT_NE(converge.find(o.name), nullptr) << o.name;
   }
 }
 

@@ -1,0 +1,32 @@
+// The rig options of the command line (`tmlab rig`, `tmlab converge TEST`): the test's name, the
+// sample, fixture, mesh, loading and material options of apps/tmlab/command_specs_calibration.cpp
+// (add_rig_options) turned into a rigs::RigSpec, with each command's defaults in one place.
+#pragma once
+
+#include "apps/tmlab/options/parsed_options.hpp"
+#include "calibration/rigs/rig.hpp"
+
+#include <string>
+
+namespace tmlab::cli {
+
+/// The test a name denotes: the data format's names or the short forms unconfined, confined,
+/// tension (UsageError otherwise).
+rigs::RigTest rig_test(const std::string& name);
+/// Whether `name` denotes a test (rig_test would accept it).
+bool is_rig_test(const std::string& name);
+
+/// The mesh resolution and the load steps, the same for every rig (the library's limits).
+void apply_resolution(const ParsedOptions& p, int& cells, int& layers, double& grading, int& steps);
+/// The material section and the model.
+void apply_material(const ParsedOptions& p, rigs::RigSpec& s);
+
+/// The rig of `test` from the options: the test's defaults (platen tests: the phantom's 50 x 30 mm
+/// cylinder, 8 cells and 10 layers; tension gripped), then the sample, fixture, mesh, loading and
+/// material options given; `name` names the case.
+rigs::RigSpec rig_from_options(const ParsedOptions& p, rigs::RigTest test, const std::string& name);
+
+/// The first rig option given (sample, fixture, mesh, loading or material), "" when none.
+std::string first_rig_option_given(const ParsedOptions& p);
+
+}  // namespace tmlab::cli

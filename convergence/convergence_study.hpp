@@ -1,0 +1,131 @@
+// A mesh-convergence study (issue 28, `tmlab converge`; docs/convergence.md): one rig or case run
+// on a sequence of refined meshes through the fast model's runner (runner/case_runner.hpp), the
+// chosen quantities read from each level's timeseries.h5 at the chosen times, and each quantity's
+// observed order, Richardson extrapolation, estimated errors and GCI (grid_convergence.hpp).
+//
+// The levels:
+//   rig   (calibration/rigs): level k (1-based) has round(cells r^(k-1)) cells and
+//         round(layers r^(k-1)) layers, every other field (the grading power among them) as given:
+//         the whole graded mesh refined in its parameter space. With r = 2 the counts are exact; any
+//         other r is rounded and the actual ratios of h are used (the non-constant-ratio order).
+//   case  (a case file with a mesh file): level 1 is the case's mesh, level k its uniform
+//         ("red") refinement k-1 times (core/mesh/mesh_refine.hpp): r = 2 exactly.
+// The size of a level is the representative h = (V / tets)^(1/3) (V the mesh volume; Celik et al.
+// 2008): for both kinds of refinement it scales exactly with the spacing, and it needs no notion of
+// "the" cell size of a graded or unstructured mesh.
+//
+// The quantities are series of the runner's timeseries.h5 (core/results/series_names.hpp), e.g.
+// contact_indenter_force_z, contact_indenter_radius, reaction_top_platen_z, probe_tip_norm,
+// elastic_energy, each taken at each time by linear interpolation between recorded steps.
+//
+// Everything is checked before anything runs or is written (plan_study): the level count, that the
+// levels refine, each level's rig against the rigs' limits, the mesh sizes, the quantities against
+// the series the case records, the times against the case's time span.
+#pragma once
+
+#include "calibration/rigs/rig.hpp"
+#include "convergence/grid_convergence.hpp"
+#include "core/config/case_config.hpp"
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace tmlab::convergence {
+
+/// The largest number of levels (each costs about r^3 times the previous one).
+inline constexpr int kMaxLevels = 8;
+/// The largest mesh of a case-file level (the rigs' own limit, rigs::kMaxRigTets).
+inline constexpr double kMaxLevelTets = rigs::kMaxRigTets;
+
+struct StudyOptions {
+  /// Exactly one source: a rig (level 1's spec) or a parsed case file (core/config load_case).
+  std::optional<rigs::RigSpec> rig;
+  std::optional<CaseConfig> case_config;
+  std::string tmlab_root = ".";         ///< for the level runs
+  int levels = 3;                       ///< >= 3
+  double ratio = 2.0;                   ///< rig: the multiplier of cells and layers per level; case: 2 only
+  std::vector<std::string> quantities;  ///< series names; empty: default_quantities()
+  std::vector<double> times;            ///< s; empty: default_times()
+  /// Level runs' own progress and report (the runner's log; nullptr: silent).
+  std::ostream* run_log = nullptr;
+  std::function<void(const std::string&)> log;  ///< one line per level (may be empty)
+  std::vector<std::string> command_line;        ///< for the level runs' manifests
+};
+
+/// One level as planned.
+struct LevelPlan {
+  int level = 0;              ///< 1-based
+  int cells = 0, layers = 0;  ///< rig
+  int refinements = 0;        ///< case: uniform refinements of the case's mesh
+  rigs::RigSpec rig;          ///< rig: this level's spec (name "level-<k>")
+};
+
+/// What a study will do, checked.
+struct StudyPlan {
+  std::string kind;  ///< "rig" | "case"
+  std::string name;  ///< the rig's or the case's name
+  CaseConfig base;   ///< case: the parsed case file (rig: unset)
+  std::vector<LevelPlan> levels;
+  double ratio = 2.0;  ///< as requested
+  std::vector<std::string> quantities;
+  std::vector<double> times;
+  std::vector<std::string> available;  ///< the series the case records (what --quantity accepts)
+  double t_end = 0.0;
+};
+
+/// The series a case records per step (names of core/results/series_names.hpp): the scalars, each
+/// Dirichlet condition's reaction, each probe's displacement, each contact body's outputs.
+std::vector<std::string> recorded_series(const std::vector<std::string>& conditions,
+                                         const std::vector<std::string>& probes,
+                                         const std::vector<std::string>& bodies);
+
+/// The default quantities: each contact body's force_z and radius; else the reaction norm of each
+/// Dirichlet condition that moves (a prescribed non-zero value); each probe's displacement norm;
+/// max_displacement when none of these exists.
+std::vector<std::string> default_quantities(const std::vector<std::string>& moving_conditions,
+                                            const std::vector<std::string>& probes,
+                                            const std::vector<std::string>& bodies);
+
+/// Checks the options and plans the levels; throws tmlab::Error naming the option ("--levels",
+/// "--ratio", "--quantity", "--time", the rig's field) before anything is computed or written.
+StudyPlan plan_study(const StudyOptions& options);
+
+/// The value of series `values` (recorded at `time`) at time t, linear between recorded steps;
+/// tmlab::Error naming `what` when t lies outside the recorded times (beyond 1e-9 of the span).
+double value_at(const std::vector<double>& time, const std::vector<double>& values, double t,
+                const std::string& what);
+
+/// One level as run.
+struct LevelResult {
+  int level = 0;
+  int cells = 0, layers = 0, refinements = 0;
+  long points = 0, tets = 0, dofs = 0;  ///< dofs: 3 x points
+  double volume = 0.0;                  ///< m^3
+  double h = 0.0;                       ///< (volume / tets)^(1/3), m
+  double wall_seconds = 0.0;
+  std::string dir;                          ///< the level's run, relative to the study folder
+  std::vector<std::vector<double>> values;  ///< [quantity][time]
+};
+
+/// One quantity at one time over the levels.
+struct QuantityResult {
+  std::string quantity, unit;
+  double time = 0.0;
+  ConvergenceAnalysis analysis;
+};
+
+struct StudyResult {
+  std::vector<LevelResult> levels;
+  std::vector<QuantityResult> quantities;  ///< quantity-major, then time
+};
+
+/// Runs the planned levels into `dir` (the study's staging folder: meshes/ and levels/level-<k>/,
+/// complete runs of the runner's result protocol) and analyses every quantity. A stop request
+/// (SIGINT/SIGTERM) between or inside level runs throws tmlab::Interrupted.
+StudyResult run_study(const StudyPlan& plan, const StudyOptions& options, const std::filesystem::path& dir);
+
+}  // namespace tmlab::convergence
