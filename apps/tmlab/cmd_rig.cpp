@@ -19,12 +19,32 @@ namespace tmlab::cli {
 
 namespace {
 
-// The mesh resolution and the load steps, the same for every rig (the library's limits).
-void apply_resolution(const ParsedOptions& p, int& cells, int& layers, double& grading, int& steps) {
-  p.assign_if_given("--cells", cells);
-  p.assign_if_given("--layers", layers);
-  p.assign_if_given("--grading", grading);
-  p.assign_if_given("--steps-per-segment", steps);
+/// Whether the explicit mesh form (--cells, --layers, --grading) is asked for; refused together with
+/// the contact rule's --contact-cells / --rim-cells.
+bool explicit_mesh_given(const ParsedOptions& p) {
+  const bool expl = p.given("--cells") || p.given("--layers") || p.given("--grading");
+  for (const char* rule : {"--contact-cells", "--rim-cells"})
+    if (expl && p.given(rule))
+      throw UsageError(std::string(rule) +
+                       " (the contact rule) does not go with --cells, --layers, --grading (the explicit "
+                       "mesh form): give one or the other");
+  return expl;
+}
+
+// The mesh resolution and the load steps of a rig: the contact rule (the default) or, with --cells,
+// --layers or --grading, the explicit form starting from `cells0` and `layers0` (docs/rigs.md).
+void apply_resolution(const ParsedOptions& p, rigs::RigSpec& s, int cells0, int layers0) {
+  if (explicit_mesh_given(p)) {
+    s.cells = cells0;
+    s.layers = layers0;
+    p.assign_if_given("--cells", s.cells);
+    p.assign_if_given("--layers", s.layers);
+    p.assign_if_given("--grading", s.grading);
+  }
+  p.assign_if_given("--contact-cells", s.contact_cells);
+  p.assign_if_given("--rim-cells", s.rim_cells);
+  p.assign_if_given("--refine", s.refinement);
+  p.assign_if_given("--steps-per-segment", s.steps_per_sample);
 }
 
 rigs::RigTest rig_test(const std::string& name) {
@@ -58,7 +78,14 @@ void apply_geometry(const ParsedOptions& p, rigs::RigSpec& s) {
   }
   if (p.given("--bottom")) s.bottom = rigs::parse_support(p.text("--bottom"), "--bottom");
   if (p.given("--platens")) s.platens = rigs::parse_support(p.text("--platens"), "--platens");
-  apply_resolution(p, s.cells, s.layers, s.grading, s.steps_per_sample);
+  if (p.given("--indenter-contact")) {
+    if (s.test != rigs::RigTest::Indentation)
+      throw UsageError("--indenter-contact goes with an indentation rig");
+    s.indenter_contact = rigs::parse_support(p.text("--indenter-contact"), "--indenter-contact");
+  }
+  // The explicit form's defaults: the earlier rig meshes (indentation 16 x 8 graded; platens 8 x 10).
+  const bool indentation = s.test == rigs::RigTest::Indentation;
+  apply_resolution(p, s, indentation ? 16 : 8, indentation ? 8 : 10);
 }
 
 // The material section and the model.
@@ -102,8 +129,9 @@ rigs::RigSpec data_rig(const ParsedOptions& p) {
     throw UsageError(
         "rig --data takes the test from the data set (its key 'test'); give no test name (got '" +
         p.positional[0] + "')");
-  for (const char* opt : {"--shape", "--size", "--radius", "--height", "--indenter", "--indenter-radius",
-                          "--at", "--bottom", "--platens", "--depth", "--ramp", "--hold", "--cycles"})
+  for (const char* opt :
+       {"--shape", "--size", "--radius", "--height", "--indenter", "--indenter-radius", "--at", "--bottom",
+        "--platens", "--indenter-contact", "--depth", "--ramp", "--hold", "--cycles"})
     if (p.given(opt))
       throw UsageError(std::string(opt) +
                        " does not go with --data: the data set gives the sample, the fixture "
@@ -123,11 +151,13 @@ rigs::RigSpec data_rig(const ParsedOptions& p) {
     throw UsageError("rig --data: " + file + " holds " + std::to_string(data.tests.size()) +
                      " tests; choose one with --test ID (" + ids + ")");
   }
+  // The data rigs keep the explicit form (RigFromDataMesh) unless --contact-cells or --rim-cells.
   rigs::RigFromDataMesh mesh;
-  int steps = 1;  // one load step across the shortest sampling interval
-  apply_resolution(p, mesh.cells, mesh.layers, mesh.grading, steps);
+  const bool rule = !explicit_mesh_given(p) && (p.given("--contact-cells") || p.given("--rim-cells"));
+  if (rule) mesh.contact_cells = rigs::kDefaultContactCells;
   rigs::RigSpec s = rigs::rig_from_data(data, k, mesh);
-  s.steps_per_sample = steps;
+  s.steps_per_sample = 1;  // one load step across the shortest sampling interval
+  apply_resolution(p, s, mesh.cells, mesh.layers);
   const std::string test_id = data.tests[k].id;
   std::string name = data.meta.name + (test_id.empty() || data.tests.size() == 1 ? "" : "-" + test_id);
   if (!result_name_problem(name).empty()) name = "data_rig";
@@ -166,8 +196,6 @@ int cmd_rig(const std::vector<std::string>& args) {
     // Platen tests default to the phantom geometry (a 50 mm x 30 mm cylinder); tension is gripped.
     s.shape = rigs::SampleShape::Cylinder;
     s.height = 0.03;
-    s.cells = 8;
-    s.layers = 10;
     if (s.test == rigs::RigTest::UniaxialTension) s.platens = rigs::Support::Bonded;
   }
   apply_geometry(p, s);
