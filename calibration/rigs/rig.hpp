@@ -56,10 +56,12 @@ struct DisplacementHistory {
   double peak() const;  ///< the largest |d|
 };
 
-/// The default cells across the largest contact radius a_max (RigSpec::contact_cells), chosen from
-/// the P1 convergence study of docs/rigs.md (the seed-like indentation, nu = 0.45): a rig that runs
-/// in about a minute. With P1 at nu = 0.45 it is still several per cent stiff (the table there);
-/// re-choose it from that table for the element a rig uses (P2, locking-free P1).
+/// The default cells across the largest contact radius a_max (RigSpec::contact_cells): THE ONE
+/// CONSTANT to re-choose when the rigs get another element. Chosen for P1 from the convergence study
+/// of docs/rigs.md (the seed-like indentation, nu = 0.45): 2 keeps a default rig run at the cost of the
+/// earlier default (12,288 tets on the 40 x 40 x 20 mm block); with P1 at nu = 0.45 it is still far
+/// from the 1 % goal (the table there gives the error of each choice), which needs P2 or a
+/// locking-free element: re-choose from that table for the element a rig uses.
 inline constexpr int kDefaultContactCells = 2;
 /// The default cells across L = min(radius, height / 2) of platen rigs (RigSpec::rim_cells).
 inline constexpr int kDefaultRimCells = 6;
