@@ -75,12 +75,10 @@ CaseNames names_of(const CaseConfig& cfg) {
   return n;
 }
 
-/// The rig of level k (1-based): cells and layers times ratio^(k-1), rounded.
+/// The rig of level k (1-based): rigs::refined(base, ratio^(k-1)), every cell count of the rig's
+/// graded mesh (the contact rule's or the explicit form's cells and layers) times the ratio, rounded.
 rigs::RigSpec rig_level(const rigs::RigSpec& base, double ratio, int level) {
-  rigs::RigSpec s = base;
-  const double f = std::pow(ratio, level - 1);
-  s.cells = static_cast<int>(std::lround(base.cells * f));
-  s.layers = static_cast<int>(std::lround(base.layers * f));
+  rigs::RigSpec s = rigs::refined(base, std::pow(ratio, level - 1));
   s.name = level_name(level);
   return s;
 }
@@ -182,7 +180,7 @@ StudyPlan plan_study(const StudyOptions& o) {
       l.layers = l.rig.layers;
       if (k > 1) {
         const LevelPlan& prev = plan.levels.back();
-        if (l.cells <= prev.cells || l.layers < prev.layers)
+        if (l.cells > 0 && (l.cells <= prev.cells || l.layers < prev.layers))
           throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
                       std::to_string(l.cells) + " cells, " + std::to_string(l.layers) +
                       " layers) does not refine level " + std::to_string(k - 1) + " (" +

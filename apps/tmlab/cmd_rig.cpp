@@ -28,8 +28,9 @@ rigs::RigSpec data_rig(const ParsedOptions& p) {
     throw UsageError(
         "rig --data takes the test from the data set (its key 'test'); give no test name (got '" +
         p.positional[0] + "')");
-  for (const char* opt : {"--shape", "--size", "--radius", "--height", "--indenter", "--indenter-radius",
-                          "--at", "--bottom", "--platens", "--depth", "--ramp", "--hold", "--cycles"})
+  for (const char* opt :
+       {"--shape", "--size", "--radius", "--height", "--indenter", "--indenter-radius", "--at", "--bottom",
+        "--platens", "--indenter-contact", "--depth", "--ramp", "--hold", "--cycles"})
     if (p.given(opt))
       throw UsageError(std::string(opt) +
                        " does not go with --data: the data set gives the sample, the fixture "
@@ -49,11 +50,13 @@ rigs::RigSpec data_rig(const ParsedOptions& p) {
     throw UsageError("rig --data: " + file + " holds " + std::to_string(data.tests.size()) +
                      " tests; choose one with --test ID (" + ids + ")");
   }
+  // The data rigs keep the explicit form (RigFromDataMesh) unless --contact-cells or --rim-cells.
   rigs::RigFromDataMesh mesh;
-  int steps = 1;  // one load step across the shortest sampling interval
-  apply_resolution(p, mesh.cells, mesh.layers, mesh.grading, steps);
+  const bool rule = !explicit_mesh_given(p) && (p.given("--contact-cells") || p.given("--rim-cells"));
+  if (rule) mesh.contact_cells = rigs::kDefaultContactCells;
   rigs::RigSpec s = rigs::rig_from_data(data, k, mesh);
-  s.steps_per_sample = steps;
+  s.steps_per_sample = 1;  // one load step across the shortest sampling interval
+  apply_resolution(p, s, mesh.cells, mesh.layers);
   const std::string test_id = data.tests[k].id;
   std::string name = data.meta.name + (test_id.empty() || data.tests.size() == 1 ? "" : "-" + test_id);
   if (!result_name_problem(name).empty()) name = "data_rig";

@@ -22,6 +22,8 @@ void add_rig_sample_loading(std::vector<OptionSpec>& o) {
   o.push_back(numbers("--at", "CX,CY", 2, "where the indenter presses, m"));
   o.push_back(text("--bottom", "bonded|frictionless", "the support under the sample"));
   o.push_back(text("--platens", "bonded|frictionless", "the platens' interface"));
+  o.push_back(
+      text("--indenter-contact", "frictionless|bonded", "the indenter's surface (default frictionless)"));
   o.push_back(decimal("--depth", "D", Interval{}, "indentation or compression depth, m (default 10 % of H)"));
   o.push_back(decimal("--ramp", "T", Interval{}, "ramp time, s (default 1)"));
   o.push_back(decimal("--hold", "T", Interval{}, "hold time, s (default 0)"));
@@ -34,6 +36,13 @@ void add_rig_mesh_material(std::vector<OptionSpec>& o) {
       whole("--cells", "N", rigs::kMinCells, rigs::kMaxCells, "cells across the sample (default: per test)"));
   o.push_back(whole("--layers", "N", 1, rigs::kMaxLayers, "cells through the height (default: per test)"));
   o.push_back(decimal("--grading", "P", Interval{}, "grading towards the indenter (1 = uniform)"));
+  o.push_back(whole("--contact-cells", "N", 1, rigs::kMaxContactCells,
+                    "cells across the largest contact radius (the contact rule; default " +
+                        std::to_string(rigs::kDefaultContactCells) + ")"));
+  o.push_back(whole("--rim-cells", "N", 1, rigs::kMaxContactCells,
+                    "platen rigs: cells across min(radius, height/2) (default " +
+                        std::to_string(rigs::kDefaultRimCells) + ")"));
+  o.push_back(decimal("--refine", "R", Interval{}, "multiply every cell count by R (convergence levels)"));
   o.push_back(whole("--steps-per-segment", "N", 1, rigs::kMaxLoadSteps,
                     "quasi-static load steps per history segment (--data: per sample)"));
   o.push_back(text("--material", "JSON", "the case file's material section"));

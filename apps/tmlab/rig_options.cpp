@@ -30,7 +30,14 @@ void apply_geometry(const ParsedOptions& p, rigs::RigSpec& s) {
   }
   if (p.given("--bottom")) s.bottom = rigs::parse_support(p.text("--bottom"), "--bottom");
   if (p.given("--platens")) s.platens = rigs::parse_support(p.text("--platens"), "--platens");
-  apply_resolution(p, s.cells, s.layers, s.grading, s.steps_per_sample);
+  if (p.given("--indenter-contact")) {
+    if (s.test != rigs::RigTest::Indentation)
+      throw UsageError("--indenter-contact goes with an indentation rig");
+    s.indenter_contact = rigs::parse_support(p.text("--indenter-contact"), "--indenter-contact");
+  }
+  // The explicit form's defaults: the earlier rig meshes (indentation 16 x 8 graded; platens 8 x 10).
+  const bool indentation = s.test == rigs::RigTest::Indentation;
+  apply_resolution(p, s, indentation ? 16 : 8, indentation ? 8 : 10);
 }
 
 // The displacement history.
@@ -57,6 +64,7 @@ const char* const kRigOptions[] = {"--shape",
                                    "--at",
                                    "--bottom",
                                    "--platens",
+                                   "--indenter-contact",
                                    "--depth",
                                    "--ramp",
                                    "--hold",
@@ -64,6 +72,9 @@ const char* const kRigOptions[] = {"--shape",
                                    "--cells",
                                    "--layers",
                                    "--grading",
+                                   "--contact-cells",
+                                   "--rim-cells",
+                                   "--refine",
                                    "--steps-per-segment",
                                    "--material",
                                    "--E",
@@ -73,11 +84,28 @@ const char* const kRigOptions[] = {"--shape",
 
 }  // namespace
 
-void apply_resolution(const ParsedOptions& p, int& cells, int& layers, double& grading, int& steps) {
-  p.assign_if_given("--cells", cells);
-  p.assign_if_given("--layers", layers);
-  p.assign_if_given("--grading", grading);
-  p.assign_if_given("--steps-per-segment", steps);
+bool explicit_mesh_given(const ParsedOptions& p) {
+  const bool expl = p.given("--cells") || p.given("--layers") || p.given("--grading");
+  for (const char* rule : {"--contact-cells", "--rim-cells"})
+    if (expl && p.given(rule))
+      throw UsageError(std::string(rule) +
+                       " (the contact rule) does not go with --cells, --layers, --grading (the explicit "
+                       "mesh form): give one or the other");
+  return expl;
+}
+
+void apply_resolution(const ParsedOptions& p, rigs::RigSpec& s, int cells0, int layers0) {
+  if (explicit_mesh_given(p)) {
+    s.cells = cells0;
+    s.layers = layers0;
+    p.assign_if_given("--cells", s.cells);
+    p.assign_if_given("--layers", s.layers);
+    p.assign_if_given("--grading", s.grading);
+  }
+  p.assign_if_given("--contact-cells", s.contact_cells);
+  p.assign_if_given("--rim-cells", s.rim_cells);
+  p.assign_if_given("--refine", s.refinement);
+  p.assign_if_given("--steps-per-segment", s.steps_per_sample);
 }
 
 rigs::RigTest rig_test(const std::string& name) {
@@ -126,8 +154,6 @@ rigs::RigSpec rig_from_options(const ParsedOptions& p, rigs::RigTest test, const
     // Platen tests default to the phantom geometry (a 50 mm x 30 mm cylinder); tension is gripped.
     s.shape = rigs::SampleShape::Cylinder;
     s.height = 0.03;
-    s.cells = 8;
-    s.layers = 10;
     if (s.test == rigs::RigTest::UniaxialTension) s.platens = rigs::Support::Bonded;
   }
   apply_geometry(p, s);

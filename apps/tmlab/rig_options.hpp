@@ -16,8 +16,12 @@ rigs::RigTest rig_test(const std::string& name);
 /// Whether `name` denotes a test (rig_test would accept it).
 bool is_rig_test(const std::string& name);
 
-/// The mesh resolution and the load steps, the same for every rig (the library's limits).
-void apply_resolution(const ParsedOptions& p, int& cells, int& layers, double& grading, int& steps);
+/// The mesh resolution and the load steps of a rig: the contact rule (the default) or, with --cells,
+/// --layers or --grading, the explicit form starting from `cells0` and `layers0` (docs/rigs.md).
+/// Whether the explicit mesh form (--cells, --layers, --grading) is asked for; refused (UsageError)
+/// together with the contact rule's --contact-cells / --rim-cells.
+bool explicit_mesh_given(const ParsedOptions& p);
+void apply_resolution(const ParsedOptions& p, rigs::RigSpec& s, int cells0, int layers0);
 /// The material section and the model.
 void apply_material(const ParsedOptions& p, rigs::RigSpec& s);
 

@@ -114,7 +114,8 @@ json indentation_boundary(const RigSpec& s) {
 
 json indenter_body(const RigSpec& s) {
   const double top = s.height;
-  json body = {{"name", "indenter"}, {"mode", "frictionless"}};
+  json body = {{"name", "indenter"},
+               {"mode", s.indenter_contact == Support::Bonded ? "bonded" : "frictionless"}};
   if (s.indenter == IndenterShape::Sphere) {
     body["type"] = "sphere";
     body["center"] = {s.cx, s.cy, top + s.indenter_radius};
@@ -212,14 +213,64 @@ double shortest_segment(const DisplacementHistory& h) {
   return shortest;
 }
 
-/// The block's cells per axis, as rig_mesh makes them (doubles: a far too large rig still has a size).
+/// The explicit form's cells and layers, times the refinement (doubles: a far too large rig still has a
+/// size).
+double refined_count(int n, double refinement) { return std::max(1.0, std::round(n * refinement)); }
+
+/// The block's cells per axis in the explicit form, as rig_mesh makes them.
 std::array<double, 3> block_cells(const RigSpec& s) {
   const double lateral = std::min(s.size_x, s.size_y);
-  return {std::max(2.0, std::round(s.cells * s.size_x / lateral)),
-          std::max(2.0, std::round(s.cells * s.size_y / lateral)), static_cast<double>(s.layers)};
+  const double cells = refined_count(s.cells, s.refinement);
+  return {std::max(2.0, std::round(cells * s.size_x / lateral)),
+          std::max(2.0, std::round(cells * s.size_y / lateral)), refined_count(s.layers, s.refinement)};
 }
 
-int cylinder_rings(const RigSpec& s) { return std::max(1, s.cells / 2); }
+int cylinder_rings(const RigSpec& s) {
+  return std::max(1, static_cast<int>(refined_count(s.cells, s.refinement)) / 2);
+}
+
+bool explicit_mesh(const RigSpec& s) { return s.cells > 0; }
+
+/// The rule's fine spacing and fine zone width: indentation h_c = a_max / contact_cells within
+/// contact_zone a_max; platen tests h_e = L / rim_cells within kRimZone L.
+struct RuleScale {
+  double h = 0.0, zone = 0.0;
+};
+
+double platen_length(const RigSpec& s) {
+  const double lateral = s.shape == SampleShape::Cylinder ? s.radius : 0.5 * std::min(s.size_x, s.size_y);
+  return std::min(lateral, 0.5 * s.height);
+}
+
+RuleScale rule_scale(const RigSpec& s) {
+  if (s.test == RigTest::Indentation) {
+    const double a = rig_contact_radius(s);
+    return {a / s.contact_cells, s.contact_zone * a};
+  }
+  const double L = platen_length(s);
+  return {L / s.rim_cells, kRimZone * L};
+}
+
+/// The rule's grid (validated arguments); `count_only`: the cell counts in grid[k][0] (no coordinates).
+BoxGrid rule_grid(const RigSpec& s, bool count_only) {
+  const RuleScale r = rule_scale(s);
+  const double g = s.growth, ref = s.refinement;
+  const auto one_sided = [&](double lo, double hi, double focus) {
+    return count_only ? std::vector<double>{contact_graded_cells(lo, hi, focus, r.h, r.zone, g, ref)}
+                      : contact_graded_coordinates(lo, hi, focus, r.h, r.zone, g, ref);
+  };
+  const auto two_sided = [&](double lo, double hi) {
+    return count_only
+               ? std::vector<double>{2.0 * contact_graded_cells(lo, 0.5 * (lo + hi), lo, r.h, r.zone, g, ref)}
+               : two_sided_graded_coordinates(lo, hi, r.h, r.zone, g, ref);
+  };
+  const double hx = 0.5 * s.size_x, hy = 0.5 * s.size_y;
+  if (s.test == RigTest::Indentation)
+    return {one_sided(-hx, hx, s.cx), one_sided(-hy, hy, s.cy), one_sided(0.0, s.height, s.height)};
+  if (s.shape == SampleShape::Cylinder)
+    return {one_sided(0.0, s.radius, s.radius), {}, two_sided(0.0, s.height)};
+  return {two_sided(-hx, hx), two_sided(-hy, hy), two_sided(0.0, s.height)};
+}
 
 void validate_sample(const RigSpec& s) {
   const auto positive = [&](double v, const char* field) {
@@ -292,34 +343,97 @@ void validate_history(const RigSpec& s) {
                grouped(kMaxLoadSteps) + " (a static run of more would take days): give fewer");
 }
 
+/// The contact rule's own fields (checked whatever the form: a bad value is never silently ignored).
+void validate_rule(const RigSpec& s) {
+  const auto count = [&](int v, const char* field) {
+    if (v < 1 || v > kMaxContactCells)
+      refuse(s, field,
+             "must be in [1, " + std::to_string(kMaxContactCells) + "] (got " + std::to_string(v) + ")");
+  };
+  count(s.contact_cells, "contact_cells");
+  count(s.rim_cells, "rim_cells");
+  const auto range = [&](double v, double lo, double hi, const char* field, const char* what) {
+    if (!(v >= lo && v <= hi))
+      refuse(
+          s, field,
+          std::string("must be in [") + significant(lo, 4) + ", " + significant(hi, 4) + "] (" + what + ")");
+  };
+  range(s.contact_zone, 0.5, 10.0, "contact_zone", "the fine zone's half width in contact radii");
+  range(s.growth, 1.0, 2.0, "growth", "the largest ratio of neighbouring cells");
+  if (!(s.refinement > 0.0 && s.refinement <= kMaxRefinement))
+    refuse(s, "refinement",
+           "must be in (0, " + significant(kMaxRefinement, 4) + "] (it multiplies every cell count)");
+}
+
 /// The mesh's size before it is generated, against kMaxRigTets.
 void validate_mesh_size(const RigSpec& s) {
-  if (s.cells < kMinCells || s.cells > kMaxCells)
-    refuse(s, "cells", "must be in [" + std::to_string(kMinCells) + ", " + std::to_string(kMaxCells) + "]");
-  if (s.layers < 1 || s.layers > kMaxLayers)
-    refuse(s, "layers", "must be in [1, " + std::to_string(kMaxLayers) + "]");
-  if (!(s.grading >= 1.0 && s.grading <= 4.0)) refuse(s, "grading", "must be in [1, 4]");
+  validate_rule(s);
+  const bool expl = explicit_mesh(s);
+  if (expl) {
+    if (s.cells < kMinCells || s.cells > kMaxCells)
+      refuse(s, "cells", "must be in [" + std::to_string(kMinCells) + ", " + std::to_string(kMaxCells) + "]");
+    if (s.layers < 1 || s.layers > kMaxLayers)
+      refuse(
+          s, "layers",
+          "must be in [1, " + std::to_string(kMaxLayers) + "] (the explicit mesh form: give it with cells)");
+    if (!(s.grading >= 1.0 && s.grading <= 4.0)) refuse(s, "grading", "must be in [1, 4]");
+  } else if (s.layers != 0) {
+    refuse(s, "layers", "goes with cells (the explicit mesh form); the contact rule sets the layers itself");
+  }
   SampleMeshSize size;
-  std::string formula;
-  if (s.shape == SampleShape::Block) {
-    const auto n = block_cells(s);
-    size = block_mesh_size(n[0], n[1], n[2]);
-    formula =
-        "a block of " + grouped(n[0]) + " x " + grouped(n[1]) + " x " + grouped(n[2]) +
-        " cells (cells across the smaller side, scaled to the other; layers through the height), 6 tets each";
+  std::string formula, fields;
+  const std::string refinement = s.refinement != 1.0 ? " at refinement " + significant(s.refinement, 6) : "";
+  if (expl) {
+    fields = "cells, layers";
+    if (s.shape == SampleShape::Block) {
+      const auto n = block_cells(s);
+      size = block_mesh_size(n[0], n[1], n[2]);
+      formula = "cells " + std::to_string(s.cells) + " and layers " + std::to_string(s.layers) + refinement +
+                " give a block of " + grouped(n[0]) + " x " + grouped(n[1]) + " x " + grouped(n[2]) +
+                " cells (cells across the smaller side, scaled to the other; layers through the height), 6 "
+                "tets each";
+    } else {
+      const double layers = refined_count(s.layers, s.refinement);
+      size = cylinder_mesh_size(cylinder_rings(s), layers);
+      formula = "cells " + std::to_string(s.cells) + " and layers " + std::to_string(s.layers) + refinement +
+                " give a cylinder of " + std::to_string(cylinder_rings(s)) + " rings (cells / 2) and " +
+                grouped(layers) + " layers, 18 rings^2 tets per layer";
+    }
   } else {
-    size = cylinder_mesh_size(cylinder_rings(s), s.layers);
-    formula = "a cylinder of " + std::to_string(cylinder_rings(s)) + " rings (cells / 2) and " +
-              std::to_string(s.layers) + " layers, 18 rings^2 tets per layer";
+    // The rule's counts, from the 1-D plans (nothing is allocated).
+    if (s.test == RigTest::Indentation) {
+      fields = "contact_cells, contact_zone, growth, refinement";
+      formula = "contact_cells " + std::to_string(s.contact_cells) + " (h = " + mm(rule_scale(s).h) +
+                " across a_max = " + mm(rig_contact_radius(s)) + ")";
+    } else {
+      fields = "rim_cells, growth, refinement";
+      formula = "rim_cells " + std::to_string(s.rim_cells) + " (h = " + mm(rule_scale(s).h) + ")";
+    }
+    const BoxGrid n = rule_grid(s, true);
+    if (s.shape == SampleShape::Block || s.test == RigTest::Indentation) {
+      size = block_mesh_size(n[0][0], n[1][0], n[2][0]);
+      formula += refinement + " give a block of " + grouped(n[0][0]) + " x " + grouped(n[1][0]) + " x " +
+                 grouped(n[2][0]) + " cells, 6 tets each";
+    } else {
+      size = cylinder_mesh_size(n[0][0], n[2][0]);
+      formula += refinement + " give a cylinder of " + grouped(n[0][0]) + " rings and " + grouped(n[2][0]) +
+                 " layers, 18 rings^2 tets per layer";
+    }
+    if (std::max({n[0][0], s.test == RigTest::Indentation || s.shape == SampleShape::Block ? n[1][0] : 0.0,
+                  n[2][0]}) > kMaxGradedCells)
+      size.tets = std::max(size.tets, 2.0 * kMaxRigTets);  // beyond the generator's axis limit
   }
   if (size.tets <= kMaxRigTets) return;
-  refuse(s, "cells, layers",
-         "cells " + std::to_string(s.cells) + " and layers " + std::to_string(s.layers) + " give " + formula +
-             ": " + grouped(size.nodes) + " nodes and " + grouped(size.tets) + " tets (about " +
+  refuse(s, fields,
+         formula + ": " + grouped(size.nodes) + " nodes and " + grouped(size.tets) + " tets (about " +
              memory(size.generator_bytes() + size.gmsh_bytes()) + " of memory to generate and a " +
              memory(size.gmsh_bytes()) + " mesh file); the limit is " + grouped(kMaxRigTets) +
              " tets (the largest mesh tmlab's benchmarks run is 2.4M tets, and a static contact run "
-             "costs far more per tet): give fewer cells or layers");
+             "costs far more per tet): " +
+             (expl ? std::string("give fewer cells or layers")
+                   : std::string("give fewer ") +
+                         (s.test == RigTest::Indentation ? "contact_cells" : "rim_cells") +
+                         ", a larger growth or a smaller refinement"));
 }
 
 /// The material section and the model as `tmlab run` reads them (core/config's case-file parser),
@@ -348,34 +462,61 @@ void validate(const RigSpec& s) {
   if (const std::string problem = result_name_problem(s.name); !problem.empty())
     refuse(s, "name", problem + " (it names the case and its result directory)");
   validate_sample(s);
-  validate_mesh_size(s);
+  // The explicit form's size first (as ever); the contact rule's after the history and the indenter,
+  // which set its scale.
+  if (explicit_mesh(s)) validate_mesh_size(s);
   validate_history(s);
   if (s.test == RigTest::Indentation) validate_indenter(s);
+  if (!explicit_mesh(s)) validate_mesh_size(s);
   validate_material(s);
 }
 
-Mesh rig_mesh(const RigSpec& s) {
+double rig_contact_radius(const RigSpec& s) {
+  const double r = s.indenter_radius;
+  return s.indenter == IndenterShape::Sphere ? std::min(r, std::sqrt(r * s.history.peak())) : r;
+}
+
+RigSpec refined(const RigSpec& s, double ratio) {
+  if (!(ratio > 0.0) || !std::isfinite(ratio))
+    throw Error("rig '" + s.name + "': refined: the ratio must be positive and finite (got " +
+                significant(ratio, 6) + ")");
+  RigSpec r = s;
+  r.refinement = s.refinement * ratio;
+  return r;
+}
+
+BoxGrid rig_grid(const RigSpec& s) {
   validate(s);
+  if (!explicit_mesh(s)) return rule_grid(s, false);
+  if (s.shape == SampleShape::Cylinder) {
+    const int rings = cylinder_rings(s), layers = static_cast<int>(refined_count(s.layers, s.refinement));
+    BoxGrid g;
+    for (int k = 0; k <= rings; ++k) g[0].push_back(k == rings ? s.radius : s.radius * k / rings);
+    for (int l = 0; l <= layers; ++l) g[2].push_back(l == layers ? s.height : s.height * l / layers);
+    return g;
+  }
+  const auto n = block_cells(s);
+  const double power = s.test == RigTest::Indentation ? s.grading : 1.0;
+  return {graded_coordinates(-0.5 * s.size_x, 0.5 * s.size_x, static_cast<int>(n[0]), s.cx, power),
+          graded_coordinates(-0.5 * s.size_y, 0.5 * s.size_y, static_cast<int>(n[1]), s.cy, power),
+          graded_coordinates(0.0, s.height, static_cast<int>(n[2]), s.height, power)};
+}
+
+Mesh rig_mesh(const RigSpec& s) {
+  BoxGrid g = rig_grid(s);
   if (s.shape == SampleShape::Cylinder) {
     CylinderSpec c;
     c.radius = s.radius;
     c.height = s.height;
-    c.rings = cylinder_rings(s);
-    c.layers = s.layers;
+    c.rings = static_cast<int>(g[0].size()) - 1;
+    c.layers = static_cast<int>(g[2].size()) - 1;
+    if (!explicit_mesh(s)) {  // the explicit form's uniform cylinder stays the generator's own
+      c.ring_radii = std::move(g[0]);
+      c.layer_z = std::move(g[2]);
+    }
     return make_cylinder_mesh(c);
   }
-  BlockSpec b;
-  b.size_x = s.size_x;
-  b.size_y = s.size_y;
-  b.size_z = s.height;
-  b.cx = s.cx;
-  b.cy = s.cy;
-  const auto n = block_cells(s);
-  b.nx = static_cast<int>(n[0]);
-  b.ny = static_cast<int>(n[1]);
-  b.nz = static_cast<int>(n[2]);
-  b.grading = s.test == RigTest::Indentation ? s.grading : 1.0;
-  return make_block_mesh(b);
+  return make_block_mesh(g);
 }
 
 json rig_case(const RigSpec& s, const std::string& mesh_file) {

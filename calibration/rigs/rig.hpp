@@ -22,6 +22,7 @@
 #pragma once
 
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/mesh_generator.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -55,6 +56,18 @@ struct DisplacementHistory {
   double peak() const;  ///< the largest |d|
 };
 
+/// The default cells across the largest contact radius a_max (RigSpec::contact_cells): THE ONE
+/// CONSTANT to re-choose when the rigs get another element. Chosen for P1 from the convergence study
+/// of docs/rigs.md (the seed-like indentation, nu = 0.45): 2 keeps a default rig run at the cost of the
+/// earlier default (12,288 tets on the 40 x 40 x 20 mm block); with P1 at nu = 0.45 it is still far
+/// from the 1 % goal (the table there gives the error of each choice), which needs P2 or a
+/// locking-free element: re-choose from that table for the element a rig uses.
+inline constexpr int kDefaultContactCells = 2;
+/// The default cells across L = min(radius, height / 2) of platen rigs (RigSpec::rim_cells).
+inline constexpr int kDefaultRimCells = 6;
+/// The fine band of platen rigs: kRimZone L from the rim and from each platen.
+inline constexpr double kRimZone = 0.25;
+
 struct RigSpec {
   std::string name = "rig";
   RigTest test = RigTest::Indentation;
@@ -67,10 +80,30 @@ struct RigSpec {
   IndenterShape indenter = IndenterShape::Sphere;
   double indenter_radius = 0.005;  ///< m
   double cx = 0.0, cy = 0.0;       ///< where the indenter touches the top face (block only)
-  // Mesh: cells across the smallest lateral size and through the height; grading >= 1 refines
-  // towards the indenter (graded_coordinates' power).
-  int cells = 16;
-  int layers = 8;
+  /// How the indenter's surface holds the sample: frictionless (default) or bonded (glued where it
+  /// touches, never released: the no-slip limit of friction; docs/contact.md).
+  Support indenter_contact = Support::Frictionless;
+  // Mesh, by the contact rule (docs/rigs.md "Meshes that resolve the contact"; cells = 0, the default):
+  // - indentation: uniform cells of h_c = a_max / contact_cells within contact_zone a_max of the
+  //   indenter's axis (laterally) and of the top face (in depth), a_max = sqrt(R d_max) (sphere,
+  //   at most R) or the punch radius; beyond, cells growing by at most `growth` per cell to the
+  //   block's sides and bottom (contact_graded_coordinates);
+  // - platen tests: uniform cells of h_e = L / rim_cells within kRimZone L of the rim (cylinder:
+  //   the rings; block: the four sides) and of both platens, L = min(radius (block: half the smaller
+  //   side), height / 2), growing by at most `growth` towards the axis and the mid-height;
+  // - `refinement` r: every cell count of that graded mesh times r (rounded), so every spacing is
+  //   the r = 1 spacing / r (refined(); the convergence studies' levels).
+  int contact_cells = kDefaultContactCells;  ///< cells across a_max (indentation)
+  int rim_cells = kDefaultRimCells;          ///< cells across L (platen tests)
+  double contact_zone = 1.5;                 ///< the uniform fine zone's half width, in a_max
+  double growth = 1.3;      ///< the largest ratio of neighbouring cells outside the fine zone
+  double refinement = 1.0;  ///< multiplies every cell count (levels of a convergence study)
+  // Mesh, the explicit (earlier) form, used when cells > 0: `cells` across the smallest lateral size
+  // (cylinder: 2 per ring) and `layers` through the height, graded towards the indenter by the
+  // power `grading` (graded_coordinates; 1 = uniform; platen meshes are uniform); `refinement`
+  // multiplies cells and layers.
+  int cells = 0;
+  int layers = 0;
   double grading = 2.0;
   // Loading.
   DisplacementHistory history = DisplacementHistory::ramp_hold(0.002, 1.0, 0.0);
@@ -82,6 +115,8 @@ struct RigSpec {
 
 /// Limits of a rig, each refused beyond with its reason (validate()).
 inline constexpr int kMinCells = 2, kMaxCells = 400, kMaxLayers = 400;
+inline constexpr int kMaxContactCells = 200;
+inline constexpr double kMaxRefinement = 16.0;
 /// The largest mesh a rig generates: the largest tmlab's benchmarks run is 2.4M tets
 /// (docs/performance.md), and a rig's static contact run costs far more per tet than their steps.
 inline constexpr double kMaxRigTets = 2e6;
@@ -103,6 +138,24 @@ void validate(const RigSpec& spec);
 
 /// The sample mesh of the rig (core/mesh/sample_meshes.hpp), in metres.
 Mesh rig_mesh(const RigSpec& spec);
+
+/// The rig's mesh coordinates along x, y, z (block) or the ring radii, an empty vector and the layer
+/// heights (cylinder), as rig_mesh uses them (validate() first).
+BoxGrid rig_grid(const RigSpec& spec);
+
+/// The largest contact radius the rule resolves: sqrt(R d_max) for a sphere (at most R), the
+/// radius for a flat punch; m.
+double rig_contact_radius(const RigSpec& spec);
+
+/// The spec refined by `ratio` > 0 (a convergence study's next level: ratio > 1 refines): its
+/// `refinement` times ratio, everything else the same. Every cell count of the rig's graded mesh is
+/// multiplied by the ratio (rounded), so every spacing of the refined mesh is the original spacing
+/// divided by the ratio: exactly in the fine zone (when ratio times its cell count is whole) and
+/// for whole ratios everywhere (nested meshes: every node of the coarser mesh is kept); otherwise to
+/// the rounding of the counts (report the effective ratio (tets_fine / tets_coarse)^(1/3)). Level k
+/// of a study with ratio r is refined(spec, r^k) (one rounding, not k). The explicit form (cells >
+/// 0) multiplies cells and layers the same way.
+RigSpec refined(const RigSpec& spec, double ratio);
 
 /// The case file of the rig; `mesh_file` is the path the case names (relative to the case file).
 nlohmann::json rig_case(const RigSpec& spec, const std::string& mesh_file);

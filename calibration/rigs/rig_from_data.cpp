@@ -42,9 +42,13 @@ RigSpec rig_from_data(const DataSet& d, std::size_t k, const RigFromDataMesh& me
   const ms::Metadata& m = d.meta;
   RigSpec s;
   s.name = "data_rig";
-  s.cells = mesh.cells;
-  s.layers = mesh.layers;
-  s.grading = mesh.grading;
+  if (mesh.contact_cells > 0) {
+    s.contact_cells = mesh.contact_cells;
+  } else {
+    s.cells = mesh.cells;
+    s.layers = mesh.layers;
+    s.grading = mesh.grading;
+  }
   s.steps_per_sample = 1;
   switch (m.test) {
     case ms::TestType::indentation:

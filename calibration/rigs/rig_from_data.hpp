@@ -32,6 +32,9 @@ struct RigFromDataMesh {
   int cells = 12;        ///< cells across the smaller lateral size (cylinder: 2 per ring)
   int layers = 6;        ///< cells through the height
   double grading = 2.0;  ///< indentation: power of the grading towards the indenter
+  /// > 0: the contact rule instead (RigSpec::contact_cells across a_max; platen tests: the default
+  /// rim_cells), and cells, layers, grading are not used. 0 (the default) keeps the explicit form.
+  int contact_cells = 0;
 };
 
 /// The rig of test `k` of `data`; tmlab::Error naming the data set's JSON key (or the test and

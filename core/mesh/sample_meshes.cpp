@@ -46,6 +46,129 @@ std::vector<double> graded_coordinates(double lo, double hi, int n, double focus
   return c;
 }
 
+namespace {
+
+/// One side of contact_graded_coordinates: distances 0 = t_0 < ... < t_N = length from the focus.
+struct GradedSide {
+  bool uniform = false;  ///< the whole side uniform (no room for a growth zone)
+  double m = 0.0;        ///< fine cells (r = 1); uniform: all cells
+  double w = 0.0;        ///< fine zone width m h
+  double n = 0.0;        ///< growth cells (r = 1)
+  double a = 0.0;        ///< the growth map's rate
+  double fine_cells(double r) const { return std::max(1.0, std::round(m * r)); }
+  double growth_cells(double r) const { return n > 0.0 ? std::max(1.0, std::round(n * r)) : 0.0; }
+  double cells(double r) const { return fine_cells(r) + growth_cells(r); }
+};
+
+/// The cells of a growth zone of length g from spacing h at the rate a: h (e^{a n} - 1) / a = g.
+double growth_length(double h, double a, double n) { return a > 0.0 ? h * std::expm1(a * n) / a : h * n; }
+
+GradedSide plan_side(double length, double h, double half_width, double growth) {
+  GradedSide p;
+  const double a_max = std::log(growth);
+  p.m = std::max(1.0, std::ceil(half_width / h - 1e-9));
+  for (;; p.m += 1.0) {
+    p.w = p.m * h;
+    const double g = length - p.w;
+    if (g < h || !(a_max > 0.0)) {  // no room to grow (or no growth): the side is uniform
+      p.uniform = true;
+      p.m = std::max(1.0, std::ceil(length / h - 1e-9));
+      p.w = length;
+      p.n = 0.0;
+      return p;
+    }
+    p.n = std::ceil(std::log1p(a_max * g / h) / a_max - 1e-9);
+    if (p.n * h > g) continue;  // it would have to shrink: widen the fine zone by one cell
+    // The rate a in [0, a_max] that ends the side exactly (growth_length increases with a).
+    double lo = 0.0, hi = a_max;
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * a_max; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (growth_length(h, mid, p.n) < g ? lo : hi) = mid;
+    }
+    p.a = 0.5 * (lo + hi);
+    return p;
+  }
+}
+
+void check_contact_grading(double lo, double hi, double focus, double h, double half_width, double growth,
+                           double refinement) {
+  const std::string f = "contact_graded_coordinates: ";
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo)) throw Error(f + "need finite lo < hi");
+  if (!(focus >= lo && focus <= hi)) throw Error(f + "the focus must lie in [lo, hi]");
+  if (!(h > 0.0) || !std::isfinite(h)) throw Error(f + "the fine spacing must be positive and finite");
+  if (!(half_width >= 0.0) || !std::isfinite(half_width))
+    throw Error(f + "the fine zone's half width must be >= 0 and finite");
+  if (!(growth >= 1.0 && growth <= 4.0)) throw Error(f + "the growth ratio must be in [1, 4]");
+  if (!(refinement > 0.0) || !std::isfinite(refinement))
+    throw Error(f + "the refinement must be positive and finite");
+  // Beyond 1e7 fine cells per side the plan's loop would be long: the count is then huge anyway.
+  if (std::min(hi - lo, half_width) / h > 1e7 || (growth == 1.0 && (hi - lo) / h > 1e7))
+    throw Error(f + "more than 10,000,000 cells of the fine spacing on an axis");
+}
+
+/// The sides of [lo, hi] about the focus: lengths of the left and right sides.
+std::pair<double, double> side_lengths(double lo, double hi, double focus) {
+  return {focus - lo, hi - focus};
+}
+
+}  // namespace
+
+double contact_graded_cells(double lo, double hi, double focus, double h_fine, double fine_half_width,
+                            double growth, double refinement) {
+  check_contact_grading(lo, hi, focus, h_fine, fine_half_width, growth, refinement);
+  const auto [left, right] = side_lengths(lo, hi, focus);
+  double cells = 0.0;
+  for (const double side : {left, right})
+    if (side > 0.0) cells += plan_side(side, h_fine, fine_half_width, growth).cells(refinement);
+  return cells;
+}
+
+std::vector<double> contact_graded_coordinates(double lo, double hi, double focus, double h_fine,
+                                               double fine_half_width, double growth, double refinement) {
+  const double cells = contact_graded_cells(lo, hi, focus, h_fine, fine_half_width, growth, refinement);
+  if (cells > kMaxGradedCells)
+    throw Error("contact_graded_coordinates: " + std::to_string(static_cast<long long>(cells)) +
+                " cells on one axis (the limit is " +
+                std::to_string(static_cast<long long>(kMaxGradedCells)) + ")");
+  // Distances from the focus of one side's nodes, 0 first, `length` last (exact).
+  const auto side_nodes = [&](double length) {
+    const GradedSide p = plan_side(length, h_fine, fine_half_width, growth);
+    const double nf = p.fine_cells(refinement), ng = p.growth_cells(refinement);
+    std::vector<double> t;
+    for (double i = 0.0; i < nf; i += 1.0) t.push_back(p.w * (i / nf));
+    t.push_back(p.w);
+    for (double j = 1.0; j <= ng; j += 1.0) t.push_back(p.w + growth_length(h_fine, p.a, p.n * (j / ng)));
+    t.back() = length;
+    return t;
+  };
+  const auto [left, right] = side_lengths(lo, hi, focus);
+  std::vector<double> c;
+  if (left > 0.0) {
+    const std::vector<double> t = side_nodes(left);
+    for (auto it = t.rbegin(); it != t.rend(); ++it) c.push_back(focus - *it);
+    c.front() = lo;
+  }
+  if (right > 0.0) {
+    const std::vector<double> t = side_nodes(right);
+    for (std::size_t i = c.empty() ? 0 : 1; i < t.size(); ++i) c.push_back(focus + t[i]);
+    c.back() = hi;
+  }
+  return c;
+}
+
+std::vector<double> two_sided_graded_coordinates(double lo, double hi, double h_fine, double fine_width,
+                                                 double growth, double refinement) {
+  if (!std::isfinite(lo) || !std::isfinite(hi) || !(hi > lo))
+    throw Error("two_sided_graded_coordinates: need finite lo < hi");
+  const double mid = 0.5 * (lo + hi);
+  const std::vector<double> half =
+      contact_graded_coordinates(lo, mid, lo, h_fine, fine_width, growth, refinement);
+  std::vector<double> c = half;
+  for (std::size_t i = half.size() - 1; i-- > 0;) c.push_back(hi - (half[i] - lo));
+  c.back() = hi;
+  return c;
+}
+
 Mesh make_block_mesh(const BlockSpec& s) {
   if (!(s.size_x > 0.0 && s.size_y > 0.0 && s.size_z > 0.0)) {
     throw Error("make_block_mesh: the block size must be positive on every axis");
@@ -57,6 +180,10 @@ Mesh make_block_mesh(const BlockSpec& s) {
   grid[0] = graded_coordinates(-0.5 * s.size_x, 0.5 * s.size_x, s.nx, s.cx, s.grading);
   grid[1] = graded_coordinates(-0.5 * s.size_y, 0.5 * s.size_y, s.ny, s.cy, s.grading);
   grid[2] = graded_coordinates(0.0, s.size_z, s.nz, s.size_z, s.grading);
+  return make_block_mesh(grid);
+}
+
+Mesh make_block_mesh(const BoxGrid& grid) {
   Mesh mesh = make_box_mesh(grid);
   for (PhysicalGroup& g : mesh.groups) {
     if (g.dim == 2 && g.tag == kBoxZmin) g.name = "bottom";
@@ -134,14 +261,28 @@ Mesh make_cylinder_mesh(const CylinderSpec& s) {
   if (s.rings < 1 || s.layers < 1 || s.rings > 2000 || s.layers > 100000) {
     throw Error("make_cylinder_mesh: need 1 <= rings <= 2000 and 1 <= layers <= 100000");
   }
+  const auto check_grid = [](const std::vector<double>& v, int n, double end, const char* what) {
+    if (v.empty()) return;
+    bool ok = v.size() == static_cast<std::size_t>(n) + 1 && v.front() == 0.0 && v.back() == end;
+    for (std::size_t i = 1; ok && i < v.size(); ++i) ok = std::isfinite(v[i]) && v[i] > v[i - 1];
+    if (!ok)
+      throw Error(std::string("make_cylinder_mesh: ") + what +
+                  " must hold one increasing value per node from 0 to the end (or be empty)");
+  };
+  check_grid(s.ring_radii, s.rings, s.radius, "ring_radii");
+  check_grid(s.layer_z, s.layers, s.height, "layer_z");
   const Index per_layer = static_cast<Index>(1 + 3 * s.rings * (s.rings + 1));
   Mesh mesh;
   mesh.points.reserve(static_cast<std::size_t>(per_layer) * static_cast<std::size_t>(s.layers + 1));
   for (int l = 0; l <= s.layers; ++l) {
-    const double z = l == s.layers ? s.height : s.height * l / s.layers;
+    const double z = !s.layer_z.empty() ? s.layer_z[static_cast<std::size_t>(l)]
+                     : l == s.layers    ? s.height
+                                        : s.height * l / s.layers;
     mesh.points.emplace_back(0.0, 0.0, z);
     for (int k = 1; k <= s.rings; ++k) {
-      const double r = k == s.rings ? s.radius : s.radius * k / s.rings;
+      const double r = !s.ring_radii.empty() ? s.ring_radii[static_cast<std::size_t>(k)]
+                       : k == s.rings        ? s.radius
+                                             : s.radius * k / s.rings;
       for (int j = 0; j < 6 * k; ++j) {
         const double a = 2.0 * kPi * j / (6 * k);
         mesh.points.emplace_back(r * std::cos(a), r * std::sin(a), z);

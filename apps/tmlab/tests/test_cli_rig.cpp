@@ -160,6 +160,12 @@ TEST_F(CliRig, OptionsAreCheckedBeforeAnythingIsWritten) {
       {{"--material", ogden0, "--model", "hyperelastic_tl"}, 1, "key 'material.alpha'"},
       {{"--material", neo}, 1, "use model hyperelastic_tl"},
       {{"--model", "fast"}, 1, "model: must be 'tensor_mass', 'tl_oracle' or 'hyperelastic_tl'"},
+      // The contact mesh rule (docs/rigs.md): its fields named, and not mixed with the explicit form.
+      {{"--contact-cells", "0"}, 2, "--contact-cells"},
+      {{"--contact-cells", "3", "--cells", "8"}, 2, "does not go with --cells, --layers, --grading"},
+      {{"--refine", "0"}, 1, "refinement: must be in (0, 16]"},
+      {{"--contact-cells", "200"}, 1, "contact_cells 200 (h = 0.01581 mm across a_max = 3.162 mm)"},
+      {{"--indenter-contact", "sticky"}, 1, "--indenter-contact: unknown value 'sticky'"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args{"rig", "indentation", "--out", out};

@@ -13,6 +13,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -249,11 +250,192 @@ TEST(RigValidation, MeshTooLargeIsRefusedFromItsSize) {
   EXPECT_NE(refusal(s).find("2,880,000 tets"), std::string::npos);
   s.layers = 100;  // 720,000 tets
   EXPECT_EQ(refusal(s), "");
-  // A sample so slender its cell count is astronomical still gets its size, not an overflow.
+  // A sample so slender its cell count is astronomical still gets its size, not an overflow (the
+  // explicit form, whose size is checked before the indenter).
   s = RigSpec{};
+  s.cells = 16;
+  s.layers = 8;
   s.size_x = 1e10;
   s.size_y = 1e-10;
   EXPECT_NE(refusal(s).find("tets (about "), std::string::npos) << refusal(s);
+}
+
+// The contact rule (docs/rigs.md): uniform cells of exactly a_max / contact_cells within
+// contact_zone a_max of the indenter's axis and of the top face, a_max = sqrt(R d_max) for a sphere
+// and the radius for a flat punch; growth beyond, bounded by `growth`.
+TEST(RigMesh, ContactRuleSetsTheCellSizeUnderTheIndenter) {
+  for (const IndenterShape shape : {IndenterShape::Sphere, IndenterShape::FlatPunch}) {
+    RigSpec s;
+    s.indenter = shape;
+    s.cx = 0.004;  // off centre: the zone follows the indenter
+    s.contact_cells = 5;
+    const double a = shape == IndenterShape::Sphere ? std::sqrt(0.005 * 0.002) : 0.005;
+    EXPECT_DOUBLE_EQ(rig_contact_radius(s), a);
+    const double h = a / 5.0, zone = std::ceil(1.5 * 5) * h;  // 8 whole cells reach past 1.5 a_max
+    EXPECT_GE(zone, 1.5 * a);
+    const BoxGrid g = rig_grid(s);
+    const double focus[3] = {s.cx, s.cy, s.height};
+    for (int k = 0; k < 3; ++k) {
+      const std::vector<double>& c = g[static_cast<std::size_t>(k)];
+      EXPECT_NE(std::find(c.begin(), c.end(), focus[k]), c.end()) << "axis " << k;
+      int fine = 0;
+      for (std::size_t i = 1; i < c.size(); ++i) {
+        const double w = c[i] - c[i - 1];
+        if (std::max(std::abs(c[i] - focus[k]), std::abs(c[i - 1] - focus[k])) <= zone * (1 + 1e-12)) {
+          EXPECT_NEAR(w, h, 1e-12 * h) << "axis " << k << " cell " << i;
+          ++fine;
+        }
+        EXPECT_GE(w, h * (1 - 1e-12));
+        if (i + 1 < c.size()) {
+          EXPECT_LE((c[i + 1] - c[i]) / w, s.growth * (1 + 1e-12));
+        }
+        if (i + 1 < c.size()) {
+          EXPECT_LE(w / (c[i + 1] - c[i]), s.growth * (1 + 1e-12));
+        }
+      }
+      // The zone is covered: 8 cells (ceil(1.5 * 5)) on each side of the focus (one side in depth).
+      EXPECT_GE(fine, k == 2 ? 8 : 16) << "axis " << k;
+    }
+    const Mesh m = rig_mesh(s);
+    EXPECT_EQ(m.points.size(), g[0].size() * g[1].size() * g[2].size());
+    EXPECT_TRUE(analyse_mesh(m).inverted.empty());
+  }
+}
+
+// refined(spec, r): every spacing divided by r. A whole ratio keeps every node (nested meshes) and
+// multiplies every axis's cell count by r; in the fine zone the spacing is a_max / (r contact_cells).
+TEST(RigMesh, RefinedScalesEverySpacing) {
+  RigSpec s;
+  const RigSpec s2 = refined(s, 2.0);
+  EXPECT_EQ(s2.refinement, 2.0);
+  EXPECT_EQ(refined(s2, 1.5).refinement, 3.0);
+  const BoxGrid g1 = rig_grid(s), g2 = rig_grid(s2);
+  const double h = rig_contact_radius(s) / s.contact_cells;
+  for (std::size_t k = 0; k < 3; ++k) {
+    ASSERT_EQ(g2[k].size() - 1, 2 * (g1[k].size() - 1)) << k;
+    for (std::size_t i = 0; i < g1[k].size(); ++i)
+      EXPECT_NEAR(g2[k][2 * i], g1[k][i], 1e-15) << k << " " << i;
+    for (std::size_t i = 1; i < g2[k].size(); ++i) {
+      const double parent = g1[k][(i + 1) / 2] - g1[k][(i - 1) / 2];
+      const double child = g2[k][i] - g2[k][i - 1];
+      EXPECT_GT(2.0 * child / parent, 1.0 / s.growth);
+      EXPECT_LT(2.0 * child / parent, s.growth);
+      if (std::abs(parent - h) < 1e-12 * h) {
+        EXPECT_NEAR(child, h / 2.0, 1e-12 * h);
+      }
+    }
+  }
+  // The explicit form: cells and layers times the ratio.
+  RigSpec e;
+  e.cells = 8;
+  e.layers = 4;
+  const BoxGrid ge = rig_grid(refined(e, 1.5));
+  EXPECT_EQ(ge[0].size(), 13u);
+  EXPECT_EQ(ge[2].size(), 7u);
+  EXPECT_THROW(refined(s, 0.0), Error);
+}
+
+// The explicit form (cells > 0) is the earlier mesh, to the bit.
+TEST(RigMesh, ExplicitFormIsTheEarlierMesh) {
+  RigSpec s;
+  s.cells = 16;
+  s.layers = 8;
+  s.grading = 2.0;
+  BlockSpec b;
+  b.nx = b.ny = 16;
+  b.nz = 8;
+  b.grading = 2.0;
+  const Mesh m = rig_mesh(s), ref = make_block_mesh(b);
+  EXPECT_EQ(m.points, ref.points);
+  EXPECT_EQ(m.tets, ref.tets);
+  s = RigSpec{};
+  s.test = RigTest::UnconfinedCompression;
+  s.shape = SampleShape::Cylinder;
+  s.height = 0.03;
+  s.cells = 8;
+  s.layers = 10;
+  CylinderSpec c;
+  c.radius = 0.025;
+  c.height = 0.03;
+  c.rings = 4;
+  c.layers = 10;
+  EXPECT_EQ(rig_mesh(s).points, make_cylinder_mesh(c).points);
+}
+
+// Platen rigs: uniform cells of L / rim_cells (L = min(radius, height / 2)) at the rim and at both
+// platens, growing towards the axis and the mid-height.
+TEST(RigMesh, PlatenRuleRefinesTheRimAndThePlatens) {
+  RigSpec s;
+  s.test = RigTest::UnconfinedCompression;
+  s.shape = SampleShape::Cylinder;
+  s.platens = Support::Bonded;
+  s.height = 0.03;
+  s.history = DisplacementHistory::ramp_hold(0.003, 1.0, 0.0);
+  const double h = 0.015 / kDefaultRimCells;
+  const BoxGrid g = rig_grid(s);
+  const std::vector<double>& r = g[0];
+  const std::vector<double>& z = g[2];
+  EXPECT_EQ(r.front(), 0.0);
+  EXPECT_EQ(r.back(), s.radius);
+  EXPECT_NEAR(r.back() - r[r.size() - 2], h, 1e-12 * h);
+  EXPECT_NEAR(z[1] - z[0], h, 1e-12 * h);
+  EXPECT_NEAR(z.back() - z[z.size() - 2], h, 1e-12 * h);
+  EXPECT_GT(r[1] - r[0], h);                            // coarser at the axis
+  EXPECT_GT(z[z.size() / 2] - z[z.size() / 2 - 1], h);  // and at mid-height
+  const Mesh m = rig_mesh(s);
+  EXPECT_TRUE(analyse_mesh(m).inverted.empty());
+  CylinderSpec c;
+  c.radius = s.radius;
+  c.height = s.height;
+  c.rings = static_cast<int>(r.size()) - 1;
+  double volume = 0.0;
+  for (Index e = 0; e < m.num_tets(); ++e) volume += tet_signed_volume(m, e);
+  EXPECT_NEAR(volume, cylinder_mesh_volume(c), 1e-12);
+  // A block between bonded platens: the four sides too.
+  s.shape = SampleShape::Block;
+  const BoxGrid b = rig_grid(s);
+  EXPECT_NEAR(b[0][1] - b[0][0], h, 1e-12 * h);
+  EXPECT_NEAR(b[1].back() - b[1][b[1].size() - 2], h, 1e-12 * h);
+}
+
+TEST(RigValidation, ContactRuleFieldsAreNamed) {
+  const auto refused = [](const std::function<void(RigSpec&)>& change, const std::string& what) {
+    RigSpec s;
+    change(s);
+    const std::string e = refusal(s);
+    EXPECT_NE(e.find(what), std::string::npos) << "expected '" << what << "' in: " << e;
+  };
+  refused([](RigSpec& s) { s.contact_cells = 0; }, "rig 'rig': contact_cells: must be in [1, 200] (got 0)");
+  refused([](RigSpec& s) { s.contact_cells = -3; }, "contact_cells: must be in [1, 200]");
+  refused([](RigSpec& s) { s.rim_cells = 0; }, "rim_cells: must be in [1, 200]");
+  refused([](RigSpec& s) { s.growth = 0.9; }, "growth: must be in [1, 2]");
+  refused([](RigSpec& s) { s.growth = std::nan(""); }, "growth: must be in [1, 2]");
+  refused([](RigSpec& s) { s.contact_zone = 0.1; }, "contact_zone: must be in [0.5, 10]");
+  refused([](RigSpec& s) { s.refinement = 0.0; }, "refinement: must be in (0, 16]");
+  refused([](RigSpec& s) { s.refinement = std::nan(""); }, "refinement: must be in (0, 16]");
+  refused([](RigSpec& s) { s.layers = 8; }, "layers: goes with cells");
+  refused([](RigSpec& s) { s.cells = 8; }, "layers: must be in [1, 400]");
+  // A huge mesh from the rule, refused from its size.
+  refused(
+      [](RigSpec& s) { s.contact_cells = 200; },
+      "rig 'rig': contact_cells, contact_zone, growth, refinement: contact_cells 200 (h = 0.01581 mm across "
+      "a_max = 3.162 mm) give a block of ");
+  refused([](RigSpec& s) { s.contact_cells = 200; }, "the limit is 2,000,000 tets");
+  refused([](RigSpec& s) { s.contact_cells = 200; },
+          "give fewer contact_cells, a larger growth or a smaller refinement");
+  refused([](RigSpec& s) { s.refinement = 16.0; }, "at refinement 16 give a block of");
+  refused(
+      [](RigSpec& s) {
+        s.test = RigTest::UnconfinedCompression;
+        s.shape = SampleShape::Cylinder;
+        s.rim_cells = 200;
+      },
+      "rig 'rig': rim_cells, growth, refinement: rim_cells 200");
+  RigSpec ok;
+  ok.indenter_contact = Support::Bonded;
+  EXPECT_EQ(refusal(ok), "");
+  EXPECT_EQ(rig_case(ok, "r.msh")["contact"]["bodies"][0]["mode"], "bonded");
+  EXPECT_EQ(rig_case(RigSpec{}, "r.msh")["contact"]["bodies"][0]["mode"], "frictionless");
 }
 
 TEST(RigValidation, LoadStepsHaveAnUpperBound) {

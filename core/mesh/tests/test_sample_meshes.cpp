@@ -66,6 +66,142 @@ TEST(GradedCoordinates, RefusesBadArguments) {
   EXPECT_THROW(graded_coordinates(0.0, 1.0, 1, 0.5, 1.0), Error);
 }
 
+// The contact grading against its definition: exact ends, strictly increasing, cells of exactly
+// h_fine within the fine zone (which reaches at least the asked half width on both sides of the
+// focus, itself a node), neighbouring cells within the growth ratio, and the count as announced.
+void expect_contact_grading(const std::vector<double>& c, double lo, double hi, double focus, double h,
+                            double half_width, double growth) {
+  ASSERT_GE(c.size(), 2u);
+  EXPECT_EQ(c.front(), lo);
+  EXPECT_EQ(c.back(), hi);
+  EXPECT_NE(std::find(c.begin(), c.end(), focus), c.end());
+  for (std::size_t i = 1; i < c.size(); ++i) ASSERT_GT(c[i], c[i - 1]) << i;
+  for (std::size_t i = 1; i < c.size(); ++i) {
+    const double width = c[i] - c[i - 1];
+    const bool fine = std::max(std::abs(c[i] - focus), std::abs(c[i - 1] - focus)) <= half_width + 1e-12;
+    if (fine) {
+      EXPECT_NEAR(width, h, 1e-12 * h) << "cell " << i;
+    }
+    EXPECT_GE(width, h * (1.0 - 1e-12)) << "cell " << i;  // never finer than the fine zone here
+    if (i + 1 < c.size()) {
+      const double next = c[i + 1] - c[i];
+      EXPECT_LE(std::max(next / width, width / next), growth * (1.0 + 1e-12))
+          << "cells " << i << ", " << i + 1;
+    }
+  }
+}
+
+TEST(ContactGradedCoordinates, FineZoneThenBoundedGrowthToExactEnds) {
+  const double h = 0.5, w = 4.0, g = 1.25;
+  const std::vector<double> c = contact_graded_coordinates(-20.0, 20.0, 3.0, h, w, g);
+  expect_contact_grading(c, -20.0, 20.0, 3.0, h, w, g);
+  EXPECT_EQ(static_cast<double>(c.size() - 1), contact_graded_cells(-20.0, 20.0, 3.0, h, w, g));
+  // Growth away from the zone: the outermost cells are the widest, and far wider than h.
+  EXPECT_GT(c[1] - c[0], 4.0 * h);
+  EXPECT_GT(c.back() - c[c.size() - 2], 4.0 * h);
+  // The focus at an end (the indented top face): one side only.
+  const std::vector<double> z = contact_graded_coordinates(0.0, 20.0, 20.0, h, w, g);
+  expect_contact_grading(z, 0.0, 20.0, 20.0, h, w, g);
+  EXPECT_NEAR(z.back() - z[z.size() - 2], h, 1e-12);
+  // Growth 1: uniform, no wider than h.
+  const std::vector<double> u = contact_graded_coordinates(0.0, 1.0, 0.0, 0.3, 0.5, 1.0);
+  ASSERT_EQ(u.size(), 5u);  // ceil(1 / 0.3) = 4 cells of 0.25
+  for (std::size_t i = 1; i < u.size(); ++i) EXPECT_NEAR(u[i] - u[i - 1], 0.25, 1e-15);
+}
+
+TEST(ContactGradedCoordinates, ShortSidesStayFineAndBounded) {
+  // A growth zone that would have to shrink its cells widens the fine zone instead; less than one
+  // fine cell beyond it makes the side uniform with cells no wider than h.
+  for (const double hi : {1.05, 1.3, 1.7, 2.2, 2.9, 3.6}) {
+    const std::vector<double> c = contact_graded_coordinates(0.0, hi, 0.0, 0.25, 0.5, 1.3);
+    ASSERT_EQ(c.front(), 0.0);
+    ASSERT_EQ(c.back(), hi);
+    for (std::size_t i = 1; i < c.size(); ++i) {
+      ASSERT_GT(c[i], c[i - 1]);
+      if (c[i] <= 0.5 + 1e-12) {
+        EXPECT_LE(c[i] - c[i - 1], 0.25 * (1 + 1e-12)) << hi << " cell " << i;
+      }
+      if (i + 1 < c.size()) {
+        const double a = c[i] - c[i - 1], b = c[i + 1] - c[i];
+        EXPECT_LE(std::max(a / b, b / a), 1.3 * (1 + 1e-12)) << hi << " cells " << i;
+      }
+    }
+  }
+}
+
+TEST(ContactGradedCoordinates, RefinementDividesEverySpacing) {
+  const double h = 0.5, w = 4.0, g = 1.25;
+  const std::vector<double> c1 = contact_graded_coordinates(-20.0, 20.0, 3.0, h, w, g);
+  const std::vector<double> c2 = contact_graded_coordinates(-20.0, 20.0, 3.0, h, w, g, 2.0);
+  // A whole ratio keeps every node (nested) and splits every cell into two.
+  ASSERT_EQ(c2.size() - 1, 2 * (c1.size() - 1));
+  for (std::size_t i = 0; i < c1.size(); ++i) EXPECT_NEAR(c2[2 * i], c1[i], 1e-12) << i;
+  for (std::size_t i = 1; i < c2.size(); ++i) {
+    const double parent = c1[(i + 1) / 2] - c1[(i - 1) / 2];
+    const double ratio = 2.0 * (c2[i] - c2[i - 1]) / parent;
+    EXPECT_GT(ratio, 1.0 / g) << i;
+    EXPECT_LT(ratio, g) << i;
+  }
+  expect_contact_grading(c2, -20.0, 20.0, 3.0, h / 2.0, w, g);
+  // 1.5: the fine zone's 8 cells per side become 12 of exactly h / 1.5.
+  const std::vector<double> c15 = contact_graded_coordinates(-20.0, 20.0, 3.0, h, w, g, 1.5);
+  for (std::size_t i = 1; i < c15.size(); ++i)
+    if (std::abs(c15[i] - 3.0) <= w + 1e-12 && std::abs(c15[i - 1] - 3.0) <= w + 1e-12) {
+      EXPECT_NEAR(c15[i] - c15[i - 1], h / 1.5, 1e-12) << i;
+    }
+  EXPECT_EQ(static_cast<double>(c15.size() - 1), contact_graded_cells(-20.0, 20.0, 3.0, h, w, g, 1.5));
+}
+
+TEST(ContactGradedCoordinates, TwoSidedIsSymmetricAndFineAtBothEnds) {
+  const std::vector<double> c = two_sided_graded_coordinates(0.0, 30.0, 2.5, 3.75, 1.25);
+  EXPECT_EQ(c.front(), 0.0);
+  EXPECT_EQ(c.back(), 30.0);
+  const std::size_t n = c.size() - 1;
+  for (std::size_t i = 0; i <= n; ++i) EXPECT_NEAR(c[i], 30.0 - c[n - i], 1e-12) << i;
+  EXPECT_NEAR(c[1] - c[0], 2.5, 1e-12);
+  EXPECT_NEAR(c[n] - c[n - 1], 2.5, 1e-12);
+  for (std::size_t i = 1; i <= n; ++i) ASSERT_GT(c[i], c[i - 1]);
+}
+
+TEST(ContactGradedCoordinates, RefusesBadArguments) {
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 0.0, 0.2, 1.2), Error);       // h = 0
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 1.5, 0.1, 0.2, 1.2), Error);       // focus outside
+  EXPECT_THROW(contact_graded_coordinates(1.0, 1.0, 1.0, 0.1, 0.2, 1.2), Error);       // lo = hi
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 0.1, -0.2, 1.2), Error);      // negative zone
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 0.1, 0.2, 0.9), Error);       // shrinking
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 0.1, 0.2, 1.2, 0.0), Error);  // refinement
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 1e-12, 0.2, 1.2), Error);     // 2e11 fine cells
+  EXPECT_THROW(contact_graded_coordinates(0.0, 1.0, 0.5, 1e-6, 0.2, 1.2), Error);      // 4e5 > the axis limit
+  EXPECT_GT(contact_graded_cells(0.0, 1.0, 0.5, 1e-6, 0.2, 1.2), kMaxGradedCells);     // still counted
+}
+
+TEST(CylinderMesh, GradedRingsAndLayers) {
+  CylinderSpec s;
+  s.radius = 25.0;
+  s.height = 30.0;
+  s.ring_radii = contact_graded_coordinates(0.0, 25.0, 25.0, 2.5, 3.75, 1.25);
+  s.layer_z = two_sided_graded_coordinates(0.0, 30.0, 2.5, 3.75, 1.25);
+  s.rings = static_cast<int>(s.ring_radii.size()) - 1;
+  s.layers = static_cast<int>(s.layer_z.size()) - 1;
+  const Mesh m = make_cylinder_mesh(s);
+  EXPECT_TRUE(analyse_mesh(m).inverted.empty());
+  double volume = 0.0;
+  for (Index e = 0; e < m.num_tets(); ++e) volume += tet_signed_volume(m, e);
+  EXPECT_NEAR(volume, cylinder_mesh_volume(s), 1e-10 * volume);
+  for (const Vec3& p : m.points) {
+    const double r = std::hypot(p.x(), p.y());
+    EXPECT_TRUE(std::any_of(s.ring_radii.begin(), s.ring_radii.end(),
+                            [&](double ri) { return std::abs(ri - r) < 1e-9 || (ri == 0.0 && r < 1e-9); }) ||
+                r < 1e-9);
+  }
+  CylinderSpec bad = s;
+  bad.ring_radii.back() = 24.0;  // does not end at the radius
+  EXPECT_THROW(make_cylinder_mesh(bad), Error);
+  bad = s;
+  bad.layer_z.pop_back();  // one value short
+  EXPECT_THROW(make_cylinder_mesh(bad), Error);
+}
+
 TEST(BlockMesh, GradedBlockIsValidAndRefinedUnderTheIndenter) {
   BlockSpec s;
   s.nx = s.ny = 8;
