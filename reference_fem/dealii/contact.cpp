@@ -16,7 +16,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <numeric>
+#include <set>
 #include <sstream>
 
 namespace tmlab::ref {
@@ -115,6 +115,58 @@ void RigidContact::build_face_points(const Solid& solid) {
   }
 }
 
+double RigidContact::vertex_stiffness(Solid& solid, double t0) const {
+  if (spec_.stiffness > 0.0) return spec_.stiffness;
+  // The fast model's scale: the mean diagonal of the reference tangent K_0 (u = 0) over the
+  // boundary vertex DoFs, times stiffness_factor.
+  TrilinosVector zero(solid.locally_owned_dofs(), solid.communicator()), r;
+  TrilinosWrappers::SparseMatrix K0;
+  solid.residual_and_tangent(zero, t0, 0.0, r, &K0);
+  double sum = 0.0;
+  for (std::size_t k : mine_)
+    for (global_dof_index d : node_dofs_[static_cast<std::size_t>(boundary_.nodes[k])])
+      sum += K0.diag_element(d);
+  sum = Utilities::MPI::sum(sum, comm_);
+  const double eps = spec_.stiffness_factor * sum / (3.0 * static_cast<double>(boundary_.nodes.size()));
+  if (!(eps > 0.0) || !std::isfinite(eps))
+    throw Error(file_ +
+                ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
+                "give contact.stiffness");
+  return eps;
+}
+
+double RigidContact::face_stiffness(Solid& solid, double t0) const {
+  // The penalty's stiffness on a face node a is eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the
+  // boundary mass matrix's diagonal): eps_a is chosen so that its mean over the boundary nodes is
+  // the vertex rule's eps, stiffness_factor x the mean diagonal of K_0 over the same nodes' DoFs
+  // (contact.stiffness: that nodal eps given in N/m). The sum of M_aa over all nodes needs no
+  // deduplication: it is sum_q w_q sum_a N_a^2 over the points.
+  std::set<global_dof_index> dofs;  // this rank's owned boundary-face DoFs
+  double mass = 0.0;
+  for (const Site& p : points_) {
+    for (std::size_t a = 0; a < p.N.size(); ++a) mass += p.w * p.N[a] * p.N[a];
+    for (global_dof_index d : p.dofs)
+      if (solid.locally_owned_dofs().is_element(d)) dofs.insert(d);
+  }
+  double stiffness = 0.0;
+  if (spec_.stiffness <= 0.0) {
+    TrilinosVector zero(solid.locally_owned_dofs(), solid.communicator()), r;
+    TrilinosWrappers::SparseMatrix K0;
+    solid.residual_and_tangent(zero, t0, 0.0, r, &K0);
+    for (global_dof_index d : dofs) stiffness += K0.diag_element(d);
+    stiffness = Utilities::MPI::sum(stiffness, comm_);
+  }
+  mass = Utilities::MPI::sum(mass, comm_);
+  const double n_dofs = Utilities::MPI::sum(static_cast<double>(dofs.size()), comm_);
+  const double nodal = spec_.stiffness > 0.0 ? spec_.stiffness : spec_.stiffness_factor * stiffness / n_dofs;
+  const double eps = nodal / (mass / (n_dofs / 3.0));
+  if (!(eps > 0.0) || !std::isfinite(eps))
+    throw Error(file_ +
+                ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
+                "give contact.stiffness");
+  return eps;
+}
+
 Vec3 RigidContact::position(const TrilinosVector& u, const Site& p) const {
   Vec3 x = p.X;
   for (std::size_t a = 0; a < p.N.size(); ++a) {
@@ -129,30 +181,10 @@ void RigidContact::start(Solid& solid, double t0, double t_end, const std::vecto
     build_face_points(solid);
     allocate();
   }
-  if (spec_.stiffness > 0.0) {
-    eps_ = spec_.stiffness;
-  } else {
-    // The fast model's scale: the mean diagonal of the reference tangent K_0 (u = 0) over the
-    // boundary vertex DoFs, times stiffness_factor.
-    TrilinosVector zero(solid.locally_owned_dofs(), solid.communicator()), r;
-    TrilinosWrappers::SparseMatrix K0;
-    solid.residual_and_tangent(zero, t0, 0.0, r, &K0);
-    double sum = 0.0;
-    for (std::size_t k : mine_)
-      for (global_dof_index d : node_dofs_[static_cast<std::size_t>(boundary_.nodes[k])])
-        sum += K0.diag_element(d);
-    sum = Utilities::MPI::sum(sum, comm_);
-    eps_ = spec_.stiffness_factor * sum / (3.0 * static_cast<double>(boundary_.nodes.size()));
-    if (!(eps_ > 0.0) || !std::isfinite(eps_))
-      throw Error(file_ +
-                  ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
-                  "give contact.stiffness");
-  }
-  if (rule_ == ContactRule::FacePoints) {
-    // Pa/m: the vertex scale over the mean boundary area per boundary vertex.
-    const double area = std::accumulate(boundary_.face_area.begin(), boundary_.face_area.end(), 0.0);
-    eps_ *= static_cast<double>(boundary_.nodes.size()) / area;
-  }
+  if (rule_ == ContactRule::Vertices)
+    eps_ = vertex_stiffness(solid, t0);
+  else
+    eps_ = face_stiffness(solid, t0);
   // The initial configuration (every rank: all vertices): penetration, distance, glue.
   const double tol = spec_.initial_gap_tol > 0.0 ? spec_.initial_gap_tol : gap_tol_;
   Vec3 lo = mesh_.points.front(), hi = lo;

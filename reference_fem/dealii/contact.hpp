@@ -32,9 +32,12 @@
 //     point x_q = sum_a N_a(xi_q) x_a of the face's nodes (P2: 3 corners + 3 midsides):
 //       Phi_k(u) = sum_q w_q/(2 eps_a) (<lambda_q - eps_a g_q(u)>_+^2 - lambda_q^2),
 //       bonded  Phi_k = sum_q w_q (lambda_q . c_q + eps_a/2 |c_q|^2),
-//     lambda_q a contact PRESSURE (Pa; bonded a traction), eps_a an area density (Pa/m) = eps / (mean
-//     boundary area per boundary vertex), so that eps_a times a vertex's tributary area is the vertex
-//     rule's eps (the material stiffness / h scale; contact.stiffness is read as the same N/m). The
+//     lambda_q a contact PRESSURE (Pa; bonded a traction), eps_a an area density (Pa/m): the penalty
+//     stiffens face node a by eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the boundary mass diagonal),
+//     and eps_a is chosen so that this is on average the vertex rule's scale, stiffness_factor x the
+//     mean K_0 diagonal over the boundary nodes' DoFs (material stiffness / h; contact.stiffness is
+//     read as that nodal N/m). (Scaled by area instead, eps_a M_aa is ~10x weaker than the vertex
+//     rule's eps on a P2 corner, and the Uzawa loop contracts by only ~0.8 per iteration.) The
 //     residual is sum_q w_q (-p_q n_q) N_a on node a, the tangent w_q N_a N_b (eps_a n n^T - p_q H_g)
 //     (bonded eps_a I); the Uzawa update, the stopping test (natural residual |dlambda|/eps_a <=
 //     gap_tol, no active-set change) and gap_tol are the vertex rule's, per point. It is a Gauss-
@@ -150,6 +153,9 @@ class RigidContact final : public NodalConstraints {
   /// The face rule's points on the boundary faces of the solid's locally owned cells.
   void build_face_points(const Solid& solid);
   void allocate();
+  /// eps of the vertex rule (N/m) and of the face rule (Pa/m); see the header comment.
+  double vertex_stiffness(Solid& solid, double t0) const;
+  double face_stiffness(Solid& solid, double t0) const;
   /// Refuses a punch or sphere larger than the mesh (see start()); g0 the body's smallest gap at t0.
   void check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
                     const std::vector<double>& U0) const;
