@@ -2,9 +2,11 @@
 //   meshtool info IN [--json]
 //   meshtool convert IN OUT.msh [--scale F | --scale-to-extent L] [--translate X Y Z] [--repair]
 //   meshtool box OUT.msh NX NY NZ [--lo X Y Z] [--hi X Y Z]
+//   meshtool cook OUT.msh CELLS [--layers N]   (Cook's membrane, core/mesh/cook_membrane.hpp)
 // Output files are Gmsh 2.2 ASCII. Errors print "meshtool: <message>" and exit with status 1.
 #include "core/base/error.hpp"
 #include "core/io/output_file.hpp"
+#include "core/mesh/cook_membrane.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
@@ -22,7 +24,8 @@ const char* kUsage =
     "usage:\n"
     "  meshtool info IN [--json]\n"
     "  meshtool convert IN OUT.msh [--scale F | --scale-to-extent L] [--translate X Y Z] [--repair]\n"
-    "  meshtool box OUT.msh NX NY NZ [--lo X Y Z] [--hi X Y Z]\n";
+    "  meshtool box OUT.msh NX NY NZ [--lo X Y Z] [--hi X Y Z]\n"
+    "  meshtool cook OUT.msh CELLS [--layers N]\n";
 
 double parse_double(const std::string& s, const std::string& what) {
   std::size_t used = 0;
@@ -125,6 +128,24 @@ int cmd_box(const std::vector<std::string>& args) {
   return 0;
 }
 
+int cmd_cook(const std::vector<std::string>& args) {
+  if (args.size() < 2) throw tmlab::Error(kUsage);
+  tmlab::CookMembraneSpec spec;
+  spec.cells = parse_int(args[1], "CELLS");
+  for (std::size_t i = 2; i < args.size(); ++i) {
+    if (args[i] == "--layers" && i + 1 < args.size()) {
+      spec.layers = parse_int(args[++i], "--layers");
+    } else {
+      throw tmlab::Error("unknown option '" + args[i] + "'\n" + kUsage);
+    }
+  }
+  const tmlab::Mesh mesh = tmlab::make_cook_membrane_mesh(spec);
+  tmlab::write_gmsh22(mesh, args[0]);
+  std::cout << "wrote " << args[0] << ": " << mesh.num_points() << " points, " << mesh.num_tets()
+            << " tets\n";
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -138,6 +159,7 @@ int main(int argc, char** argv) {
     if (all[0] == "info") return cmd_info(args);
     if (all[0] == "convert") return cmd_convert(args);
     if (all[0] == "box") return cmd_box(args);
+    if (all[0] == "cook") return cmd_cook(args);
     throw tmlab::Error("unknown command '" + all[0] + "'\n" + kUsage);
   } catch (const tmlab::Error& e) {
     std::cerr << "meshtool: " << e.what() << "\n";

@@ -1,17 +1,22 @@
-// Nodal augmented-Lagrangian contact of the deal.II reference (contact.hpp): the terms at the
-// vertices, the Uzawa update with the fast model's stopping test, gluing of bonded vertices, and the
-// per-body outputs. The line-by-line counterpart is tmlab::tm::ContactStaticSolver.
+// Augmented-Lagrangian contact of the deal.II reference (contact.hpp): the terms at the vertices or
+// at the boundary faces' quadrature points, the Uzawa update with the fast model's stopping test,
+// gluing of bonded points, and the per-body outputs. The vertex rule's line-by-line counterpart is
+// tmlab::tm::ContactStaticSolver. Both rules run one loop over Points: a vertex is a point with one
+// node, N = 1 and w = 1 (so P1 is bit for bit the former vertex-only code).
 #include "reference_fem/dealii/contact.hpp"
 
 #include "core/base/error.hpp"
 
 #include <deal.II/base/mpi.h>
+#include <deal.II/base/quadrature_lib.h>
+#include <deal.II/fe/fe_values.h>
 #include <deal.II/lac/full_matrix.h>
 #include <deal.II/lac/vector.h>
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace tmlab::ref {
@@ -29,57 +34,157 @@ std::string body_label(const ContactBodySpec& b) {
 }
 }  // namespace
 
-NodalContact::NodalContact(const ContactSpec& spec, const std::string& file, const Mesh& mesh,
+RigidContact::RigidContact(const ContactSpec& spec, const std::string& file, const Mesh& mesh,
                            std::vector<std::array<global_dof_index, 3>> node_dofs, std::vector<char> owned,
-                           MPI_Comm comm)
+                           MPI_Comm comm, ContactRule rule)
     : spec_(spec),
       file_(file),
       mesh_(mesh),
       node_dofs_(std::move(node_dofs)),
       owned_(std::move(owned)),
       comm_(comm),
-      boundary_(ContactBoundary::extract(mesh)) {
+      boundary_(ContactBoundary::extract(mesh)),
+      rule_(rule) {
   if (spec_.bodies.empty()) throw Error(file_ + ": key 'contact.bodies': no contact body given");
   for (std::size_t k = 0; k < boundary_.nodes.size(); ++k)
     if (owned_[static_cast<std::size_t>(boundary_.nodes[k])]) mine_.push_back(k);
   gap_tol_ = spec_.gap_tol > 0.0 ? spec_.gap_tol : 1e-8 * boundary_.mean_edge;
-  const std::size_t nb = boundary_.nodes.size();
-  committed_.resize(spec_.bodies.size());
+  if (rule_ == ContactRule::Vertices)
+    for (std::size_t k : mine_) {
+      const std::size_t n = static_cast<std::size_t>(boundary_.nodes[k]);
+      Site p;
+      p.dofs.assign(node_dofs_[n].begin(), node_dofs_[n].end());
+      p.N = {1.0};
+      p.X = mesh_.points[n];
+      p.vertex = k;
+      points_.push_back(std::move(p));
+    }
+  allocate();
+}
+
+void RigidContact::allocate() {
+  const std::size_t np = points_.size();
+  committed_.assign(spec_.bodies.size(), BodyData{});
   for (BodyData& d : committed_) {
-    d.lambda.assign(nb, 0.0);
-    d.lambda_b.assign(nb, Vec3::Zero());
-    d.bonded.assign(nb, 0);
-    d.anchor.assign(nb, Vec3::Zero());
+    d.lambda.assign(np, 0.0);
+    d.lambda_b.assign(np, Vec3::Zero());
+    d.bonded.assign(np, 0);
+    d.anchor.assign(np, Vec3::Zero());
   }
   trial_ = committed_;
 }
 
-Vec3 NodalContact::position(const TrilinosVector& u, std::size_t k) const {
-  const std::size_t n = static_cast<std::size_t>(boundary_.nodes[k]);
-  const auto& d = node_dofs_[n];
-  return mesh_.points[n] + Vec3(u[d[0]], u[d[1]], u[d[2]]);
+void RigidContact::build_face_points(const Solid& solid) {
+  // Witherden-Vincent on the reference triangle: 6 points, exact to degree 4 (the rule's face load
+  // N_a w_q integrates the P2 shape functions, degree 2, exactly; the tangent's N_a N_b, degree 4).
+  const QWitherdenVincentSimplex<2> quad(2);
+  const FiniteElement<3>& fe = solid.fe();
+  FEFaceValues<3> fv(solid.mapping(), fe, quad,
+                     update_values | update_quadrature_points | update_JxW_values | update_normal_vectors);
+  std::vector<global_dof_index> cell_dofs(fe.n_dofs_per_cell());
+  points_.clear();
+  for (const auto& cell : solid.dof_handler().active_cell_iterators()) {
+    if (!cell->is_locally_owned()) continue;
+    for (const unsigned f : cell->face_indices()) {
+      if (!cell->face(f)->at_boundary()) continue;
+      fv.reinit(cell, f);
+      cell->get_dof_indices(cell_dofs);
+      // The face's nodes: the base-element index of each x-component DoF with support on the face,
+      // and the three component DoFs of that node.
+      std::vector<unsigned> shape;  // cell shape function of component 0 per face node
+      std::vector<global_dof_index> dofs;
+      for (unsigned i = 0; i < fe.n_dofs_per_cell(); ++i) {
+        const auto ci = fe.system_to_component_index(i);
+        if (ci.first != 0 || !fe.has_support_on_face(i, f)) continue;
+        shape.push_back(i);
+        for (unsigned c = 0; c < 3; ++c)
+          dofs.push_back(cell_dofs[fe.component_to_system_index(c, ci.second)]);
+      }
+      for (unsigned q = 0; q < fv.n_quadrature_points; ++q) {
+        Site p;
+        p.dofs = dofs;
+        for (unsigned i : shape) p.N.push_back(fv.shape_value(i, q));
+        const dealii::Point<3> X = fv.quadrature_point(q);
+        const Tensor<1, 3> n = fv.normal_vector(q);
+        p.X = Vec3(X[0], X[1], X[2]);
+        p.normal = Vec3(n[0], n[1], n[2]);
+        p.w = fv.JxW(q);
+        points_.push_back(std::move(p));
+      }
+    }
+  }
 }
 
-void NodalContact::start(Solid& solid, double t0, double t_end, const std::vector<double>& U0) {
-  if (spec_.stiffness > 0.0) {
-    eps_ = spec_.stiffness;
-  } else {
-    // The fast model's scale: the mean diagonal of the reference tangent K_0 (u = 0) over the
-    // boundary vertex DoFs, times stiffness_factor.
+double RigidContact::vertex_stiffness(Solid& solid, double t0) const {
+  if (spec_.stiffness > 0.0) return spec_.stiffness;
+  // The fast model's scale: the mean diagonal of the reference tangent K_0 (u = 0) over the
+  // boundary vertex DoFs, times stiffness_factor.
+  TrilinosVector zero(solid.locally_owned_dofs(), solid.communicator()), r;
+  TrilinosWrappers::SparseMatrix K0;
+  solid.residual_and_tangent(zero, t0, 0.0, r, &K0);
+  double sum = 0.0;
+  for (std::size_t k : mine_)
+    for (global_dof_index d : node_dofs_[static_cast<std::size_t>(boundary_.nodes[k])])
+      sum += K0.diag_element(d);
+  sum = Utilities::MPI::sum(sum, comm_);
+  const double eps = spec_.stiffness_factor * sum / (3.0 * static_cast<double>(boundary_.nodes.size()));
+  if (!(eps > 0.0) || !std::isfinite(eps))
+    throw Error(file_ +
+                ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
+                "give contact.stiffness");
+  return eps;
+}
+
+double RigidContact::face_stiffness(Solid& solid, double t0) const {
+  // The penalty's stiffness on a face node a is eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the
+  // boundary mass matrix's diagonal): eps_a is chosen so that its mean over the boundary nodes is
+  // the vertex rule's eps, stiffness_factor x the mean diagonal of K_0 over the same nodes' DoFs
+  // (contact.stiffness: that nodal eps given in N/m). The sum of M_aa over all nodes needs no
+  // deduplication: it is sum_q w_q sum_a N_a^2 over the points.
+  std::set<global_dof_index> dofs;  // this rank's owned boundary-face DoFs
+  double mass = 0.0;
+  for (const Site& p : points_) {
+    for (std::size_t a = 0; a < p.N.size(); ++a) mass += p.w * p.N[a] * p.N[a];
+    for (global_dof_index d : p.dofs)
+      if (solid.locally_owned_dofs().is_element(d)) dofs.insert(d);
+  }
+  double stiffness = 0.0;
+  if (spec_.stiffness <= 0.0) {
     TrilinosVector zero(solid.locally_owned_dofs(), solid.communicator()), r;
     TrilinosWrappers::SparseMatrix K0;
     solid.residual_and_tangent(zero, t0, 0.0, r, &K0);
-    double sum = 0.0;
-    for (std::size_t k : mine_)
-      for (global_dof_index d : node_dofs_[static_cast<std::size_t>(boundary_.nodes[k])])
-        sum += K0.diag_element(d);
-    sum = Utilities::MPI::sum(sum, comm_);
-    eps_ = spec_.stiffness_factor * sum / (3.0 * static_cast<double>(boundary_.nodes.size()));
-    if (!(eps_ > 0.0) || !std::isfinite(eps_))
-      throw Error(file_ +
-                  ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
-                  "give contact.stiffness");
+    for (global_dof_index d : dofs) stiffness += K0.diag_element(d);
+    stiffness = Utilities::MPI::sum(stiffness, comm_);
   }
+  mass = Utilities::MPI::sum(mass, comm_);
+  const double n_dofs = Utilities::MPI::sum(static_cast<double>(dofs.size()), comm_);
+  const double nodal = spec_.stiffness > 0.0 ? spec_.stiffness : spec_.stiffness_factor * stiffness / n_dofs;
+  const double eps = nodal / (mass / (n_dofs / 3.0));
+  if (!(eps > 0.0) || !std::isfinite(eps))
+    throw Error(file_ +
+                ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
+                "give contact.stiffness");
+  return eps;
+}
+
+Vec3 RigidContact::position(const TrilinosVector& u, const Site& p) const {
+  Vec3 x = p.X;
+  for (std::size_t a = 0; a < p.N.size(); ++a) {
+    const global_dof_index* d = &p.dofs[3 * a];
+    x += p.N[a] * Vec3(u[d[0]], u[d[1]], u[d[2]]);
+  }
+  return x;
+}
+
+void RigidContact::start(Solid& solid, double t0, double t_end, const std::vector<double>& U0) {
+  if (rule_ == ContactRule::FacePoints) {
+    build_face_points(solid);
+    allocate();
+  }
+  if (rule_ == ContactRule::Vertices)
+    eps_ = vertex_stiffness(solid, t0);
+  else
+    eps_ = face_stiffness(solid, t0);
   // The initial configuration (every rank: all vertices): penetration, distance, glue.
   const double tol = spec_.initial_gap_tol > 0.0 ? spec_.initial_gap_tol : gap_tol_;
   Vec3 lo = mesh_.points.front(), hi = lo;
@@ -98,10 +203,6 @@ void NodalContact::start(Solid& solid, double t0, double t_end, const std::vecto
         deepest = -gp.g;
         worst = static_cast<Index>(n);
       }
-      if (body.mode == ContactBodyMode::Bonded && gp.g <= gap_tol_) {
-        committed_[b].bonded[k] = 1;
-        committed_[b].anchor[k] = gp.closest - body.position(t0);
-      }
     }
     if (deepest > tol) {
       std::ostringstream m;
@@ -119,11 +220,28 @@ void NodalContact::start(Solid& solid, double t0, double t_end, const std::vecto
       throw Error(m.str());
     }
     check_extent(body, nearest, t0, t_end, U0);
+    // Points touching a bonded body are glued (vertices at U0; face points at the solid's solution).
+    if (body.mode != ContactBodyMode::Bonded) continue;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Site& p = points_[i];
+      Vec3 x;
+      if (rule_ == ContactRule::Vertices) {
+        const std::size_t n = static_cast<std::size_t>(boundary_.nodes[p.vertex]);
+        x = mesh_.points[n] + Vec3(U0[3 * n], U0[3 * n + 1], U0[3 * n + 2]);
+      } else {
+        x = position(solid.solution(), p);
+      }
+      const GapPoint gp = body_gap(body, x, t0);
+      if (gp.g <= gap_tol_) {
+        committed_[b].bonded[i] = 1;
+        committed_[b].anchor[i] = gp.closest - body.position(t0);
+      }
+    }
   }
   trial_ = committed_;
 }
 
-void NodalContact::check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
+void RigidContact::check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
                                 const std::vector<double>& U0) const {
   if (body.shape == ContactShape::Plane) return;
   // The sample's extent seen from the body's axis: the largest radial distance of a boundary vertex.
@@ -156,7 +274,7 @@ void NodalContact::check_extent(const ContactBodySpec& body, double g0, double t
   }
 }
 
-std::string NodalContact::describe() const {
+std::string RigidContact::describe() const {
   std::ostringstream m;
   m << file_ << ": key 'contact' (";
   for (std::size_t b = 0; b < spec_.bodies.size(); ++b) m << (b ? ", " : "") << body_label(spec_.bodies[b]);
@@ -166,70 +284,78 @@ std::string NodalContact::describe() const {
   return m.str();
 }
 
-void NodalContact::add_terms(const TrilinosVector& u, double t, TrilinosVector& r,
+void RigidContact::add_terms(const TrilinosVector& u, double t, TrilinosVector& r,
                              const AffineConstraints<double>* constraints, TrilinosWrappers::SparseMatrix* K,
                              TrilinosVector* rhs) const {
   const bool penalty = spec_.method == ContactEnforcement::Penalty;
-  FullMatrix<double> M(3, 3);
-  Vector<double> f(3), minus_f(3);
-  std::vector<global_dof_index> dofs(3);
+  FullMatrix<double> M;
+  Vector<double> f, minus_f;
   for (std::size_t b = 0; b < spec_.bodies.size(); ++b) {
     const ContactBodySpec& body = spec_.bodies[b];
     const BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
-    for (std::size_t k : mine_) {
-      const auto& nd = node_dofs_[static_cast<std::size_t>(boundary_.nodes[k])];
-      const Vec3 x = position(u, k);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Site& pt = points_[i];
+      const Vec3 x = position(u, pt);
       Eigen::Matrix3d H;
-      Vec3 force;  // dPhi/dx
-      if (d.bonded[k]) {
+      Vec3 force;  // dPhi/dx per unit weight
+      if (d.bonded[i]) {
         // Phi = lambda . c + eps/2 |c|^2, c = x - (anchor + c(t)).
-        const Vec3 gap = x - (d.anchor[k] + c);
-        force = d.lambda_b[k] + eps_ * gap;
+        const Vec3 gap = x - (d.anchor[i] + c);
+        force = d.lambda_b[i] + eps_ * gap;
         H = eps_ * Eigen::Matrix3d::Identity();
       } else {
         // Phi = (<lambda - eps g>_+^2 - lambda^2) / (2 eps): dPhi/dx = -p n, d2Phi = eps n n^T - p H_g.
         const GapPoint gp = body_gap(body, x, t);
-        const double p = (penalty ? 0.0 : d.lambda[k]) - eps_ * gp.g;
+        const double p = (penalty ? 0.0 : d.lambda[i]) - eps_ * gp.g;
         if (p <= 0.0) continue;
         force = -p * gp.normal;
         H = eps_ * gp.normal * gp.normal.transpose() - p * gp.hessian;
       }
-      for (unsigned a = 0; a < 3; ++a) {
-        dofs[a] = nd[a];
-        f(a) = force[a];
-        minus_f(a) = -force[a];
-        for (unsigned e = 0; e < 3; ++e) M(a, e) = H(a, e);
+      // x = X + sum_a N_a u_a: node a gets w N_a dPhi/dx and the blocks w N_a N_b d2Phi/dx2.
+      const unsigned n = static_cast<unsigned>(pt.dofs.size());
+      if (f.size() != n) {
+        f.reinit(n);
+        minus_f.reinit(n);
+        M.reinit(n, n);
       }
-      r.add(dofs, f);
-      if (K) constraints->distribute_local_to_global(M, minus_f, dofs, *K, *rhs, true);
+      for (unsigned a = 0; a < pt.N.size(); ++a)
+        for (unsigned k = 0; k < 3; ++k) {
+          f(3 * a + k) = (pt.w * pt.N[a]) * force[k];
+          minus_f(3 * a + k) = -f(3 * a + k);
+          for (unsigned e = 0; e < pt.N.size(); ++e)
+            for (unsigned l = 0; l < 3; ++l) M(3 * a + k, 3 * e + l) = (pt.w * pt.N[a] * pt.N[e]) * H(k, l);
+        }
+      r.add(pt.dofs, f);
+      if (K) constraints->distribute_local_to_global(M, minus_f, pt.dofs, *K, *rhs, true);
     }
   }
 }
 
-double NodalContact::energy(const TrilinosVector& u, double t) const {
+double RigidContact::energy(const TrilinosVector& u, double t) const {
   const bool penalty = spec_.method == ContactEnforcement::Penalty;
   double phi = 0.0;
   for (std::size_t b = 0; b < spec_.bodies.size(); ++b) {
     const ContactBodySpec& body = spec_.bodies[b];
     const BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
-    for (std::size_t k : mine_) {
-      const Vec3 x = position(u, k);
-      if (d.bonded[k]) {
-        const Vec3 gap = x - (d.anchor[k] + c);
-        phi += d.lambda_b[k].dot(gap) + 0.5 * eps_ * gap.squaredNorm();
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Site& pt = points_[i];
+      const Vec3 x = position(u, pt);
+      if (d.bonded[i]) {
+        const Vec3 gap = x - (d.anchor[i] + c);
+        phi += pt.w * (d.lambda_b[i].dot(gap) + 0.5 * eps_ * gap.squaredNorm());
         continue;
       }
-      const double lam = penalty ? 0.0 : d.lambda[k];
+      const double lam = penalty ? 0.0 : d.lambda[i];
       const double pp = std::max(lam - eps_ * body_gap(body, x, t).g, 0.0);
-      phi += (pp * pp - lam * lam) / (2.0 * eps_);
+      phi += pt.w * ((pp * pp - lam * lam) / (2.0 * eps_));
     }
   }
   return Utilities::MPI::sum(phi, comm_);
 }
 
-bool NodalContact::update(const TrilinosVector& u, double t) {
+bool RigidContact::update(const TrilinosVector& u, double t) {
   const bool penalty = spec_.method == ContactEnforcement::Penalty;
   double natural = 0.0;
   int changes = 0;
@@ -237,17 +363,17 @@ bool NodalContact::update(const TrilinosVector& u, double t) {
     const ContactBodySpec& body = spec_.bodies[b];
     BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
-    for (std::size_t k : mine_) {
-      const Vec3 x = position(u, k);
-      if (d.bonded[k]) {
-        const Vec3 gap = x - (d.anchor[k] + c);
-        d.lambda_b[k] += eps_ * gap;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Vec3 x = position(u, points_[i]);
+      if (d.bonded[i]) {
+        const Vec3 gap = x - (d.anchor[i] + c);
+        d.lambda_b[i] += eps_ * gap;
         natural = std::max(natural, gap.lpNorm<Eigen::Infinity>());
         continue;
       }
-      const double old = penalty ? 0.0 : d.lambda[k];
+      const double old = penalty ? 0.0 : d.lambda[i];
       const double next = std::max(0.0, old - eps_ * body_gap(body, x, t).g);
-      d.lambda[k] = next;  // penalty: the force eps <-g>_+, kept for the output only
+      d.lambda[i] = next;  // penalty: the force eps <-g>_+, kept for the output only
       if (penalty) continue;
       natural = std::max(natural, std::abs(next - old) / eps_);
       if ((old > 0.0) != (next > 0.0) && std::max(old, next) > eps_ * gap_tol_) ++changes;
@@ -258,27 +384,27 @@ bool NodalContact::update(const TrilinosVector& u, double t) {
   return penalty || (natural_ <= gap_tol_ && changes == 0);
 }
 
-void NodalContact::commit(const TrilinosVector& u, double t) {
+void RigidContact::commit(const TrilinosVector& u, double t) {
   committed_ = trial_;
-  // Bonded bodies: vertices that came into contact during the increment are glued where they are,
+  // Bonded bodies: points that came into contact during the increment are glued where they are,
   // with their force carried over (as the fast model).
   for (std::size_t b = 0; b < spec_.bodies.size(); ++b) {
     const ContactBodySpec& body = spec_.bodies[b];
     if (body.mode != ContactBodyMode::Bonded) continue;
     BodyData& d = committed_[b];
-    for (std::size_t k : mine_) {
-      if (d.bonded[k] || !(d.lambda[k] > 0.0)) continue;
-      const GapPoint gp = body_gap(body, position(u, k), t);
-      d.bonded[k] = 1;
-      d.anchor[k] = gp.closest - body.position(t);
-      d.lambda_b[k] = -d.lambda[k] * gp.normal;
-      d.lambda[k] = 0.0;
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      if (d.bonded[i] || !(d.lambda[i] > 0.0)) continue;
+      const GapPoint gp = body_gap(body, position(u, points_[i]), t);
+      d.bonded[i] = 1;
+      d.anchor[i] = gp.closest - body.position(t);
+      d.lambda_b[i] = -d.lambda[i] * gp.normal;
+      d.lambda[i] = 0.0;
     }
   }
   trial_ = committed_;
 }
 
-std::vector<ContactBodyOutput> NodalContact::outputs(const TrilinosVector& u, double t) const {
+std::vector<ContactBodyOutput> RigidContact::outputs(const TrilinosVector& u, double t) const {
   std::vector<ContactBodyOutput> out;
   for (std::size_t b = 0; b < spec_.bodies.size(); ++b) {
     const ContactBodySpec& body = spec_.bodies[b];
@@ -287,19 +413,21 @@ std::vector<ContactBodyOutput> NodalContact::outputs(const TrilinosVector& u, do
     o.name = body.name;
     o.position = body.position(t);
     double min_lambda = std::numeric_limits<double>::infinity();
-    for (std::size_t k : mine_) {
-      const GapPoint gp = body_gap(body, position(u, k), t);
-      Vec3 f;  // force of the body on the sample at this vertex
-      if (d.bonded[k]) {
-        f = -d.lambda_b[k];
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const Site& pt = points_[i];
+      const GapPoint gp = body_gap(body, position(u, pt), t);
+      Vec3 f;  // force of the body on the sample at this point
+      if (d.bonded[i]) {
+        f = -pt.w * d.lambda_b[i];
       } else {
-        const double lam = d.lambda[k];
+        const double lam = pt.w * d.lambda[i];
         min_lambda = std::min(min_lambda, lam);
         o.complementarity = std::max(o.complementarity, lam * std::abs(gp.g));
         if (!(lam > 0.0)) continue;
         f = lam * gp.normal;
       }
-      const double area = boundary_.contact_area(k, gp.normal);
+      const double area = rule_ == ContactRule::Vertices ? boundary_.contact_area(pt.vertex, gp.normal)
+                                                         : pt.w * std::max(0.0, -pt.normal.dot(gp.normal));
       if (area > 0.0) o.max_pressure = std::max(o.max_pressure, f.dot(gp.normal) / area);
       ++o.active_nodes;
       o.area += area;
@@ -308,7 +436,7 @@ std::vector<ContactBodyOutput> NodalContact::outputs(const TrilinosVector& u, do
       o.max_penetration = std::max(o.max_penetration, -gp.g);
       o.radius_max = std::max(o.radius_max, body_radial_distance(body, gp.closest, t));
     }
-    // Reductions over ranks (a rank without vertices contributes zeros and +inf).
+    // Reductions over ranks (a rank without points contributes zeros and +inf).
     for (int c = 0; c < 3; ++c) {
       o.force[c] = Utilities::MPI::sum(o.force[c], comm_);
       o.moment[c] = Utilities::MPI::sum(o.moment[c], comm_);

@@ -1,7 +1,8 @@
-// Node-to-rigid contact in the deal.II reference (docs/reference-fem.md, "Contact"; docs/contact.md):
-// the rule of the fast model's ContactStaticSolver (tensormass/contact/contact_solver.hpp), applied
-// at the mesh vertices of the reference's discretisation, so that on P1 tets both models solve the
-// same discrete problem with the same algorithm:
+// Contact with rigid bodies in the deal.II reference (docs/reference-fem.md, "Contact";
+// docs/contact.md). The vertex rule is the fast model's ContactStaticSolver
+// (tensormass/contact/contact_solver.hpp), applied at the mesh vertices of the reference's
+// discretisation, so that on P1 tets both models solve the same discrete problem with the same
+// algorithm:
 //
 //   frictionless vertex i, body b:  g_i(u) >= 0, lambda_i >= 0, lambda_i g_i = 0, through
 //     Phi_k(u) = sum_i 1/(2 eps) (<lambda_i^k - eps g_i(u)>_+^2 - (lambda_i^k)^2)
@@ -19,12 +20,37 @@
 // therefore always holds), and the contact forces do not enter reactions() (the Dirichlet
 // reactions are f_int - f_ext on the condition's DoFs).
 //
-// P2: the rule constrains the vertices only (the same nodes and tributary areas as P1); the edge
-// nodes are free, so between vertices the P2 surface may bulge into the body by O(h^2 curvature).
-// It is the P1 rule on the P2 field, not a consistent quadratic contact discretisation.
+// Two rules place the constraint (ContactRule; the runner uses Vertices for P1, FacePoints for P2):
 //
-// MPI: every rank holds the whole boundary but evaluates only the vertices whose DoFs it owns;
-// counts, residuals and body totals are reduced over ranks.
+//   Vertices (above): one gap per boundary vertex, lambda_i a force (N), eps in N/m. On P1 it is the
+//     fast model's discrete problem. On P2 it leaves the edge nodes free, so between vertices the
+//     quadratic surface bulges into the body and a uniform pressure is carried by the corners alone
+//     (the consistent P2 load puts it on the midside nodes): measured on the seed-like indentation,
+//     26.4 mN (8 cells) and 28.2 mN (16) against a converged 36.4 mN.
+//   FacePoints: the constraint at the quadrature points q of every boundary triangle (Witherden-
+//     Vincent, 6 points, degree 4; weights w_q = reference area weights), at the interpolated surface
+//     point x_q = sum_a N_a(xi_q) x_a of the face's nodes (P2: 3 corners + 3 midsides):
+//       Phi_k(u) = sum_q w_q/(2 eps_a) (<lambda_q - eps_a g_q(u)>_+^2 - lambda_q^2),
+//       bonded  Phi_k = sum_q w_q (lambda_q . c_q + eps_a/2 |c_q|^2),
+//     lambda_q a contact PRESSURE (Pa; bonded a traction), eps_a an area density (Pa/m): the penalty
+//     stiffens face node a by eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the boundary mass diagonal),
+//     and eps_a is chosen so that this is on average the vertex rule's scale, stiffness_factor x the
+//     mean K_0 diagonal over the boundary nodes' DoFs (material stiffness / h; contact.stiffness is
+//     read as that nodal N/m). (Scaled by area instead, eps_a M_aa is ~10x weaker than the vertex
+//     rule's eps on a P2 corner, and the Uzawa loop contracts by only ~0.8 per iteration.) The
+//     residual is sum_q w_q (-p_q n_q) N_a on node a, the tangent w_q N_a N_b (eps_a n n^T - p_q H_g)
+//     (bonded eps_a I); the Uzawa update, the stopping test (natural residual |dlambda|/eps_a <=
+//     gap_tol, no active-set change) and gap_tol are the vertex rule's, per point. It is a Gauss-
+//     point-to-rigid discretisation of the continuum contact potential int_Gamma Phi(g) dA: a uniform
+//     pressure gives the consistent load (P2: nothing on the corners, a third of each face's force on
+//     each midside node), and the contact traction converges with the field instead of being lumped
+//     on the vertices. Body force = sum_q w_q lambda_q n_q. The initial checks (penetration, a body
+//     not touching, a rig larger than its mesh) stay on the vertices; points touching a bonded body at
+//     the start (the solid's current solution) are glued.
+//
+// MPI: every rank holds the whole boundary but evaluates only the vertices whose DoFs it owns (face
+// points: those of the boundary faces of its own cells); counts, residuals and body totals are
+// reduced over ranks.
 #pragma once
 
 #include "core/config/contact_spec.hpp"
@@ -41,34 +67,44 @@ namespace tmlab::ref {
 /// The contact outputs of one body at one time (the fast model's ContactBodyState totals).
 struct ContactBodyOutput {
   std::string name;
-  Vec3 position = Vec3::Zero();  ///< c(t)
-  Vec3 force = Vec3::Zero();     ///< force the sample exerts on the body, N
-  Vec3 moment = Vec3::Zero();    ///< of that force about c(t), N m
-  int active_nodes = 0;
-  double area = 0.0;               ///< projected reference tributary area of the active vertices, m^2
+  Vec3 position = Vec3::Zero();    ///< c(t)
+  Vec3 force = Vec3::Zero();       ///< force the sample exerts on the body, N
+  Vec3 moment = Vec3::Zero();      ///< of that force about c(t), N m
+  int active_nodes = 0;            ///< active vertices (face rule: active face points)
+  double area = 0.0;               ///< projected reference tributary area of the active vertices
+                                   ///< (face rule: sum of w_q max(0, -N . n) over active points), m^2
   double radius_equivalent = 0.0;  ///< sqrt(area / pi) (sphere, punch; 0 for the plane)
   double radius_max = 0.0;         ///< largest distance of an active contact point from the axis, m
   double max_pressure = 0.0;       ///< largest (f . n) / projected tributary area, Pa
-  double max_penetration = 0.0;    ///< max(0, -g) over the active vertices, m
-  double complementarity = 0.0;    ///< max lambda |g|, N m
-  double min_multiplier = 0.0;
+  double max_penetration = 0.0;    ///< max(0, -g) over the active vertices (points), m
+  double complementarity = 0.0;    ///< max w lambda |g| (vertex: w = 1), N m
+  double min_multiplier = 0.0;     ///< min w lambda, N
 };
 
-class NodalContact final : public NodalConstraints {
+/// Where the constraint acts (see above).
+enum class ContactRule { Vertices, FacePoints };
+inline std::string to_string(ContactRule r) {
+  return r == ContactRule::Vertices ? "vertices" : "face quadrature points";
+}
+
+class RigidContact final : public NodalConstraints {
  public:
   /// `node_dofs[i]`: the three DoFs of mesh node i's vertex where they are locally relevant (else
   /// numbers::invalid_dof_index); `owned[i]`: this rank owns them. `file` names the case in messages.
-  NodalContact(const ContactSpec& spec, const std::string& file, const Mesh& mesh,
-               std::vector<std::array<global_dof_index, 3>> node_dofs, std::vector<char> owned,
-               MPI_Comm comm);
+  RigidContact(const ContactSpec& spec, const std::string& file, const Mesh& mesh,
+               std::vector<std::array<global_dof_index, 3>> node_dofs, std::vector<char> owned, MPI_Comm comm,
+               ContactRule rule = ContactRule::Vertices);
 
-  /// eps from the unconstrained reference tangent K_0 of `solid` (or spec.stiffness), then the
+  /// Face rule: the points of the boundary faces of the solid's own cells. Then eps from the
+  /// unconstrained reference tangent K_0 of `solid` (or spec.stiffness; face rule: over the mean
+  /// boundary area per vertex), then the
   /// start at t0 with all vertex displacements U0 (every rank the same): a body penetrating by more
   /// than initial_gap_tol, or farther than max_initial_gap from the sample, or larger than its mesh
   /// (the fast model's check_contact_rig: a punch whose radius, or a sphere whose Hertz contact
   /// radius sqrt(R d_max) at its deepest travel over [t0, t_end], reaches the sample's extent from
   /// the body's axis) is refused (tmlab::Error naming the case, the body's key, and the node and
-  /// distance or the sizes); vertices touching a bonded body are glued.
+  /// distance or the sizes); vertices (face points, at the solid's solution) touching a bonded body
+  /// are glued.
   void start(Solid& solid, double t0, double t_end, const std::vector<double>& U0);
 
   void add_terms(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, double t,
@@ -88,18 +124,38 @@ class NodalContact final : public NodalConstraints {
   /// Per body, reduced over ranks, at u (the committed state after commit()).
   std::vector<ContactBodyOutput> outputs(const dealii::TrilinosWrappers::MPI::Vector& u_ghost,
                                          double t) const;
+  /// eps: N/m (vertices) or Pa/m (face points).
   double stiffness() const { return eps_; }
+  ContactRule rule() const { return rule_; }
+  /// The evaluation points of this rank (vertices it owns, or its face points).
+  std::size_t n_points() const { return points_.size(); }
   double gap_tol() const { return gap_tol_; }
   double natural_residual() const { return natural_; }  ///< of the last update()
 
  private:
+  /// One place the constraint acts: x = X + sum_a N[a] u(dofs[3a .. 3a+2]). Vertex: one node,
+  /// N = {1}, w = 1; face point: the face's nodes, w = w_q.
+  struct Site {
+    std::vector<global_dof_index> dofs;
+    std::vector<double> N;
+    Vec3 X = Vec3::Zero();
+    double w = 1.0;
+    Vec3 normal = Vec3::Zero();  ///< face point: outward reference normal (for the projected area)
+    std::size_t vertex = 0;      ///< vertex rule: boundary-local index (for the tributary area)
+  };
   struct BodyData {
-    std::vector<double> lambda;  ///< normal multiplier per boundary vertex
+    std::vector<double> lambda;  ///< normal multiplier per point (vertex: N; face point: Pa)
     std::vector<Vec3> lambda_b;  ///< bonded multiplier
     std::vector<char> bonded;
     std::vector<Vec3> anchor;  ///< glued point relative to c(t)
   };
-  Vec3 position(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, std::size_t k) const;
+  Vec3 position(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, const Site& p) const;
+  /// The face rule's points on the boundary faces of the solid's locally owned cells.
+  void build_face_points(const Solid& solid);
+  void allocate();
+  /// eps of the vertex rule (N/m) and of the face rule (Pa/m); see the header comment.
+  double vertex_stiffness(Solid& solid, double t0) const;
+  double face_stiffness(Solid& solid, double t0) const;
   /// Refuses a punch or sphere larger than the mesh (see start()); g0 the body's smallest gap at t0.
   void check_extent(const ContactBodySpec& body, double g0, double t0, double t_end,
                     const std::vector<double>& U0) const;
@@ -112,6 +168,8 @@ class NodalContact final : public NodalConstraints {
   MPI_Comm comm_;
   ContactBoundary boundary_;
   std::vector<std::size_t> mine_;  ///< boundary-local indices of the vertices this rank owns
+  ContactRule rule_;
+  std::vector<Site> points_;
   double eps_ = 0.0, gap_tol_ = 0.0, natural_ = 0.0;
   std::vector<BodyData> committed_, trial_;
 };

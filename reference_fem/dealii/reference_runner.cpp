@@ -10,8 +10,9 @@
 //   * pressure: dead load on the selected boundary faces (a surface group's triangles, or the
 //     boundary faces all of whose vertices are selected), integrated with the face quadrature;
 //   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses);
-//   * contact: the case's rigid bodies at the mesh vertices by the fast model's nodal augmented
-//     Lagrangian (contact.hpp), the same rule and stopping test, so P1 runs agree to round-off.
+//   * contact: the case's rigid bodies by the fast model's augmented Lagrangian (contact.hpp): P1 at
+//     the mesh vertices, the same rule and stopping test, so P1 runs agree to round-off; P2 at the
+//     quadrature points of the boundary faces (the vertex rule leaves the P2 edge nodes free).
 #include "reference_fem/dealii/reference_runner.hpp"
 
 #include "core/base/error.hpp"
@@ -199,7 +200,7 @@ struct Problem {
   std::unique_ptr<Solid> solid;
   std::vector<std::vector<unsigned>> vmap;  ///< (cell, vertex) -> node
   std::vector<Index> probe_nodes;
-  std::unique_ptr<NodalContact> contact;  ///< the case's contact section, if any
+  std::unique_ptr<RigidContact> contact;  ///< the case's contact section, if any
 };
 
 /// The coarse triangulation: vertex i = tmlab node i and cell c = tet c (tet mode), or the
@@ -384,9 +385,9 @@ void add_loads(Problem& p) {
   }
 }
 
-/// The case's contact bodies on the mesh vertices: each node's vertex DoFs where this rank sees them
-/// (owned: the rank owns them), the contact object started at t = 0 from the rest state, and the
-/// Solid told to run its outer loop.
+/// The case's contact bodies: each node's vertex DoFs where this rank sees them (owned: the rank owns
+/// them), the contact object (P1: at the vertices; P2: at the boundary faces' quadrature points)
+/// started at t = 0 from the rest state, and the Solid told to run its outer loop.
 void add_contact(Problem& p) {
   const Index n = p.mesh.num_points();
   std::vector<std::array<global_dof_index, 3>> node_dofs(
@@ -402,8 +403,9 @@ void add_contact(Problem& p) {
       owned[vm[v]] = p.solid->locally_owned_dofs().is_element(d[0]) ? 1 : 0;
     }
   }
-  p.contact = std::make_unique<NodalContact>(p.cfg.contact, p.cfg.file, p.mesh, std::move(node_dofs),
-                                             std::move(owned), p.comm);
+  const ContactRule rule = p.ro.degree == 1 ? ContactRule::Vertices : ContactRule::FacePoints;
+  p.contact = std::make_unique<RigidContact>(p.cfg.contact, p.cfg.file, p.mesh, std::move(node_dofs),
+                                             std::move(owned), p.comm, rule);
   p.contact->start(*p.solid, 0.0, p.cfg.solver.t_end,
                    std::vector<double>(3 * static_cast<std::size_t>(n), 0.0));
   p.solid->set_nodal_constraints(p.contact.get());
@@ -744,9 +746,10 @@ nlohmann::json contact_summary(const Problem& p, const std::vector<ContactBodyOu
   }
   return {{"scheme", "augmented_lagrangian_static"},
           {"method", to_string(p.cfg.contact.method)},
-          {"rule", p.ro.degree == 1 ? "nodal (vertices)" : "nodal at the vertices only (P2 edge nodes free)"},
+          {"rule", to_string(p.contact->rule())},
           {"gap_tol_m", p.contact->gap_tol()},
-          {"stiffness_N_per_m", p.contact->stiffness()},
+          {p.contact->rule() == ContactRule::Vertices ? "stiffness_N_per_m" : "stiffness_Pa_per_m",
+           p.contact->stiffness()},
           {"outer_iterations_per_step", r.outer},
           {"natural_residual_per_step_m", r.natural},
           {"bodies", bodies}};

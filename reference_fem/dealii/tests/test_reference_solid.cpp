@@ -9,7 +9,10 @@
 //   * the IDA form (ida_dae.hpp): the initial state is a zero residual, and the Newton matrix's
 //     solve inverts the central differences of the residual, dF/dy + alpha dF/dy';
 //   * the contact terms (contact.hpp): the residual is the derivative of the contact potential and
-//     the 3x3 blocks that of the residual (central differences), on a sphere pressed into a block.
+//     the blocks that of the residual (central differences), on a sphere pressed into a block, for
+//     the vertex rule (P1) and the face-point rule (P2, frictionless and bonded); the face-point
+//     rule turns a uniform penetration of a flat face into the consistent P2 pressure load
+//     (nothing on the corners, the Solid's own dead-pressure assembly), which the vertex rule does not.
 // (The same files end to end: test_reference_ida, test_reference_runner.)
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
@@ -30,6 +33,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <set>
 
@@ -313,25 +317,38 @@ TEST(ReferenceIdaDae, NewtonMatrixSolveInvertsTheResidualsDerivative) {
 
 // ---- contact terms --------------------------------------------------------------------------------
 
-TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
-  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(1.0), 4, 4, 4);  // a node at the top centre
-  std::vector<Point<3>> pts;
-  for (const auto& p : mesh.points) pts.emplace_back(p.x(), p.y(), p.z());
-  std::vector<std::array<unsigned, 4>> tets;
-  for (const auto& t : mesh.tets)
-    tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
+/// A unit block (4^3 Kuhn-split cells) as a Solid of the given degree, with each mesh node's vertex
+/// DoFs (the runner's add_contact).
+struct ContactBlock {
+  Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Constant(1.0), 4, 4, 4);  // a node at the top centre
   Triangulation<3> coarse;
-  build_tet_triangulation(pts, tets, coarse);
-  Solid s(MPI_COMM_SELF, coarse, Discretisation{true, 1}, Material::make("stvk", 1000.0, 0.35), std::nullopt,
-          NewtonParameters{});
-  s.finalize_setup();
-  const auto vmap = coarse_vertex_map(s, coarse);
-  const std::size_t n = mesh.points.size();
-  std::vector<std::array<global_dof_index, 3>> node_dofs(n);
-  for (const auto& cell : s.dof_handler().active_cell_iterators())
-    for (unsigned v = 0; v < cell->n_vertices(); ++v)
-      for (unsigned c = 0; c < 3; ++c)
-        node_dofs[vmap[cell->active_cell_index()][v]][c] = cell->vertex_dof_index(v, c);
+  std::unique_ptr<Solid> solid;
+  std::vector<std::array<global_dof_index, 3>> node_dofs;
+
+  explicit ContactBlock(unsigned degree) {
+    std::vector<Point<3>> pts;
+    for (const auto& p : mesh.points) pts.emplace_back(p.x(), p.y(), p.z());
+    std::vector<std::array<unsigned, 4>> tets;
+    for (const auto& t : mesh.tets)
+      tets.push_back({unsigned(t[0]), unsigned(t[1]), unsigned(t[2]), unsigned(t[3])});
+    build_tet_triangulation(pts, tets, coarse);
+    solid = std::make_unique<Solid>(MPI_COMM_SELF, coarse, Discretisation{true, degree},
+                                    Material::make("stvk", 1000.0, 0.35), std::nullopt, NewtonParameters{});
+    solid->finalize_setup();
+    const auto vmap = coarse_vertex_map(*solid, coarse);
+    node_dofs.resize(mesh.points.size());
+    for (const auto& cell : solid->dof_handler().active_cell_iterators())
+      for (unsigned v = 0; v < cell->n_vertices(); ++v)
+        for (unsigned c = 0; c < 3; ++c)
+          node_dofs[vmap[cell->active_cell_index()][v]][c] = cell->vertex_dof_index(v, c);
+  }
+  RigidContact contact(const ContactSpec& spec, ContactRule rule) const {
+    return RigidContact(spec, "case.json", mesh, node_dofs, std::vector<char>(mesh.points.size(), 1),
+                        MPI_COMM_SELF, rule);
+  }
+};
+
+ContactSpec ball_spec(ContactBodyMode mode) {
   ContactSpec spec;
   spec.enabled = true;
   spec.stiffness = 1e3;
@@ -339,15 +356,21 @@ TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
   ball.name = "ball";
   ball.key = "contact.bodies[0]";
   ball.shape = ContactShape::Sphere;
+  ball.mode = mode;
   ball.reference = Vec3(0.5, 0.5, 1.3);  // touching the top face at t = 0
   ball.radius = 0.3;
   ball.displacement = Vec3(0.0, 0.0, -0.2);
   ball.function = TimeFunction::ramp(0.0, 1.0);
   spec.bodies = {ball};
-  NodalContact contact(spec, "case.json", mesh, node_dofs, std::vector<char>(n, 1), MPI_COMM_SELF);
-  contact.start(s, 0.0, 1.0, std::vector<double>(3 * n, 0.0));
-  contact.begin_increment();
+  return spec;
+}
 
+/// Central differences of the contact potential and residual at a random state, the ball 0.2 into
+/// the block: returns |FD(r) - K v| / |K v| and checks r = dPhi/du.
+double contact_fd_error(const ContactBlock& blk, RigidContact& contact) {
+  Solid& s = *blk.solid;
+  contact.start(s, 0.0, 1.0, std::vector<double>(3 * blk.mesh.points.size(), 0.0));
+  contact.begin_increment();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> d(-1.0, 1.0);
   TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), w(u), r(u), rp(u), rm(u),
@@ -358,7 +381,13 @@ TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
   }
   u.compress(VectorOperation::insert);
   v.compress(VectorOperation::insert);
-  const double t = 1.0;  // the ball 0.2 into the block: the middle nodes of the top face are active
+  if (contact.rule() == ContactRule::FacePoints) {
+    // Nonzero multipliers from the ball 0.1 in; a bonded ball glues the points it touches there.
+    contact.update(u, 0.5);
+    contact.commit(u, 0.5);
+    contact.begin_increment();
+  }
+  const double t = 1.0;  // the ball 0.2 into the block: the middle of the top face is active
   TrilinosWrappers::SparseMatrix K;
   {
     TrilinosWrappers::MPI::Vector r0;
@@ -368,7 +397,7 @@ TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
   AffineConstraints<double> none;
   none.close();
   contact.add_terms(u, t, r, &none, &K, &rhs);
-  ASSERT_GT(r.l2_norm(), 0.0) << "no vertex in contact";
+  EXPECT_GT(r.l2_norm(), 0.0) << "no point in contact";
   const double h = 1e-7;
   w = u;
   w.add(h, v);
@@ -385,9 +414,93 @@ TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
   fd -= rm;
   fd /= 2 * h;
   fd -= Kv;
-  const double e = fd.l2_norm() / Kv.l2_norm();
+  return fd.l2_norm() / Kv.l2_norm();
+}
+
+TEST(ReferenceNodalContact, TermsAreTheDerivativesOfTheContactPotential) {
+  const ContactBlock blk(1);
+  RigidContact contact = blk.contact(ball_spec(ContactBodyMode::Frictionless), ContactRule::Vertices);
+  const double e = contact_fd_error(blk, contact);
   EXPECT_LE(e, 1e-5);  // K = d r / du
   std::printf("[ measured ] reference contact tangent vs central differences: %.2e\n", e);
+}
+
+TEST(ReferenceFaceContact, TermsAreTheDerivativesOfTheContactPotential) {
+  const ContactBlock blk(2);
+  for (ContactBodyMode mode : {ContactBodyMode::Frictionless, ContactBodyMode::Bonded}) {
+    RigidContact contact = blk.contact(ball_spec(mode), ContactRule::FacePoints);
+    const double e = contact_fd_error(blk, contact);
+    EXPECT_LE(e, 1e-5) << to_string(mode);
+    // 6 points on each of the 6 x 2 x 16 boundary triangles.
+    EXPECT_EQ(contact.n_points(), 6u * 192u);
+    std::printf("[ measured ] P2 face-point contact (%s) tangent vs central differences: %.2e\n",
+                to_string(mode).c_str(), e);
+  }
+}
+
+/// A rigid plane pushed 1e-4 into the top of the rest block (penalty, zero multipliers): every top
+/// point has the same penetration, so the face-point rule presses the top with the uniform pressure
+/// eps_a 1e-4. Its nodal forces are the consistent load of that pressure, the Solid's own dead
+/// pressure on the top faces: on P2 nothing on the corner nodes and a third of each triangle's force
+/// on each midside node. The vertex rule puts the whole load on the corners instead.
+TEST(ReferenceFaceContact, UniformPenetrationGivesTheConsistentPressureLoad) {
+  ContactSpec spec;
+  spec.enabled = true;
+  spec.method = ContactEnforcement::Penalty;
+  spec.stiffness = 1e3;
+  ContactBodySpec plane;
+  plane.name = "platen";
+  plane.key = "contact.bodies[0]";
+  plane.shape = ContactShape::Plane;
+  plane.reference = Vec3(0.0, 0.0, 1.0);
+  plane.axis = Vec3(0.0, 0.0, -1.0);
+  plane.displacement = Vec3(0.0, 0.0, -1e-4);
+  plane.function = TimeFunction::ramp(0.0, 1.0);
+  spec.bodies = {plane};
+  for (ContactRule rule : {ContactRule::FacePoints, ContactRule::Vertices}) {
+    ContactBlock blk(2);
+    Solid& s = *blk.solid;
+    RigidContact contact = blk.contact(spec, rule);
+    contact.start(s, 0.0, 1.0, std::vector<double>(3 * blk.mesh.points.size(), 0.0));
+    contact.begin_increment();
+    TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), r(u);
+    contact.add_terms(u, 1.0, r, nullptr, nullptr, nullptr);
+    r.compress(VectorOperation::add);
+
+    // The consistent load of the same pressure, -f_ext (r = f_int - f_ext): the top faces (z = 1).
+    const double p = (rule == ContactRule::FacePoints ? contact.stiffness() : 0.0) * 1e-4;
+    ContactBlock ref(2);
+    const int lf = ref.solid->add_load_function(TimeFunction::constant(1.0));
+    for (const auto& cell : ref.solid->triangulation().active_cell_iterators())
+      for (const unsigned f : cell->face_indices())
+        if (cell->face(f)->at_boundary() && std::abs(cell->face(f)->center()[2] - 1.0) < 1e-12)
+          ref.solid->add_pressure(cell->id(), f, lf, p);
+    TrilinosWrappers::MPI::Vector fext;
+    ref.solid->external_force(0.0, fext);
+
+    // Vertex and edge DoFs of the top; the two DoF numberings are the same (same mesh, same FE).
+    std::set<global_dof_index> corner;
+    for (const auto& nd : blk.node_dofs)
+      for (global_dof_index d : nd) corner.insert(d);
+    double corner_max = 0.0, total = 0.0, err = 0.0;
+    for (auto i : s.locally_owned_dofs()) {
+      total += r[i];
+      err = std::max(err, std::abs(r[i] + fext[i]));
+      if (corner.count(i)) corner_max = std::max(corner_max, std::abs(r[i]));
+    }
+    if (rule == ContactRule::FacePoints) {
+      const double F = p * 1.0;          // the pressure on the unit top face
+      EXPECT_NEAR(total, F, 1e-12 * F);  // r_z = +p per unit area: the sample is pushed down
+      EXPECT_LE(corner_max, 1e-14 * F);
+      EXPECT_LE(err, 1e-13 * F);
+      std::printf("[ measured ] face-point rule vs consistent P2 pressure load: %.2e of the force\n",
+                  err / F);
+    } else {
+      // The vertex rule: eps 1e-4 on each of the 25 top vertices, nothing on the edge nodes.
+      EXPECT_NEAR(total, 25 * 1e3 * 1e-4, 1e-12);
+      EXPECT_NEAR(corner_max, 1e3 * 1e-4, 1e-13);
+    }
+  }
 }
 
 }  // namespace
