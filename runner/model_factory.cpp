@@ -2,19 +2,57 @@
 #include "runner/model_factory.hpp"
 
 #include "core/base/error.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/config/fast_model.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
+#if __has_include("tensormass/kernels/hyperelastic_p2.hpp")
+#include "tensormass/kernels/hyperelastic_p2.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law_p2.hpp"
+#define TMLAB_HAVE_P2 1
+#endif
+#if __has_include("tensormass/kernels/averaged_pressure_tet.hpp")
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
+#define TMLAB_HAVE_ANP 1
+#endif
 
 namespace tmlab::tm::runner {
 
+namespace {
+
+[[noreturn]] void not_built(const CaseConfig& cfg) {
+  throw Error(cfg.file + ": key 'mesh.element': '" + to_string(cfg.mesh.element) +
+              "' is not in this build (its kernel is missing)");
+}
+
+}  // namespace
+
+std::unique_ptr<QuadraticMesh> make_quadratic_mesh(const CaseConfig& cfg, const Mesh& mesh) {
+  if (!is_quadratic(cfg.mesh.element)) return nullptr;
+  return std::make_unique<QuadraticMesh>(make_quadratic(mesh));
+}
+
+VecX make_node_mass(const CaseConfig& cfg, const Mesh& mesh, const QuadraticMesh* quadratic) {
+  if (!quadratic) return lumped_node_mass(mesh, cfg.material.density);
+#ifdef TMLAB_HAVE_P2
+  return hrz_lumped_node_mass(*quadratic, cfg.material.density);
+#else
+  not_built(cfg);
+#endif
+}
+
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
-                                         const StVenantKirchhoff& material, const Law& law,
-                                         const ViscoelasticBase*& visco) {
+                                         const QuadraticMesh* quadratic, const StVenantKirchhoff& material,
+                                         const Law& law, const ViscoelasticBase*& visco) {
+  check_element_support(cfg, cfg.model);
+  if (is_quadratic(cfg.mesh.element) != (quadratic != nullptr))
+    throw Error(cfg.file + ": key 'mesh.element': '" + to_string(cfg.mesh.element) +
+                "' and the mesh given to the model do not match (internal)");
   if (fast_model_for(cfg.material.law) != CaseModel::TensorMass && cfg.model != CaseModel::HyperelasticTL)
     throw Error(
         cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
@@ -39,6 +77,21 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     vo.relaxation = vs.relaxation;
     if (cfg.model == CaseModel::HyperelasticTL) {
       // The objective scheme on any law (history pk2, relaxation full; the class refuses the rest).
+      if (quadratic) {
+#ifdef TMLAB_HAVE_P2
+        std::unique_ptr<ViscoelasticHyperelasticP2> vm;
+        try {
+          vm = std::make_unique<ViscoelasticHyperelasticP2>(*quadratic, law, prony, vo);
+        } catch (const Error& e) {
+          throw Error(cfg.file +
+                      ": key 'material.viscoelastic' (model hyperelastic_tl, element p2): " + e.what());
+        }
+        visco = vm.get();
+        return vm;
+#else
+        not_built(cfg);
+#endif
+      }
       std::unique_ptr<ViscoelasticHyperelastic> vm;
       try {
         vm = std::make_unique<ViscoelasticHyperelastic>(mesh, law, prony, vo);
@@ -51,6 +104,23 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
     visco = vm.get();
     return vm;
+  }
+  if (quadratic) {
+#ifdef TMLAB_HAVE_P2
+    P2Options po;
+    po.volumetric = cfg.mesh.element == ElementKind::P2MeanDilatation ? P2Options::Volumetric::MeanDilatation
+                                                                      : P2Options::Volumetric::Standard;
+    return std::make_unique<HyperelasticP2>(*quadratic, law, po);
+#else
+    not_built(cfg);
+#endif
+  }
+  if (cfg.mesh.element == ElementKind::P1Anp) {
+#ifdef TMLAB_HAVE_ANP
+    return std::make_unique<AveragedPressureTet>(mesh, law);
+#else
+    not_built(cfg);
+#endif
   }
   if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
   if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);
