@@ -6,18 +6,24 @@
 #include <cassert>
 #include <cstdint>
 #include <limits>
+#include <tuple>
 
 namespace tmlab::tm {
 
-TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet>& tets) : num_nodes_(num_nodes) {
-  const auto n = static_cast<std::size_t>(num_nodes);
-  // Node graph: all (column node, row node) pairs of every tet, sorted and unique.
+template <class Element>
+void TangentPattern::build(const std::vector<Element>& tets) {
+  const auto n = static_cast<std::size_t>(num_nodes_);
+  const std::size_t m = std::tuple_size<Element>::value;
+  const std::size_t num_elements = tets.size();
+  // Node graph: all (column node, row node) pairs of every element, sorted and unique.
   std::vector<std::uint64_t> pairs;
-  pairs.reserve(16 * tets.size());
-  for (const Tet& tet : tets)
-    for (int q = 0; q < 4; ++q)
-      for (int p = 0; p < 4; ++p)
+  pairs.reserve(m * m * num_elements);
+  for (std::size_t t = 0; t < num_elements; ++t) {
+    const Element& tet = tets[t];
+    for (std::size_t q = 0; q < m; ++q)
+      for (std::size_t p = 0; p < m; ++p)
         pairs.push_back((static_cast<std::uint64_t>(tet[q]) << 32) | static_cast<std::uint32_t>(tet[p]));
+  }
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
 
@@ -46,22 +52,30 @@ TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet>& tets) : 
   }
   outer_[3 * n] = static_cast<StorageIndex>(nnz);
 
-  block_base_.resize(16 * tets.size());
-  for (std::size_t t = 0; t < tets.size(); ++t) {
-    const Tet& tet = tets[t];
-    for (int q = 0; q < 4; ++q) {
+  block_base_.resize(m * m * num_elements);
+  for (std::size_t t = 0; t < num_elements; ++t) {
+    const Element& tet = tets[t];
+    for (std::size_t q = 0; q < m; ++q) {
       const auto c = static_cast<std::size_t>(tet[q]);
       const auto first = rows.begin() + static_cast<std::ptrdiff_t>(start[c]);
       const auto last = rows.begin() + static_cast<std::ptrdiff_t>(start[c + 1]);
-      for (int p = 0; p < 4; ++p) {
+      for (std::size_t p = 0; p < m; ++p) {
         const auto it = std::lower_bound(first, last, tet[p]);
         assert(it != last && *it == tet[p]);
         const auto k = static_cast<std::size_t>(it - first);
-        block_base_[16 * t + 4 * static_cast<std::size_t>(q) + static_cast<std::size_t>(p)] =
+        block_base_[m * m * t + m * q + p] =
             static_cast<StorageIndex>(outer_[3 * c] + static_cast<StorageIndex>(3 * k));
       }
     }
   }
+}
+
+TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet>& tets) : num_nodes_(num_nodes) {
+  build(tets);
+}
+
+TangentPattern::TangentPattern(Index num_nodes, const std::vector<Tet10>& tets) : num_nodes_(num_nodes) {
+  build(tets);
 }
 
 bool TangentPattern::matches(const Eigen::SparseMatrix<double>& K) const {
