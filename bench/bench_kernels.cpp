@@ -5,10 +5,15 @@
 // begin+commit of each history option against the elastic tensor-mass model, 10,368 tets.
 // Contact surface detection (docs/contact.md): the boundary extraction, the grid's build and its
 // per-iteration refit on cubes of 24,576 / 105,456 / 196,608 tets.
+// The locking-free tet's explicit-step cost (docs/elements.md): internal force of AveragedPressureTet
+// against plain P1 (HyperelasticTL), same neo-Hookean law, same cube, same u (arg 0 = cells per side,
+// arg 1 = 0 for P1, 1 for the averaged-pressure tet; run both in one invocation to compare).
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/contact/surface_grid.hpp"
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
 #include "tensormass/kernels/fast_force.hpp"
+#include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/picinbono_storage.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
@@ -133,6 +138,15 @@ void BM_TensorMassTangentAssembly(benchmark::State& state) {
 }
 
 // cubes of 8^3, 16^3, 32^3 hexes x 6 = 3,072 / 24,576 / 196,608 tets
+void BM_ElementForce(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  const Law law = NeoHookean::from_young_poisson(3000.0, 0.45);
+  if (state.range(1) == 0)
+    force_bench(state, s, HyperelasticTL(s.mesh, law));
+  else
+    force_bench(state, s, AveragedPressureTet(s.mesh, law));
+}
+
 #define TM_SIZES ->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond)
 /// Viscoelastic trial force (2 Prony terms) after one committed step: the overhead over the
 /// elastic tensor-mass force is the seed paper's "about 5 %" claim (docs/theory/seed-errata.md "Flaws" 4).
@@ -358,6 +372,7 @@ void BM_LiverFastKernel(benchmark::State& state) {
 BENCHMARK(BM_LiverExplicitStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_LiverFastKernel)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_OracleForce) TM_SIZES;
+BENCHMARK(BM_ElementForce)->ArgsProduct({{16, 32}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
 BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;
 BENCHMARK(BM_TensorMassForce) TM_SIZES;

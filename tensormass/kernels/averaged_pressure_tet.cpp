@@ -1,0 +1,492 @@
+// Average-nodal-pressure (nodal-averaged F-bar) linear tet; equations in averaged_pressure_tet.hpp.
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+namespace tmlab::tm {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+inline std::size_t sz(Index i) { return static_cast<std::size_t>(i); }
+inline Vec3 node_vec(const VecX& x, Index node) { return x.segment<3>(3 * static_cast<Eigen::Index>(node)); }
+inline double ddot(const Mat3& A, const Mat3& B) { return A.cwiseProduct(B).sum(); }
+
+/// cof(F) = det(F) F^-T, columns c1 x c2, c2 x c0, c0 x c1 of F's columns c0, c1, c2.
+inline Mat3 cofactor(const Mat3& F) {
+  Mat3 C;
+  C.col(0) = F.col(1).cross(F.col(2));
+  C.col(1) = F.col(2).cross(F.col(0));
+  C.col(2) = F.col(0).cross(F.col(1));
+  return C;
+}
+
+/// psi(F, Jbar) = W_law(Ebar), Ebar = (s^2 F^T F - I)/2, s = (Jbar / det F)^(1/3), with its gradient
+/// (P_iso, q) and what its linearisation needs.
+struct PsiState {
+  bool ok = false;
+  double J = 0.0, Jb = 0.0, s = 0.0, p = 0.0, q = 0.0, W = 0.0;
+  Mat3 FinvT, Fbar, S, Pbar, Piso;
+  Mat6 D;
+};
+
+PsiState evaluate_psi(const Law& law, const Mat3& F, double Jb, bool want_W, bool want_D) {
+  PsiState st;
+  st.J = F.determinant();
+  st.Jb = Jb;
+  st.ok = law.is_stvk() ? (st.J != 0.0) : (st.J > 0.0 && Jb > 0.0);
+  if (!st.ok) return st;
+  st.s = std::cbrt(Jb / st.J);
+  st.Fbar = st.s * F;
+  const Mat3 Ebar = 0.5 * (st.Fbar.transpose() * st.Fbar - Mat3::Identity());
+  law.evaluate(Ebar, want_W ? &st.W : nullptr, &st.S, want_D ? &st.D : nullptr);
+  st.Pbar = st.Fbar * st.S;
+  st.p = ddot(st.Pbar, st.Fbar) / 3.0;
+  st.FinvT = F.inverse().transpose();
+  st.Piso = st.s * st.Pbar - st.p * st.FinvT;
+  st.q = st.p / Jb;
+  return st;
+}
+
+/// The linearisation (dP_iso, dq) of the gradient of psi in the direction (dF, dJb) (needs want_D).
+void linearize_psi(const PsiState& st, const Mat3& F, const Mat3& dF, double dJb, Mat3& dPiso, double& dq) {
+  if (!st.ok) {
+    dPiso.setConstant(kNaN);
+    dq = kNaN;
+    return;
+  }
+  const double ds = st.s / 3.0 * (dJb / st.Jb - ddot(st.FinvT, dF));
+  const Mat3 dFbar = st.s * dF + ds * F;
+  const Mat3 FtdF = st.Fbar.transpose() * dFbar;
+  const Mat3 dS = apply_tangent(st.D, 0.5 * (FtdF + FtdF.transpose()));
+  const Mat3 dPbar = dFbar * st.S + st.Fbar * dS;
+  const double dp = (ddot(dPbar, st.Fbar) + ddot(st.Pbar, dFbar)) / 3.0;
+  dPiso = ds * st.Pbar + st.s * dPbar - dp * st.FinvT + st.p * (st.FinvT * dF.transpose() * st.FinvT);
+  dq = dp / st.Jb - st.p * dJb / (st.Jb * st.Jb);
+}
+
+AveragedPressureTet::Mat10 hessian_of(const PsiState& st, const Mat3& F) {
+  AveragedPressureTet::Mat10 H;
+  if (!st.ok) {
+    H.setConstant(kNaN);
+    return H;
+  }
+  for (int k = 0; k < 10; ++k) {
+    Mat3 dF = Mat3::Zero();
+    double dJb = 0.0;
+    if (k < 9)
+      dF(k / 3, k % 3) = 1.0;
+    else
+      dJb = 1.0;
+    Mat3 dP;
+    double dq = 0.0;
+    linearize_psi(st, F, dF, dJb, dP, dq);
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) H(3 * i + j, k) = dP(i, j);
+    H(9, k) = dq;
+  }
+  return H;
+}
+
+}  // namespace
+
+AveragedPressureTet::AveragedPressureTet(const Mesh& mesh, Law law)
+    : num_nodes_(mesh.num_points()), tets_(mesh.tets), rest_(compute_tet_rest(mesh)), law_(std::move(law)) {
+  const std::size_t n = sz(num_nodes_);
+  std::vector<double> vol(n, 0.0);
+  node_tet_start_.assign(n + 1, 0);
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    for (Index a : tets_[t]) {
+      vol[sz(a)] += rest_[t].volume;
+      ++node_tet_start_[sz(a) + 1];
+    }
+  for (std::size_t a = 0; a < n; ++a) node_tet_start_[a + 1] += node_tet_start_[a];
+  node_tets_.resize(sz(node_tet_start_[n]));
+  std::vector<Index> fill(node_tet_start_.begin(), node_tet_start_.end() - 1);
+  for (std::size_t t = 0; t < tets_.size(); ++t)
+    for (Index a : tets_[t]) node_tets_[sz(fill[sz(a)]++)] = static_cast<Index>(t);
+  inv_node_volume_.resize(n);
+  for (std::size_t a = 0; a < n; ++a) inv_node_volume_[a] = vol[a] > 0.0 ? 1.0 / vol[a] : 0.0;
+  build_pattern();
+}
+
+void AveragedPressureTet::build_pattern() {
+  const std::size_t n = sz(num_nodes_);
+  // Node graph (one edge = sharing a tet), sorted adjacency lists including the node itself.
+  std::vector<std::uint64_t> pairs;
+  pairs.reserve(16 * tets_.size());
+  for (const Tet& tet : tets_)
+    for (Index c : tet)
+      for (Index r : tet)
+        pairs.push_back((static_cast<std::uint64_t>(c) << 32) | static_cast<std::uint32_t>(r));
+  std::sort(pairs.begin(), pairs.end());
+  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  node_adj_start_.assign(n + 1, 0);
+  for (std::uint64_t key : pairs) ++node_adj_start_[sz(static_cast<Index>(key >> 32)) + 1];
+  for (std::size_t c = 0; c < n; ++c) node_adj_start_[c + 1] += node_adj_start_[c];
+  node_adj_.resize(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) node_adj_[i] = static_cast<Index>(pairs[i] & 0xffffffffu);
+
+  // Column node c couples to the nodes at most three edges away (breadth-first, depth 3).
+  std::vector<Index> mark(n, -1), ball, frontier, next;
+  std::vector<std::size_t> col_start(n + 1, 0);
+  std::vector<Index> rows;
+  for (std::size_t c = 0; c < n; ++c) {
+    ball.clear();
+    if (node_adj_start_[c + 1] > node_adj_start_[c]) {
+      frontier.assign(1, static_cast<Index>(c));
+      mark[c] = static_cast<Index>(c);
+      ball.push_back(static_cast<Index>(c));
+      for (int depth = 0; depth < 3; ++depth) {
+        next.clear();
+        for (Index x : frontier)
+          for (Index k = node_adj_start_[sz(x)]; k < node_adj_start_[sz(x) + 1]; ++k) {
+            const Index y = node_adj_[sz(k)];
+            if (mark[sz(y)] != static_cast<Index>(c)) {
+              mark[sz(y)] = static_cast<Index>(c);
+              next.push_back(y);
+              ball.push_back(y);
+            }
+          }
+        frontier.swap(next);
+      }
+      std::sort(ball.begin(), ball.end());
+    }
+    rows.insert(rows.end(), ball.begin(), ball.end());
+    col_start[c + 1] = rows.size();
+  }
+  const std::size_t nnz = 9 * rows.size();
+  if (nnz > static_cast<std::size_t>(std::numeric_limits<StorageIndex>::max()))
+    throw Error("averaged-pressure tet: too many nonzeros in the widened tangent pattern for 32-bit indices");
+  outer_.resize(3 * n + 1);
+  inner_.resize(nnz);
+  for (std::size_t c = 0; c < n; ++c) {
+    const std::size_t deg = col_start[c + 1] - col_start[c];
+    for (std::size_t b = 0; b < 3; ++b) {
+      const std::size_t begin = 9 * col_start[c] + b * 3 * deg;
+      outer_[3 * c + b] = static_cast<StorageIndex>(begin);
+      for (std::size_t k = 0; k < deg; ++k)
+        for (std::size_t a = 0; a < 3; ++a)
+          inner_[begin + 3 * k + a] =
+              static_cast<StorageIndex>(3 * rows[col_start[c] + k] + static_cast<Index>(a));
+    }
+  }
+  outer_[3 * n] = static_cast<StorageIndex>(nnz);
+}
+
+Mat3 AveragedPressureTet::grad(Index t, const VecX& u) const {
+  const Tet& tet = tets_[sz(t)];
+  const TetRest& r = rest_[sz(t)];
+  const Vec3 u0 = node_vec(u, tet[0]);
+  Mat3 H = Mat3::Zero();
+  for (int j = 1; j < 4; ++j) H.noalias() += (node_vec(u, tet[sz(j)]) - u0) * r.grad[sz(j)].transpose();
+  return H;
+}
+
+void AveragedPressureTet::averaged_volumes(const VecX& u, std::vector<double>& j,
+                                           std::vector<double>& jbar) const {
+  const std::size_t nt = tets_.size();
+  j.resize(nt);
+  jbar.resize(nt);
+  std::vector<double> node_j(sz(num_nodes_), 0.0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    j[t] = (Mat3::Identity() + grad(static_cast<Index>(t), u)).determinant();
+    for (Index a : tets_[t]) node_j[sz(a)] += rest_[t].volume * j[t];
+  }
+  for (std::size_t a = 0; a < node_j.size(); ++a) node_j[a] *= inv_node_volume_[a];
+  for (std::size_t t = 0; t < nt; ++t) {
+    double s = 0.0;
+    for (Index a : tets_[t]) s += node_j[sz(a)];
+    jbar[t] = 0.25 * s;
+  }
+}
+
+double AveragedPressureTet::psi(const Mat3& F, double Jbar) const {
+  const PsiState st = evaluate_psi(law_, F, Jbar, true, false);
+  return st.ok ? st.W : kInf;
+}
+
+Eigen::Matrix<double, 10, 1> AveragedPressureTet::psi_gradient(const Mat3& F, double Jbar) const {
+  const PsiState st = evaluate_psi(law_, F, Jbar, false, false);
+  Eigen::Matrix<double, 10, 1> g;
+  if (!st.ok) return g.setConstant(kNaN);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) g(3 * i + k) = st.Piso(i, k);
+  g(9) = st.q;
+  return g;
+}
+
+AveragedPressureTet::Mat10 AveragedPressureTet::psi_hessian(const Mat3& F, double Jbar) const {
+  return hessian_of(evaluate_psi(law_, F, Jbar, false, true), F);
+}
+
+std::vector<double> AveragedPressureTet::volume_ratios(const VecX& u) const {
+  std::vector<double> j, jbar;
+  averaged_volumes(u, j, jbar);
+  for (std::size_t t = 0; t < j.size(); ++t) jbar[t] /= j[t];
+  return jbar;
+}
+
+Mat3 AveragedPressureTet::averaged_deformation_gradient(Index t, const VecX& u) const {
+  std::vector<double> j, jbar;
+  averaged_volumes(u, j, jbar);
+  return std::cbrt(jbar[sz(t)] / j[sz(t)]) * (Mat3::Identity() + grad(t, u));
+}
+
+double AveragedPressureTet::energy(const VecX& u) const {
+  assert(u.size() == num_dofs());
+  std::vector<double> j, jbar;
+  averaged_volumes(u, j, jbar);
+  double w = 0.0;
+  for (Index t = 0; t < num_tets(); ++t) {
+    const PsiState st = evaluate_psi(law_, Mat3::Identity() + grad(t, u), jbar[sz(t)], true, false);
+    if (!st.ok) return kInf;
+    w += rest_[sz(t)].volume * st.W;
+  }
+  return w;
+}
+
+void AveragedPressureTet::internal_force(const VecX& u, VecX& f) const {
+  assert(u.size() == num_dofs());
+  const std::size_t nt = tets_.size(), n = sz(num_nodes_);
+  f.setZero(num_dofs());
+  // Workspace: per tet 19 values [J, F (then V P_iso), cof F], then per node sum V J (then J_a) and
+  // Q_a (then Q_a / sum V).
+  constexpr std::size_t kPerTet = 19;
+  work_.resize(kPerTet * nt + 2 * n);
+  double* node_j = work_.data() + kPerTet * nt;
+  double* node_q = node_j + n;
+  std::fill(node_j, node_j + 2 * n, 0.0);
+  using MapM = Eigen::Map<Mat3>;
+  // Pass 1: F_e, cof F_e, J_e and the nodal volume-weighted sums of J.
+  for (std::size_t t = 0; t < nt; ++t) {
+    double* w = work_.data() + kPerTet * t;
+    const Tet& tet = tets_[t];
+    MapM F(w + 1), C(w + 10);
+    F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    C = cofactor(F);
+    const double J = F.col(0).dot(C.col(0));
+    w[0] = J;
+    const double VJ = rest_[t].volume * J;
+    for (Index a : tet) node_j[sz(a)] += VJ;
+  }
+  for (std::size_t a = 0; a < n; ++a) node_j[a] *= inv_node_volume_[a];
+  // Pass 2: Jbar_e, the law at Fbar_e, V P_iso (stored over F) and the nodal pressure sums Q_a.
+  const bool stvk = law_.is_stvk();
+  for (std::size_t t = 0; t < nt; ++t) {
+    double* w = work_.data() + kPerTet * t;
+    const Tet& tet = tets_[t];
+    const double V = rest_[t].volume;
+    MapM F(w + 1);
+    const MapM C(w + 10);
+    const double J = w[0];
+    const double Jb =
+        0.25 * (node_j[sz(tet[0])] + node_j[sz(tet[1])] + node_j[sz(tet[2])] + node_j[sz(tet[3])]);
+    double Vq4;
+    if (stvk ? J != 0.0 : (J > 0.0 && Jb > 0.0)) {
+      const double s = std::cbrt(Jb / J);
+      const Mat3 Fbar = s * F;
+      const Mat3 Pbar = Fbar * law_.pk2_stress(0.5 * (Fbar.transpose() * Fbar - Mat3::Identity()));
+      const double p = ddot(Pbar, Fbar) / 3.0;
+      F = (V * s) * Pbar - (V * p / J) * C;
+      Vq4 = 0.25 * V * p / Jb;
+    } else {
+      F.setConstant(kNaN);
+      Vq4 = kNaN;
+    }
+    for (Index a : tet) node_q[sz(a)] += Vq4;
+  }
+  for (std::size_t a = 0; a < n; ++a) node_q[a] *= inv_node_volume_[a];
+  // Pass 3: (V P_iso + pi_e cof F_e) a_p into the nodes.
+  for (std::size_t t = 0; t < nt; ++t) {
+    const double* w = work_.data() + kPerTet * t;
+    const Tet& tet = tets_[t];
+    const TetRest& r = rest_[t];
+    const double pi =
+        r.volume * (node_q[sz(tet[0])] + node_q[sz(tet[1])] + node_q[sz(tet[2])] + node_q[sz(tet[3])]);
+    const Mat3 M = Eigen::Map<const Mat3>(w + 1) + pi * Eigen::Map<const Mat3>(w + 10);
+    for (int p = 0; p < 4; ++p) f.segment<3>(3 * static_cast<Eigen::Index>(tet[sz(p)])) += M * r.grad[sz(p)];
+  }
+}
+
+void AveragedPressureTet::tangent_apply(const VecX& u, const VecX& v, VecX& Kv) const {
+  assert(u.size() == num_dofs() && v.size() == num_dofs());
+  const std::size_t nt = tets_.size(), n = sz(num_nodes_);
+  Kv.setZero(num_dofs());
+  std::vector<double> tet_j(nt), tet_dj(nt), node_j(n, 0.0), node_dj(n, 0.0), node_q(n, 0.0), node_dq(n, 0.0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Mat3 F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    const Mat3 dF = grad(static_cast<Index>(t), v);
+    tet_j[t] = F.determinant();
+    tet_dj[t] = ddot(cofactor(F), dF);
+    for (Index a : tets_[t]) {
+      node_j[sz(a)] += rest_[t].volume * tet_j[t];
+      node_dj[sz(a)] += rest_[t].volume * tet_dj[t];
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    node_j[a] *= inv_node_volume_[a];
+    node_dj[a] *= inv_node_volume_[a];
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tet& tet = tets_[t];
+    const TetRest& r = rest_[t];
+    const Mat3 F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    const Mat3 dF = grad(static_cast<Index>(t), v);
+    double Jb = 0.0, dJb = 0.0;
+    for (Index a : tet) {
+      Jb += 0.25 * node_j[sz(a)];
+      dJb += 0.25 * node_dj[sz(a)];
+    }
+    const PsiState st = evaluate_psi(law_, F, Jb, false, true);
+    Mat3 dP;
+    double dq = 0.0;
+    linearize_psi(st, F, dF, dJb, dP, dq);
+    const double q = st.ok ? st.q : kNaN;
+    for (int p = 0; p < 4; ++p)
+      Kv.segment<3>(3 * static_cast<Eigen::Index>(tet[sz(p)])) += r.volume * (dP * r.grad[sz(p)]);
+    for (Index a : tet) {
+      node_q[sz(a)] += 0.25 * r.volume * q;
+      node_dq[sz(a)] += 0.25 * r.volume * dq;
+    }
+  }
+  for (std::size_t a = 0; a < n; ++a) {
+    node_q[a] *= inv_node_volume_[a];
+    node_dq[a] *= inv_node_volume_[a];
+  }
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tet& tet = tets_[t];
+    const TetRest& r = rest_[t];
+    double pi = 0.0, dpi = 0.0;
+    for (Index a : tet) {
+      pi += r.volume * node_q[sz(a)];
+      dpi += r.volume * node_dq[sz(a)];
+    }
+    const Mat3 F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    const Mat3 dF = grad(static_cast<Index>(t), v);
+    const Mat3 C = cofactor(F);
+    const Mat3 FinvT = C / tet_j[t];
+    // d cof(F) = J (tr(F^-1 dF) F^-T - F^-T dF^T F^-T)
+    const Mat3 dC = ddot(C, dF) * FinvT - tet_j[t] * (FinvT * dF.transpose() * FinvT);
+    const Mat3 M = dpi * C + pi * dC;
+    for (int p = 0; p < 4; ++p) Kv.segment<3>(3 * static_cast<Eigen::Index>(tet[sz(p)])) += M * r.grad[sz(p)];
+  }
+}
+
+void AveragedPressureTet::scatter(const std::vector<Index>& nodes, const Eigen::MatrixXd& Kloc,
+                                  double* values) const {
+  const std::size_t m = nodes.size();
+  for (std::size_t j = 0; j < m; ++j) {
+    const std::size_t y = sz(nodes[j]);
+    const StorageIndex base = outer_[3 * y];
+    const StorageIndex stride = outer_[3 * y + 1] - base;  // 3 deg(y)
+    const StorageIndex deg = stride / 3;
+    StorageIndex k = 0;
+    for (std::size_t i = 0; i < m; ++i) {
+      const StorageIndex row = 3 * nodes[i];
+      while (k < deg && inner_[sz(base + 3 * k)] < row) ++k;
+      assert(k < deg && inner_[sz(base + 3 * k)] == row);
+      double* dst = values + base + 3 * k;
+      for (Eigen::Index b = 0; b < 3; ++b)
+        for (Eigen::Index a = 0; a < 3; ++a)
+          dst[b * stride + a] +=
+              Kloc(3 * static_cast<Eigen::Index>(i) + a, 3 * static_cast<Eigen::Index>(j) + b);
+    }
+  }
+}
+
+void AveragedPressureTet::tangent(const VecX& u, SpMat& K) const {
+  assert(u.size() == num_dofs());
+  const std::size_t nt = tets_.size(), n = sz(num_nodes_);
+  const Eigen::Index ndof = num_dofs();
+  const bool same = K.rows() == ndof && K.cols() == ndof && K.isCompressed() &&
+                    static_cast<std::size_t>(K.nonZeros()) == inner_.size() &&
+                    std::equal(outer_.begin(), outer_.end(), K.outerIndexPtr());
+  if (!same) {
+    std::vector<double> zeros(inner_.size(), 0.0);
+    const Eigen::Map<const SpMat> view(ndof, ndof, static_cast<Eigen::Index>(inner_.size()), outer_.data(),
+                                       inner_.data(), zeros.data());
+    K = view;
+    K.makeCompressed();
+  } else {
+    std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+  }
+  double* values = K.valuePtr();
+
+  // Per tet J_e, cof(F_e), Jbar_e; the law's state; the nodal pressure sums and pi_e.
+  std::vector<double> tet_j, tet_jb;
+  averaged_volumes(u, tet_j, tet_jb);
+  std::vector<Mat3> cof(nt);
+  std::vector<PsiState> states(nt);
+  std::vector<double> node_q(n, 0.0);
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Mat3 F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    cof[t] = cofactor(F);
+    states[t] = evaluate_psi(law_, F, tet_jb[t], false, true);
+    const double q = states[t].ok ? states[t].q : kNaN;
+    for (Index a : tets_[t]) node_q[sz(a)] += 0.25 * rest_[t].volume * q;
+  }
+  for (std::size_t a = 0; a < n; ++a) node_q[a] *= inv_node_volume_[a];
+
+  std::vector<Index> pos(n, -1), nodes;
+  Eigen::MatrixXd T, HT, Kloc;
+  for (std::size_t t = 0; t < nt; ++t) {
+    const Tet& tet = tets_[t];
+    const TetRest& r = rest_[t];
+    // The patch: every node of every tet sharing a node with t, sorted.
+    nodes.clear();
+    for (Index a : tet)
+      for (Index k = node_adj_start_[sz(a)]; k < node_adj_start_[sz(a) + 1]; ++k)
+        nodes.push_back(node_adj_[sz(k)]);
+    std::sort(nodes.begin(), nodes.end());
+    nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+    for (std::size_t i = 0; i < nodes.size(); ++i) pos[sz(nodes[i])] = static_cast<Index>(i);
+    const Eigen::Index m3 = 3 * static_cast<Eigen::Index>(nodes.size());
+
+    // T: rows 0..8 d(vec F_e)/dU (row-major vec), row 9 dJbar_e/dU.
+    T.setZero(10, m3);
+    for (int p = 0; p < 4; ++p) {
+      const Eigen::Index c = 3 * pos[sz(tet[sz(p)])];
+      for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) T(3 * i + j, c + i) = r.grad[sz(p)][j];
+    }
+    for (Index a : tet) {
+      const double wa = 0.25 * inv_node_volume_[sz(a)];
+      for (Index k = node_tet_start_[sz(a)]; k < node_tet_start_[sz(a) + 1]; ++k) {
+        const std::size_t e = sz(node_tets_[sz(k)]);
+        const double w = wa * rest_[e].volume;
+        for (int p = 0; p < 4; ++p)
+          T.block<1, 3>(9, 3 * pos[sz(tets_[e][sz(p)])]) += w * (cof[e] * rest_[e].grad[sz(p)]).transpose();
+      }
+    }
+    const Mat3 F = Mat3::Identity() + grad(static_cast<Index>(t), u);
+    HT.noalias() = (r.volume * hessian_of(states[t], F)) * T;
+    Kloc.noalias() = T.transpose() * HT;
+    // pi_e d^2 J_e: entry (p i, q j) = pi J (h_p[i] h_q[j] - h_p[j] h_q[i]), h_p = F^-T a_p.
+    const double pi =
+        r.volume * (node_q[sz(tet[0])] + node_q[sz(tet[1])] + node_q[sz(tet[2])] + node_q[sz(tet[3])]);
+    const double piJ = pi * tet_j[t];
+    const Mat3 FinvT = cof[t] / tet_j[t];
+    for (int p = 0; p < 4; ++p) {
+      const Vec3 hp = FinvT * r.grad[sz(p)];
+      const Eigen::Index cp = 3 * pos[sz(tet[sz(p)])];
+      for (int qn = 0; qn < 4; ++qn) {
+        const Vec3 hq = FinvT * r.grad[sz(qn)];
+        const Eigen::Index cq = 3 * pos[sz(tet[sz(qn)])];
+        Kloc.block<3, 3>(cp, cq) += piJ * (hp * hq.transpose() - hq * hp.transpose());
+      }
+    }
+    scatter(nodes, Kloc, values);
+    for (Index x : nodes) pos[sz(x)] = -1;
+  }
+}
+
+}  // namespace tmlab::tm
