@@ -6,6 +6,8 @@
 #include "core/config/fast_model.hpp"
 
 #include <Eigen/Geometry>
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
+#include "tensormass/kernels/hyperelastic_p2.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
@@ -13,17 +15,9 @@
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
-#if __has_include("tensormass/kernels/hyperelastic_p2.hpp")
-#include "tensormass/kernels/hyperelastic_p2.hpp"
-#define TMLAB_HAVE_P2 1
-#endif
 #if __has_include("tensormass/viscoelastic/viscoelastic_law_p2.hpp")
 #include "tensormass/viscoelastic/viscoelastic_law_p2.hpp"
 #define TMLAB_HAVE_P2_VISCO 1
-#endif
-#if __has_include("tensormass/kernels/averaged_pressure_tet.hpp")
-#include "tensormass/kernels/averaged_pressure_tet.hpp"
-#define TMLAB_HAVE_ANP 1
 #endif
 
 namespace tmlab::tm::runner {
@@ -122,21 +116,13 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     return vm;
   }
   if (quadratic) {
-#ifdef TMLAB_HAVE_P2
     P2Options po;
     po.volumetric = cfg.mesh.element == ElementKind::P2MeanDilatation ? P2Options::Volumetric::MeanDilatation
                                                                       : P2Options::Volumetric::Standard;
     return std::make_unique<HyperelasticP2>(*quadratic, law, po);
-#else
-    not_built(cfg);
-#endif
   }
   if (cfg.mesh.element == ElementKind::P1Anp) {
-#ifdef TMLAB_HAVE_ANP
     return std::make_unique<AveragedPressureTet>(mesh, law);
-#else
-    not_built(cfg);
-#endif
   }
   if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
   if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);
