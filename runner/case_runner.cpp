@@ -6,6 +6,7 @@
 #include "runner/case_runner.hpp"
 
 #include "core/base/process.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/mesh/mesh_quality.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/run_output.hpp"
@@ -75,6 +76,8 @@ nlohmann::json summarise(const Problem& p, const StepRecorder& rec, const nlohma
                             {"model", to_string(cfg.model)},
                             {"mesh",
                              {{"file", cfg.mesh.file},
+                              {"element", to_string(cfg.mesh.element)},
+                              {"nodes", p.num_nodes()},
                               {"points", p.mesh.num_points()},
                               {"tets", p.mesh.num_tets()},
                               {"volume_m3", p.report.total_volume},

@@ -25,8 +25,8 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
                                    RunCheckpoint& ck) {
   const CaseConfig& cfg = p.cfg;
   const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
-  ContactStaticSolver solver(p.system, p.mesh, cs.bodies, cs.options, newton_options(cfg.solver), 0.0, s.u,
-                             cfg.solver.max_cutbacks);
+  ContactStaticSolver solver(p.system, p.mesh, p.quadratic.get(), cs.bodies, cs.options,
+                             newton_options(cfg.solver), 0.0, s.u, cfg.solver.max_cutbacks);
   check_contact_rig(p.mesh, solver.surface(), solver.bodies(), cs.options.max_initial_gap, 0.0,
                     cfg.solver.t_end, s.u);
   rec.set_contact(&solver.state());
@@ -106,7 +106,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
   const int n_steps = cfg.solver.steps;
   const ContactSettings cs = contact_settings(cfg.contact, cfg.file);
   ContactImplicitDynamics integ(p.system, p.mesh, cs.bodies, cs.options, cfg.solver.scheme,
-                                newton_options(cfg.solver), cfg.solver.dt);
+                                newton_options(cfg.solver), cfg.solver.dt, p.quadratic.get());
   integ.initialize(0.0, s.u, s.v);
   check_contact_rig(p.mesh, integ.contact().surface(), integ.contact().bodies(), cs.options.max_initial_gap,
                     0.0, cfg.solver.t_end, s.u);

@@ -2,19 +2,67 @@
 #include "runner/model_factory.hpp"
 
 #include "core/base/error.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/config/fast_model.hpp"
+
+#include <Eigen/Geometry>
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
+#include "tensormass/kernels/hyperelastic_p2.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
+#include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
+#if __has_include("tensormass/viscoelastic/viscoelastic_law_p2.hpp")
+#include "tensormass/viscoelastic/viscoelastic_law_p2.hpp"
+#define TMLAB_HAVE_P2_VISCO 1
+#endif
 
 namespace tmlab::tm::runner {
 
+namespace {
+
+[[noreturn]] void not_built(const CaseConfig& cfg) {
+  throw Error(cfg.file + ": key 'mesh.element': '" + to_string(cfg.mesh.element) +
+              "' is not in this build (its kernel is missing)");
+}
+
+}  // namespace
+
+std::unique_ptr<QuadraticMesh> make_quadratic_mesh(const CaseConfig& cfg, const Mesh& mesh) {
+  if (!is_quadratic(cfg.mesh.element)) return nullptr;
+  return std::make_unique<QuadraticMesh>(make_quadratic(mesh));
+}
+
+VecX make_node_mass(const CaseConfig& cfg, const Mesh& mesh, const QuadraticMesh* quadratic) {
+  if (!quadratic) return lumped_node_mass(mesh, cfg.material.density);
+  // HRZ lumping of the straight-sided 10-node tet: the consistent mass's diagonal (rho V / 70 at a
+  // vertex, 8 rho V / 105 at a midside node) scaled to the element's mass, rho V / 36 and
+  // 4 rho V / 27 (sum 4/36 + 24/27 = 1).
+  const double rho = cfg.material.density;
+  if (!(rho > 0.0)) throw Error(cfg.file + ": key 'material.density' must be > 0");
+  VecX m = VecX::Zero(quadratic->num_points());
+  for (const Tet10& t : quadratic->tets) {
+    const Vec3& x0 = quadratic->points[static_cast<std::size_t>(t[0])];
+    const double v = (quadratic->points[static_cast<std::size_t>(t[1])] - x0)
+                         .dot((quadratic->points[static_cast<std::size_t>(t[2])] - x0)
+                                  .cross(quadratic->points[static_cast<std::size_t>(t[3])] - x0)) /
+                     6.0;
+    for (std::size_t a = 0; a < 4; ++a) m[t[a]] += rho * v / 36.0;
+    for (std::size_t a = 4; a < 10; ++a) m[t[a]] += 4.0 * rho * v / 27.0;
+  }
+  return m;
+}
+
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
-                                         const StVenantKirchhoff& material, const Law& law,
-                                         const ViscoelasticBase*& visco) {
+                                         const QuadraticMesh* quadratic, const StVenantKirchhoff& material,
+                                         const Law& law, const ViscoelasticBase*& visco) {
+  check_element_support(cfg, cfg.model);
+  if (is_quadratic(cfg.mesh.element) != (quadratic != nullptr))
+    throw Error(cfg.file + ": key 'mesh.element': '" + to_string(cfg.mesh.element) +
+                "' and the mesh given to the model do not match (internal)");
   if (fast_model_for(cfg.material.law) != CaseModel::TensorMass && cfg.model != CaseModel::HyperelasticTL)
     throw Error(
         cfg.file + ": key 'model': '" + to_string(cfg.model) + "' is " +
@@ -39,6 +87,21 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     vo.relaxation = vs.relaxation;
     if (cfg.model == CaseModel::HyperelasticTL) {
       // The objective scheme on any law (history pk2, relaxation full; the class refuses the rest).
+      if (quadratic) {
+#ifdef TMLAB_HAVE_P2_VISCO
+        std::unique_ptr<ViscoelasticHyperelasticP2> vm;
+        try {
+          vm = std::make_unique<ViscoelasticHyperelasticP2>(*quadratic, law, prony, vo);
+        } catch (const Error& e) {
+          throw Error(cfg.file +
+                      ": key 'material.viscoelastic' (model hyperelastic_tl, element p2): " + e.what());
+        }
+        visco = vm.get();
+        return vm;
+#else
+        not_built(cfg);
+#endif
+      }
       std::unique_ptr<ViscoelasticHyperelastic> vm;
       try {
         vm = std::make_unique<ViscoelasticHyperelastic>(mesh, law, prony, vo);
@@ -51,6 +114,15 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     auto vm = std::make_unique<ViscoelasticStVK>(mesh, material, prony, vo);
     visco = vm.get();
     return vm;
+  }
+  if (quadratic) {
+    P2Options po;
+    po.volumetric = cfg.mesh.element == ElementKind::P2MeanDilatation ? P2Options::Volumetric::MeanDilatation
+                                                                      : P2Options::Volumetric::Standard;
+    return std::make_unique<HyperelasticP2>(*quadratic, law, po);
+  }
+  if (cfg.mesh.element == ElementKind::P1Anp) {
+    return std::make_unique<AveragedPressureTet>(mesh, law);
   }
   if (cfg.model == CaseModel::HyperelasticTL) return std::make_unique<HyperelasticTL>(mesh, law);
   if (cfg.model == CaseModel::TlOracle) return std::make_unique<TotalLagrangianStVK>(mesh, material);

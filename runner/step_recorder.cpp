@@ -51,7 +51,7 @@ StepRecorder::StepRecorder(const Problem& p, const RunOutput& out)
       rec_(make_recorder(p)),
       f_applied_prev_(VecX::Zero(p.system.num_dofs())),
       u_prev_(VecX::Zero(p.system.num_dofs())) {
-  if (p.cfg.output.xdmf) xdmf_ = std::make_unique<XdmfTimeSeries>(out.file("fields.xdmf"), p.mesh);
+  if (p.cfg.output.xdmf) xdmf_ = std::make_unique<XdmfTimeSeries>(out.file("fields.xdmf"), p.node_mesh());
   if (p.cfg.output.vtu) pvd_ = std::make_unique<PvdWriter>(out.file("result.pvd"));
   // Nodal displacements at every field frame, in mesh node order: what `tmlab compare` diffs
   // against the deal.II reference (which writes the same file).
@@ -94,7 +94,7 @@ Recorder::StepValues StepRecorder::values(int step, double t, const VecX& u, con
   u_prev_ = u;
   Recorder::StepValues s;
   s.time = t;
-  for (Index i = 0; i < p_.mesh.num_points(); ++i)
+  for (Index i = 0; i < p_.num_nodes(); ++i)
     s.max_displacement = std::max(s.max_displacement, u.segment<3>(3 * i).norm());
   // Stored energy: the elastic energy, or for a viscoelastic material the long-term spring plus
   // the Maxwell-branch energies of the committed state (the same definition as the deal.II
@@ -126,7 +126,7 @@ Recorder::StepValues StepRecorder::values(int step, double t, const VecX& u, con
 }
 
 std::vector<double> StepRecorder::contact_pressure() const {
-  std::vector<double> pr(static_cast<std::size_t>(p_.mesh.num_points()), 0.0);
+  std::vector<double> pr(static_cast<std::size_t>(p_.num_nodes()), 0.0);
   for (const ContactBodyState& b : *contact_)
     for (std::size_t i = 0; i < b.nodes.size(); ++i)
       pr[static_cast<std::size_t>(b.nodes[i])] += b.pressure[i];
@@ -142,7 +142,10 @@ void StepRecorder::fields(double t, const VecX& u, const VecX& v, const std::vec
   frames_u_.insert(frames_u_.end(), u.data(), u.data() + u.size());
   frames_v_.insert(frames_v_.end(), v.data(), v.data() + v.size());
   const int frame = rec_.field_frames();
-  rec_.add_field_frame(t, std::vector<double>(u.data(), u.data() + u.size()));
+  // displacement.h5 holds the vertices' displacements (all nodes on linear tets; on quadratic ones the
+  // vertices come first): the deal.II reference writes the same at any degree.
+  const Eigen::Index nv = 3 * static_cast<Eigen::Index>(p_.mesh.num_points());
+  rec_.add_field_frame(t, std::vector<double>(u.data(), u.data() + nv));
   const CellFields c = cell_fields(p_, u);
   const auto disp = as_vec3(u), vel = as_vec3(v);
   std::vector<double> umag(disp.size());
@@ -159,7 +162,7 @@ void StepRecorder::fields(double t, const VecX& u, const VecX& v, const std::vec
     xdmf_->flush();
   }
   if (pvd_) {
-    VtuWriter w(p_.mesh);
+    VtuWriter w = p_.quadratic ? VtuWriter(p_.quadratic_nodes, *p_.quadratic) : VtuWriter(p_.mesh);
     w.set_displacement(disp);
     w.add_point_vector("displacement", disp);
     w.add_point_scalar("displacement_magnitude", umag);
@@ -211,7 +214,7 @@ void StepRecorder::restore(const CheckpointData& d) {
   const auto& fu = d.doubles("frames.u");
   const auto& fv = d.doubles("frames.v");
   const std::size_t n = static_cast<std::size_t>(p_.system.num_dofs());
-  const std::size_t np = static_cast<std::size_t>(p_.mesh.num_points());
+  const std::size_t np = static_cast<std::size_t>(p_.num_nodes());
   const std::vector<double> none;
   const auto& fpc = contact_ ? d.doubles("frames.contact_pressure") : none;
   if (fu.size() != ft.size() * n || fv.size() != ft.size() * n || (contact_ && fpc.size() != ft.size() * np))

@@ -7,6 +7,7 @@
 #include "core/base/error.hpp"
 #include "core/base/process.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/config/fast_model.hpp"
 #include "core/results/recorder.hpp"
 #include "core/results/result_compare.hpp"
@@ -50,7 +51,12 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
   if (p.positional.size() != 1) throw UsageError("compare needs exactly one case name or case file");
   const CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
   const std::string against = p.text("--against");
-  const int degree = p.text("--degree") == "2" ? 2 : 1;
+  // The reference's degree: --degree, else the case's element's (2 for p2 and p2_mean_dilatation).
+  const int degree =
+      p.given("--degree") ? (p.text("--degree") == "2" ? 2 : 1) : (is_quadratic(cfg.mesh.element) ? 2 : 1);
+  if (degree == 1 && is_quadratic(cfg.mesh.element))
+    throw UsageError("--degree 1 contradicts the case's mesh.element '" + to_string(cfg.mesh.element) +
+                     "': the fast model runs 10-node tets, so the reference runs P2 (drop --degree)");
   const std::string time_integration = p.text("--time-integration");
   if (time_integration == "ida" && against != "reference")
     throw UsageError("--time-integration ida needs --against reference");
@@ -74,6 +80,8 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     CaseConfig tm_cfg = cfg;
     // The fast model: the tensor-mass kernel for St VK, the F-based kernel for the other laws.
     tm_cfg.model = fast_model_for(cfg.material.law);
+    // The elements other than p1 run on the F-based kernel only (any law, St VK included).
+    if (cfg.mesh.element != ElementKind::P1) tm_cfg.model = CaseModel::HyperelasticTL;
     std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
     const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
     tmlab::RunResult b;

@@ -46,11 +46,38 @@ int cmd_cases(const std::vector<std::string>& args) {
   return 0;
 }
 
+namespace {
+
+/// tmlab mesh quadratic FILE --out OUT.msh: the 10-node mesh of a checked linear mesh.
+int mesh_quadratic(const std::vector<std::string>& args) {
+  const ParsedOptions p = parse(mesh_quadratic_spec(), args);
+  if (p.positional.size() != 1) throw UsageError("mesh quadratic needs exactly one mesh file");
+  if (!p.given("--out")) throw UsageError("mesh quadratic needs --out OUT.msh");
+  const std::string out = p.text("--out");
+  check_output_files({out}, {p.positional[0]}, p.flag("--overwrite"));
+  Mesh mesh = read_mesh(p.positional[0]);
+  if (p.given("--scale")) scale_mesh(mesh, p.decimal("--scale"));
+  const MeshReport rep = analyse_mesh(mesh);
+  if (mesh.num_tets() == 0 || !rep.inverted.empty() || !rep.degenerate.empty())
+    throw Error(p.positional[0] + ": " + std::to_string(mesh.num_tets()) + " tets, " +
+                std::to_string(rep.inverted.size()) + " inverted and " +
+                std::to_string(rep.degenerate.size()) +
+                " degenerate: repair it first ('tmlab mesh check FILE --repair OUT.msh')");
+  const QuadraticMesh qm = make_quadratic(mesh);
+  write_gmsh22_quadratic(mesh, qm, out);
+  std::cout << "wrote " << out << ": " << qm.num_points() << " nodes (" << qm.num_vertices << " vertices, "
+            << qm.num_edges() << " midside), " << qm.num_tets() << " 10-node tets\n";
+  return 0;
+}
+
+}  // namespace
+
 int cmd_mesh(const std::vector<std::string>& args) {
-  if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE");
+  if (args.empty()) throw UsageError("mesh needs a sub-command: info FILE | check FILE | quadratic FILE");
   const std::string sub = args[0];
+  if (sub == "quadratic") return mesh_quadratic({args.begin() + 1, args.end()});
   if (sub != "info" && sub != "check")
-    throw UsageError("unknown mesh sub-command '" + sub + "' (info or check)");
+    throw UsageError("unknown mesh sub-command '" + sub + "' (info, check or quadratic)");
   const ParsedOptions p =
       parse(sub == "info" ? mesh_info_spec() : mesh_check_spec(), {args.begin() + 1, args.end()});
   // Only `mesh check` declares --repair.

@@ -7,6 +7,7 @@
 
 #include "core/base/error.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/element_kind.hpp"
 #include "runner/case_runner.hpp"
 
 #ifdef TMLAB_HAVE_REFERENCE
@@ -96,12 +97,16 @@ int run_config(const CaseConfig& cfg, const ParsedOptions& p, const std::string&
     throw UsageError(
         "--resume and --checkpoint-every are for the tensor-mass models (tensor_mass, tl_oracle); "
         "the deal.II reference has no checkpoints");
-  int degree = 1;
+  // The reference's degree follows the case's element (P2 for p2 and p2_mean_dilatation) unless given.
+  int degree = is_quadratic(cfg.mesh.element) ? 2 : 1;
   if (has("--degree")) {
     if (model != "reference")
       throw UsageError("--degree applies to the deal.II reference only (add --model reference); the " +
-                       model + " model is P1 (linear tets)");
+                       model + " model's element is mesh.element (or --element)");
     degree = p.text("--degree") == "2" ? 2 : 1;
+    if (degree == 1 && is_quadratic(cfg.mesh.element))
+      throw UsageError("--degree 1 contradicts the case's mesh.element '" + to_string(cfg.mesh.element) +
+                       "' (a quadratic element): drop --degree, or run --element p1");
   }
   const std::string time_integration =
       has("--time-integration") ? p.text("--time-integration") : "fixed_step";
@@ -129,6 +134,7 @@ int cmd_run(const std::vector<std::string>& args, const std::string& command_lin
   CaseConfig cfg = load_case(resolve_case(p.positional[0]), tmlab_root());
   if (const std::optional<CaseModel> fast = case_model_from_string(p.text("--model")); fast)
     cfg.model = *fast;
+  if (p.given("--element")) cfg.mesh.element = *element_kind_from_string(p.text("--element"));
   return run_config(cfg, p, command_line);
 }
 

@@ -18,6 +18,7 @@ CommandSpec compare_spec();
 CommandSpec cases_spec();
 CommandSpec mesh_info_spec();
 CommandSpec mesh_check_spec();
+CommandSpec mesh_quadratic_spec();
 CommandSpec version_spec();
 CommandSpec help_spec();
 // The studies and the catalogue: command_specs_studies.cpp.

@@ -50,6 +50,9 @@ void add_rig_mesh_material(std::vector<OptionSpec>& o) {
   o.push_back(decimal("--nu", "V", Interval{}, "Poisson's ratio"));
   o.push_back(decimal("--density", "RHO", Interval{}, "density, kg/m^3"));
   o.push_back(text("--model", "M", "the case's model (tensor_mass, hyperelastic_tl, ...)"));
+  o.push_back(text("--element", "E",
+                   "the case's mesh.element: p1, p1_anp, p2, p2_mean_dilatation (not p1: model\n"
+                   "hyperelastic_tl unless --model is given; docs/elements.md)"));
 }
 
 }  // namespace

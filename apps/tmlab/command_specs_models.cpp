@@ -34,6 +34,8 @@ CommandSpec run_spec() {
           "run a case (a name from 'tmlab cases' or a case file)",
           {choice("--model", {"tensor_mass", "tl_oracle", "hyperelastic_tl", "reference"},
                   "override the case's model"),
+           choice("--element", {"p1", "p1_anp", "p2", "p2_mean_dilatation"},
+                  "override the case's mesh.element (docs/elements.md)"),
            choice("--degree", {"1", "2"}, "reference element degree").def("1"),
            choice("--time-integration", {"fixed_step", "ida"},
                   "reference viscoelastic time integration (IDA: the DAE, serial)")
@@ -66,6 +68,17 @@ CommandSpec mesh_info_spec() {
           {decimal("--scale", "F", Interval{}, "multiply the coordinates by F"), flag("--json", "as JSON")}};
 }
 
+CommandSpec mesh_quadratic_spec() {
+  return {"mesh quadratic",
+          {"FILE --out OUT.msh [options]"},
+          "write the 10-node (P2) mesh of a linear tet mesh, Gmsh 2.2 type 11\n"
+          "(midside nodes at the edge midpoints; for other tools: tmlab runs P2\n"
+          "from the linear mesh with mesh.element, docs/elements.md)",
+          {decimal("--scale", "F", Interval{}, "multiply the coordinates by F"),
+           text("--out", "OUT.msh", "the quadratic mesh (never over FILE)"),
+           flag("--overwrite", "replace an existing OUT.msh")}};
+}
+
 CommandSpec mesh_check_spec() {
   return {"mesh check",
           {"FILE [options]"},
@@ -83,11 +96,12 @@ CommandSpec help_spec() {
 }
 
 std::vector<CommandSpec> command_specs() {
-  return {demo_spec(),       run_spec(),    compare_spec(),      cases_spec(),         mesh_info_spec(),
-          mesh_check_spec(), paper_spec(),  hereditary_spec(),   workprecision_spec(), depth_limit_spec(),
-          realtime_spec(),   verify_spec(), data_convert_spec(), data_show_spec(),     rig_spec(),
-          converge_spec(),   fit_spec(),    bench_spec(),        discover_spec(),      version_spec(),
-          help_spec()};
+  return {demo_spec(),       run_spec(),           compare_spec(),        cases_spec(),
+          mesh_info_spec(),  mesh_check_spec(),    mesh_quadratic_spec(), paper_spec(),
+          hereditary_spec(), workprecision_spec(), depth_limit_spec(),    realtime_spec(),
+          verify_spec(),     data_convert_spec(),  data_show_spec(),      rig_spec(),
+          converge_spec(),   fit_spec(),           bench_spec(),          discover_spec(),
+          version_spec(),    help_spec()};
 }
 
 std::vector<CommandSpec> specs_of(const std::string& command) {

@@ -80,7 +80,8 @@ const char* const kRigOptions[] = {"--shape",
                                    "--E",
                                    "--nu",
                                    "--density",
-                                   "--model"};
+                                   "--model",
+                                   "--element"};
 
 }  // namespace
 
@@ -131,6 +132,11 @@ bool is_rig_test(const std::string& name) {
 
 void apply_material(const ParsedOptions& p, rigs::RigSpec& s) {
   if (p.given("--model")) s.model = p.text("--model");
+  if (p.given("--element")) {
+    s.element = p.text("--element");
+    // The elements other than p1 run on the F-based kernel only: its model unless one is named.
+    if (s.element != "p1" && !p.given("--model")) s.model = "hyperelastic_tl";
+  }
   if (p.given("--material")) {
     try {
       s.material = nlohmann::json::parse(p.text("--material"));

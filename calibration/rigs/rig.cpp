@@ -4,6 +4,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/constitutive/law_catalogue.hpp"
 #include "core/io/atomic_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
@@ -448,6 +449,17 @@ void validate_material(const RigSpec& s) {
     refuse(s, "model",
            "'" + s.model + "' runs St Venant-Kirchhoff only; material.law '" + to_string(m.law) +
                "' runs on the F-based kernel: use model hyperelastic_tl (--model hyperelastic_tl)");
+  const std::optional<ElementKind> element = element_kind_from_string(s.element);
+  if (!element)
+    refuse(s, "element (--element)",
+           "must be " + choice_list(element_kind_names()) + " (got '" + printable(s.element, 40) + "')");
+  // The runner's element checks (core/config/element_kind.hpp) on the case this rig writes.
+  CaseConfig c;
+  c.file = "rig '" + s.name + "'";
+  c.mesh.element = *element;
+  c.material = m;
+  c.contact.enabled = s.test == RigTest::Indentation;
+  check_element_support(c, *model);
 }
 
 }  // namespace
@@ -526,6 +538,7 @@ json rig_case(const RigSpec& s, const std::string& mesh_file) {
   c["description"] = rig_test_name(s.test) + " rig (tmlab rig)";
   c["model"] = s.model;
   c["mesh"] = {{"file", mesh_file}};
+  if (s.element != "p1") c["mesh"]["element"] = s.element;  // p1: the case as before (the default)
   c["material"] = s.material;
   c["boundary"] = s.test == RigTest::Indentation ? indentation_boundary(s) : platen_boundary(s);
   if (s.test == RigTest::Indentation) c["contact"] = {{"bodies", json::array({indenter_body(s)})}};

@@ -111,6 +111,9 @@ struct RigSpec {
   // The case file's `material` section as given (law, moduli, density, viscoelastic).
   nlohmann::json material = {{"E", 3000.0}, {"nu", 0.45}, {"density", 1000.0}};
   std::string model = "tensor_mass";
+  /// The fast model's element (the case's mesh.element; docs/elements.md): p1 | p1_anp | p2 |
+  /// p2_mean_dilatation. The elements other than p1 need model hyperelastic_tl.
+  std::string element = "p1";
 };
 
 /// Limits of a rig, each refused beyond with its reason (validate()).

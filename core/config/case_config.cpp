@@ -5,6 +5,7 @@
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/config/config_reader.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/constitutive/law_catalogue.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/results/run_output.hpp"
@@ -72,6 +73,7 @@ MeshSpec parse_mesh(ConfigReader& root, const std::vector<std::string>& search_d
   mesh.file = resolve(m.require<std::string>("file"), search_dirs, m, "file");
   mesh.scale = m.positive("scale", 1.0);
   mesh.repair_orientation = m.get<bool>("repair_orientation", false);
+  mesh.element = read_choice(m, "element", ElementKind::P1, element_kind_from_string, element_kind_names());
   m.finish();
   return mesh;
 }
@@ -506,12 +508,14 @@ json output_json(const OutputSpec& o) {
 }  // namespace
 
 nlohmann::json effective_case_json(const CaseConfig& c) {
-  json doc = {
-      {"name", c.name},
-      {"description", c.description},
-      {"model", to_string(c.model)},
-      {"mesh",
-       {{"file", c.mesh.file}, {"scale", c.mesh.scale}, {"repair_orientation", c.mesh.repair_orientation}}}};
+  json doc = {{"name", c.name},
+              {"description", c.description},
+              {"model", to_string(c.model)},
+              {"mesh",
+               {{"file", c.mesh.file},
+                {"scale", c.mesh.scale},
+                {"repair_orientation", c.mesh.repair_orientation},
+                {"element", to_string(c.mesh.element)}}}};
   doc["material"] = material_json(c.material);
   doc["boundary"] = boundary_json(c.boundary);
   json loads = json::array();

@@ -21,10 +21,14 @@
 
 namespace tmlab {
 
+/// The fast model's element (`mesh.element`; core/config/element_kind.hpp, docs/elements.md).
+enum class ElementKind { P1, P1Anp, P2, P2MeanDilatation };
+
 struct MeshSpec {
   std::string file;    ///< resolved path
   double scale = 1.0;  ///< multiply coordinates (e.g. 0.001 for a mesh in mm)
   bool repair_orientation = false;
+  ElementKind element = ElementKind::P1;  ///< p1 | p1_anp | p2 | p2_mean_dilatation
 };
 
 /// Prony-series viscoelasticity (issue 3; docs/theory/viscoelasticity.md). The choices are the

@@ -18,6 +18,7 @@ namespace tmlab {
 namespace {
 
 constexpr int kVtkTetra = 10;
+constexpr int kVtkQuadraticTetra = 24;
 
 /// Appends one DataArray element with `count` values of type T.
 template <typename T>
@@ -56,6 +57,15 @@ void data_array(std::string& out, const char* vtk_type, const std::string& name,
 // --- VtuWriter -----------------------------------------------------------------------------------
 
 VtuWriter::VtuWriter(const Mesh& mesh) : mesh_(&mesh) {}
+
+VtuWriter::VtuWriter(const Mesh& nodes, const QuadraticMesh& quadratic)
+    : mesh_(&nodes), quadratic_(&quadratic) {
+  if (nodes.points.size() != quadratic.points.size() || nodes.tets.size() != quadratic.tets.size())
+    throw Error("vtu: the node mesh does not match the quadratic mesh (" +
+                std::to_string(nodes.points.size()) + " points, " + std::to_string(nodes.tets.size()) +
+                " tets against " + std::to_string(quadratic.points.size()) + ", " +
+                std::to_string(quadratic.tets.size()) + ")");
+}
 
 void VtuWriter::set_positions(const std::vector<Vec3>& positions) {
   if (positions.size() != mesh_->points.size()) {
@@ -131,13 +141,16 @@ std::string VtuWriter::to_string(VtuEncoding encoding) const {
       for (int c = 0; c < 3; ++c) xyz[3 * i + c] = m.points[i][c];
     }
   }
-  std::vector<std::int64_t> connectivity(4 * nc);
+  const std::size_t nv = quadratic_ ? 10 : 4;
+  std::vector<std::int64_t> connectivity(nv * nc);
   std::vector<std::int64_t> offsets(nc);
   for (std::size_t e = 0; e < nc; ++e) {
-    for (int k = 0; k < 4; ++k) connectivity[4 * e + k] = m.tets[e][k];
-    offsets[e] = static_cast<std::int64_t>(4 * (e + 1));
+    for (std::size_t k = 0; k < nv; ++k)
+      connectivity[nv * e + k] = quadratic_ ? quadratic_->tets[e][k] : m.tets[e][k];
+    offsets[e] = static_cast<std::int64_t>(nv * (e + 1));
   }
-  const std::vector<std::uint8_t> types(nc, static_cast<std::uint8_t>(kVtkTetra));
+  const std::vector<std::uint8_t> types(
+      nc, static_cast<std::uint8_t>(quadratic_ ? kVtkQuadraticTetra : kVtkTetra));
 
   std::string out;
   out.reserve(64 * (np + nc) + 1024);

@@ -5,6 +5,7 @@
 #pragma once
 
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/quadratic_mesh.hpp"
 
 #include <Eigen/Core>
 
@@ -26,6 +27,10 @@ enum class VtuEncoding { Ascii, Base64 };
 class VtuWriter {
  public:
   explicit VtuWriter(const Mesh& mesh);
+  /// Quadratic tets (VTK_QUADRATIC_TETRA, 24; the QuadraticMesh's node order is VTK's): `nodes` has
+  /// the quadratic mesh's points and one tet (its vertex tet) per 10-node tet, for the point and
+  /// cell counts; the cells are `quadratic`'s. Both must outlive the writer.
+  VtuWriter(const Mesh& nodes, const QuadraticMesh& quadratic);
 
   /// Writes the mesh at these positions (one per mesh point) instead of the rest positions.
   void set_positions(const std::vector<Vec3>& positions);
@@ -56,6 +61,7 @@ class VtuWriter {
                  std::size_t expected, const char* what) const;
 
   const Mesh* mesh_;
+  const QuadraticMesh* quadratic_ = nullptr;
   std::vector<double> positions_;  ///< 3 per point; empty = rest positions
   std::vector<Field> point_fields_;
   std::vector<Field> cell_fields_;

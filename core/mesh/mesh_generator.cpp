@@ -131,7 +131,12 @@ void put_double(std::string& out, double v) {
 
 }  // namespace
 
-void write_gmsh22(const Mesh& mesh, const std::string& path) {
+namespace {
+
+/// write_gmsh22 (quadratic null) and write_gmsh22_quadratic.
+void write_gmsh22_file(const Mesh& mesh, const QuadraticMesh* quadratic, const std::string& path) {
+  const std::vector<Vec3>& points = quadratic ? quadratic->points : mesh.points;
+  [[maybe_unused]] const Index num_points = static_cast<Index>(points.size());  // asserts
   std::string out;
   out.reserve(64 * mesh.points.size() + 48 * (mesh.tets.size() + mesh.triangles.size()));
   out += "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n";
@@ -148,9 +153,9 @@ void write_gmsh22(const Mesh& mesh, const std::string& path) {
     }
     out += "$EndPhysicalNames\n";
   }
-  out += "$Nodes\n" + std::to_string(mesh.points.size()) + "\n";
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    const Vec3& p = mesh.points[i];
+  out += "$Nodes\n" + std::to_string(points.size()) + "\n";
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Vec3& p = points[i];
     if (!p.allFinite())
       throw input_error(path, 0, "point " + std::to_string(i) + " has non-finite coordinates");
     out += std::to_string(i + 1);
@@ -167,7 +172,7 @@ void write_gmsh22(const Mesh& mesh, const std::string& path) {
     out += std::to_string(++eid) + " " + std::to_string(type) + " 2 " + std::to_string(phys) + " " +
            std::to_string(phys > 0 ? phys : 1);
     for (int k = 0; k < count; ++k) {
-      assert(nodes[k] >= 0 && nodes[k] < mesh.num_points());
+      assert(nodes[k] >= 0 && nodes[k] < num_points);
       out += " " + std::to_string(nodes[k] + 1);
     }
     out += '\n';
@@ -175,9 +180,25 @@ void write_gmsh22(const Mesh& mesh, const std::string& path) {
   for (std::size_t v = 0; v < mesh.vertices.size(); ++v)
     element(15, mesh.vertex_physical[v], &mesh.vertices[v], 1);
   for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
-    element(2, mesh.triangle_physical[t], mesh.triangles[t].data(), 3);
+    if (quadratic) {
+      // Gmsh's 6-node triangle (type 9): vertices, then edges (0,1), (1,2), (2,0), as Tri6.
+      const Tri6 q = quadratic->triangle(mesh.triangles[t]);
+      element(9, mesh.triangle_physical[t], q.data(), 6);
+    } else {
+      element(2, mesh.triangle_physical[t], mesh.triangles[t].data(), 3);
+    }
   }
-  for (std::size_t t = 0; t < mesh.tets.size(); ++t) element(4, mesh.tet_physical[t], mesh.tets[t].data(), 4);
+  for (std::size_t t = 0; t < mesh.tets.size(); ++t) {
+    if (quadratic) {
+      // Gmsh's 10-node tet (type 11): VTK's order with the last two swapped (its node 8 is on
+      // edge (2,3), node 9 on (1,3)).
+      Tet10 q = quadratic->tets[t];
+      std::swap(q[8], q[9]);
+      element(11, mesh.tet_physical[t], q.data(), 10);
+    } else {
+      element(4, mesh.tet_physical[t], mesh.tets[t].data(), 4);
+    }
+  }
   out += "$EndElements\n";
 
   std::ofstream file(path, std::ios::binary | std::ios::trunc);
@@ -185,6 +206,16 @@ void write_gmsh22(const Mesh& mesh, const std::string& path) {
   file.write(out.data(), static_cast<std::streamsize>(out.size()));
   file.close();
   if (!file) throw input_error(path, 0, "error while writing mesh file");
+}
+
+}  // namespace
+
+void write_gmsh22(const Mesh& mesh, const std::string& path) { write_gmsh22_file(mesh, nullptr, path); }
+
+void write_gmsh22_quadratic(const Mesh& mesh, const QuadraticMesh& quadratic, const std::string& path) {
+  if (quadratic.num_vertices != mesh.num_points() || quadratic.num_tets() != mesh.num_tets())
+    throw input_error(path, 0, "the quadratic mesh was not made from this mesh");
+  write_gmsh22_file(mesh, &quadratic, path);
 }
 
 }  // namespace tmlab

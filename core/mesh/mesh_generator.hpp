@@ -3,6 +3,7 @@
 #pragma once
 
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/quadratic_mesh.hpp"
 
 #include <array>
 #include <string>
@@ -41,5 +42,11 @@ Mesh make_box_mesh(const BoxGrid& grid);
 /// (physical, elementary = physical or 1 when untagged). Coordinates are written with the shortest
 /// representation that reads back exactly. Throws tmlab::Error if the file cannot be written.
 void write_gmsh22(const Mesh& mesh, const std::string& path);
+
+/// The same with the quadratic mesh of `mesh` (make_quadratic): all its points, the file's
+/// triangles as 6-node triangles (type 9) and the tets as 10-node tets (type 11) in Gmsh's node
+/// order (VTK's with nodes 8 and 9 swapped). tmlab's reader reads linear tets only (the runner adds
+/// the midside nodes itself, mesh.element); this file is for other tools.
+void write_gmsh22_quadratic(const Mesh& mesh, const QuadraticMesh& quadratic, const std::string& path);
 
 }  // namespace tmlab

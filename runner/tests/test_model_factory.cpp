@@ -31,7 +31,7 @@ class ModelFactoryTest : public RunnerTestCase {
         StVenantKirchhoff::from_young_poisson(cfg_.material.young, cfg_.material.poisson);
     law_ = std::make_unique<Law>(make_law(cfg_.material.law, cfg_.material.parameters, "material"));
     visco_ = nullptr;
-    return make_model(cfg_, mesh_, stvk, *law_, visco_);
+    return make_model(cfg_, mesh_, nullptr, stvk, *law_, visco_);
   }
   /// make_model's error for this model and material.
   std::string refusal(const std::string& model, const json& material) {

@@ -9,9 +9,11 @@ namespace tmlab::tm {
 
 ContactImplicitDynamics::ContactImplicitDynamics(const MechanicalSystem& system, const Mesh& mesh,
                                                  std::vector<RigidBody> bodies, ContactOptions options,
-                                                 ImplicitScheme scheme, NewtonOptions newton, double dt)
+                                                 ImplicitScheme scheme, NewtonOptions newton, double dt,
+                                                 const QuadraticMesh* quadratic)
     : system_(system),
       mesh_(mesh),
+      quadratic_(quadratic),
       bodies_(std::move(bodies)),
       options_(options),
       scheme_(scheme),
@@ -24,7 +26,8 @@ void ContactImplicitDynamics::initialize(double t0, const VecX& u0, const VecX& 
   v_ = v0;
   // The bodies touch without force at t0, so the initial acceleration is the plain one.
   implicit_initial_state(system_, t0, u_, v_, a_);
-  contact_ = std::make_unique<ContactStaticSolver>(system_, mesh_, bodies_, options_, newton_, t0, u_, 0);
+  contact_ = std::make_unique<ContactStaticSolver>(system_, mesh_, quadratic_, bodies_, options_, newton_, t0,
+                                                   u_, 0);
   contact_->add_mass_scale(implicit_coefficients(scheme_, dt_).ca);
 }
 

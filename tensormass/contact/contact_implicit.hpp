@@ -18,9 +18,11 @@ namespace tmlab::tm {
 
 class ContactImplicitDynamics {
  public:
-  /// The mesh and system must outlive it; `dt` sets the mass scale of eps.
+  /// The mesh and system must outlive it; `dt` sets the mass scale of eps. `quadratic` (when not
+  /// null, the quadratic mesh of `mesh` the model runs on) puts the contact at face quadrature points.
   ContactImplicitDynamics(const MechanicalSystem& system, const Mesh& mesh, std::vector<RigidBody> bodies,
-                          ContactOptions options, ImplicitScheme scheme, NewtonOptions newton, double dt);
+                          ContactOptions options, ImplicitScheme scheme, NewtonOptions newton, double dt,
+                          const QuadraticMesh* quadratic = nullptr);
 
   /// Initial state at t0 (the bodies are checked against it); a0 solves M a0 = f_ext - f_int - C v0.
   void initialize(double t0, const VecX& u0, const VecX& v0);
@@ -45,6 +47,7 @@ class ContactImplicitDynamics {
  private:
   const MechanicalSystem& system_;
   const Mesh& mesh_;
+  const QuadraticMesh* quadratic_ = nullptr;
   std::vector<RigidBody> bodies_;
   ContactOptions options_;
   ImplicitScheme scheme_;

@@ -51,11 +51,6 @@ class ContactResidual final : public NonlinearSystem {
   double scale_ = 0.0;
 };
 
-void add_block(SpMat& J, Eigen::Index dof, const Eigen::Matrix3d& M) {
-  for (int a = 0; a < 3; ++a)
-    for (int b = 0; b < 3; ++b) J.coeffRef(dof + a, dof + b) += M(a, b);
-}
-
 std::vector<Index> sorted_union(const std::vector<Index>& a, const std::vector<Index>& b) {
   std::vector<Index> out;
   out.reserve(a.size() + b.size());
@@ -64,10 +59,21 @@ std::vector<Index> sorted_union(const std::vector<Index>& a, const std::vector<I
 }
 
 std::string node_label(const Mesh& mesh, Index node) {
+  if (node >= mesh.num_points()) return "midside node " + std::to_string(node);
   std::string s = "node " + std::to_string(node);
   if (static_cast<std::size_t>(node) < mesh.point_file_ids.size())
     s += " (file id " + std::to_string(mesh.point_file_ids[static_cast<std::size_t>(node)]) + ")";
   return s;
+}
+
+/// A contact point in messages: its node (nodal points) or its face's vertices.
+std::string point_label(const Mesh& mesh, const ContactPoints& points, Index k) {
+  const std::size_t kk = static_cast<std::size_t>(k);
+  if (points.nodal) return node_label(mesh, points.node[kk]);
+  const std::size_t s = static_cast<std::size_t>(points.start[kk]);
+  return "the quadrature point " + std::to_string(k) + " of the boundary face with " +
+         node_label(mesh, points.node[s]) + ", " + node_label(mesh, points.node[s + 1]) + ", " +
+         node_label(mesh, points.node[s + 2]);
 }
 
 }  // namespace
@@ -75,15 +81,24 @@ std::string node_label(const Mesh& mesh, Index node) {
 ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh,
                                          std::vector<RigidBody> bodies, ContactOptions options,
                                          NewtonOptions newton, double t0, const VecX& u0, int max_cutbacks)
+    : ContactStaticSolver(system, mesh, nullptr, std::move(bodies), options, newton, t0, u0, max_cutbacks) {}
+
+ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh,
+                                         const QuadraticMesh* quadratic, std::vector<RigidBody> bodies,
+                                         ContactOptions options, NewtonOptions newton, double t0,
+                                         const VecX& u0, int max_cutbacks)
     : system_(system),
       mesh_(mesh),
+      quadratic_(quadratic),
       bodies_(std::move(bodies)),
       options_(options),
       newton_(newton),
       max_cutbacks_(max_cutbacks),
       linear_(std::make_unique<ConstrainedLinearSolver>(newton.linear_solver)) {
-  if (mesh_.num_points() != system_.model().num_nodes())
+  if ((quadratic ? quadratic->num_points() : mesh_.num_points()) != system_.model().num_nodes())
     throw Error("contact: the mesh and the mechanical system have different node counts");
+  if (quadratic && quadratic->num_vertices != mesh_.num_points())
+    throw Error("contact: the quadratic mesh was not made from this mesh");
   if (u0.size() != system_.num_dofs()) throw Error("contact: initial displacement has the wrong size");
   if (bodies_.empty()) throw Error("contact: no contact body given");
   for (RigidBody& b : bodies_) b.validate();
@@ -96,7 +111,9 @@ ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const M
     throw Error("contact: gap_tol, initial_gap_tol and search_margin must be >= 0");
 
   surface_ = ContactSurface::extract(mesh_);
-  grid_ = SurfaceGrid(mesh_, surface_, u0);
+  points_ = quadratic ? ContactPoints::at_face_quadrature(*quadratic, surface_)
+                      : ContactPoints::at_nodes(mesh_, surface_);
+  grid_ = SurfaceGrid(points_.positions(u0), surface_.mean_edge);
   gap_tol_ = options_.gap_tol > 0.0 ? options_.gap_tol : 1e-8 * surface_.mean_edge;
 
   if (options_.stiffness > 0.0) {
@@ -111,8 +128,15 @@ ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const M
     if (!(eps_ > 0.0) || !std::isfinite(eps_))
       throw Error("contact: the reference tangent gives no positive stiffness scale; give contact.stiffness");
   }
+  if (!points_.nodal) {
+    // Face points: the area density whose product with a vertex's mean tributary area is eps.
+    double area = 0.0;
+    for (double a : surface_.face_area) area += a;
+    area_per_vertex_ = area / static_cast<double>(surface_.size());
+    eps_ /= area_per_vertex_;
+  }
 
-  const std::size_t nb = static_cast<std::size_t>(surface_.size());
+  const std::size_t nb = static_cast<std::size_t>(points_.size());
   committed_.resize(bodies_.size());
   for (BodyData& d : committed_) {
     d.lambda.assign(nb, 0.0);
@@ -125,10 +149,7 @@ ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const M
   state_ = evaluate_state(t0, u0);
 }
 
-Vec3 ContactStaticSolver::position(const VecX& u, Index k) const {
-  const Index n = surface_.nodes[static_cast<std::size_t>(k)];
-  return mesh_.points[static_cast<std::size_t>(n)] + u.segment<3>(3 * static_cast<Eigen::Index>(n));
-}
+Vec3 ContactStaticSolver::position(const VecX& u, Index k) const { return points_.position(u, k); }
 
 void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
   const double tol = options_.initial_gap_tol > 0.0 ? options_.initial_gap_tol : gap_tol_;
@@ -142,7 +163,7 @@ void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
       const GapPoint gp = body.gap(position(u0, k), t0);
       if (-gp.g > worst) {
         worst = -gp.g;
-        worst_node = surface_.nodes[static_cast<std::size_t>(k)];
+        worst_node = k;
       }
       // Nodes touching a bonded body at t0 are glued where they touch.
       if (body.mode == ContactMode::Bonded && gp.g <= gap_tol_) {
@@ -155,7 +176,7 @@ void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
     if (worst > tol) {
       std::ostringstream msg;
       msg << body.label() << " penetrates the sample at t = " << t0 << " by " << worst << " m at "
-          << node_label(mesh_, worst_node) << " (tolerance " << tol
+          << point_label(mesh_, points_, worst_node) << " (tolerance " << tol
           << " m): place the body clear of, or touching, the surface at the start";
       throw Error(msg.str());
     }
@@ -172,31 +193,51 @@ void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, Sp
     const Vec3 c = body.position(t);
     for (Index k : d.candidates) {
       const std::size_t kk = static_cast<std::size_t>(k);
-      const Eigen::Index dof = 3 * static_cast<Eigen::Index>(surface_.nodes[kk]);
+      const double w = points_.weight[kk];
+      const Index n0 = points_.start[kk], n1 = points_.start[kk + 1];
       const Vec3 x = position(u, k);
+      // The point's force f and stiffness K per unit weight reach nodes a, b as w N_a f and
+      // w N_a N_b K (a nodal point: w = N = 1, exactly the node's own terms).
+      const auto add_force = [&](const Vec3& f) {
+        for (Index i = n0; i < n1; ++i) {
+          const std::size_t ii = static_cast<std::size_t>(i);
+          r->segment<3>(3 * static_cast<Eigen::Index>(points_.node[ii])) += (w * points_.shape[ii]) * f;
+        }
+      };
+      const auto add_stiffness = [&](const Eigen::Matrix3d& K) {
+        for (Index i = n0; i < n1; ++i)
+          for (Index j = n0; j < n1; ++j) {
+            const std::size_t ii = static_cast<std::size_t>(i), jj = static_cast<std::size_t>(j);
+            const Eigen::Index da = 3 * static_cast<Eigen::Index>(points_.node[ii]);
+            const Eigen::Index db = 3 * static_cast<Eigen::Index>(points_.node[jj]);
+            const Eigen::Matrix3d Kab = (w * points_.shape[ii] * points_.shape[jj]) * K;
+            for (int p = 0; p < 3; ++p)
+              for (int q = 0; q < 3; ++q) J->coeffRef(da + p, db + q) += Kab(p, q);
+          }
+      };
       if (d.bonded[kk]) {
-        // Phi = lambda . c + eps/2 |c|^2 with c = x - (anchor + c(t)).
+        // Phi = w (lambda . c + eps/2 |c|^2) with c = x - (anchor + c(t)).
         const Vec3 gap = x - (d.anchor[kk] + c);
-        if (r) r->segment<3>(dof) += d.lambda_b[kk] + eps_ * gap;
-        if (J) add_block(*J, dof, eps_ * I);
-        if (energy) *energy += d.lambda_b[kk].dot(gap) + 0.5 * eps_ * gap.squaredNorm();
+        if (r) add_force(d.lambda_b[kk] + eps_ * gap);
+        if (J) add_stiffness(eps_ * I);
+        if (energy) *energy += w * (d.lambda_b[kk].dot(gap) + 0.5 * eps_ * gap.squaredNorm());
         continue;
       }
-      // Phi = (<lambda - eps g>_+^2 - lambda^2) / (2 eps); dPhi/du = -p n; d2Phi = eps n n^T - p H.
+      // Phi = w (<lambda - eps g>_+^2 - lambda^2) / (2 eps); dPhi/dx = -w p n; d2Phi = w (eps n n^T - p H).
       const GapPoint gp = body.gap(x, t);
       const double lam = penalty ? 0.0 : d.lambda[kk];
       const double p = lam - eps_ * gp.g;
       const double pp = std::max(p, 0.0);
-      if (energy) *energy += (pp * pp - lam * lam) / (2.0 * eps_);
+      if (energy) *energy += w * ((pp * pp - lam * lam) / (2.0 * eps_));
       if (p <= 0.0) continue;
-      if (r) r->segment<3>(dof) -= p * gp.normal;
-      if (J) add_block(*J, dof, eps_ * gp.normal * gp.normal.transpose() - p * gp.hessian);
+      if (r) add_force(-p * gp.normal);
+      if (J) add_stiffness(eps_ * gp.normal * gp.normal.transpose() - p * gp.hessian);
     }
   }
 }
 
 void ContactStaticSolver::find_candidates(double t, double margin, const VecX& u) {
-  grid_.refit(mesh_, surface_, u);
+  grid_.refit(points_.positions(u));
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const RigidBody& body = bodies_[b];
     BodyData& d = trial_[b];
@@ -268,7 +309,7 @@ bool ContactStaticSolver::solve(double t, double t_from, VecX& u, ContactStepRep
     }
     // Detection check: no boundary node outside the candidate sets may penetrate.
     int missed = 0;
-    grid_.refit(mesh_, surface_, u);
+    grid_.refit(points_.positions(u));
     for (std::size_t b = 0; b < bodies_.size(); ++b) {
       const RigidBody& body = bodies_[b];
       BodyData& d = trial_[b];
@@ -315,7 +356,8 @@ void ContactStaticSolver::add_mass_scale(double c_a) {
   double sum = 0.0;
   for (Index n : surface_.nodes)
     for (int c = 0; c < 3; ++c) sum += system_.mass()[3 * static_cast<Eigen::Index>(n) + c];
-  eps_ += options_.stiffness_factor * c_a * sum / (3.0 * static_cast<double>(surface_.size()));
+  const double add = options_.stiffness_factor * c_a * sum / (3.0 * static_cast<double>(surface_.size()));
+  eps_ += points_.nodal ? add : add / area_per_vertex_;
 }
 
 ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, VecX& u) {
@@ -370,6 +412,11 @@ std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, cons
     ContactBodyState st;
     st.name = body.name;
     st.position = body.position(t);
+    if (!points_.nodal) {
+      add_point_state(body, d, t, u, st);
+      out.push_back(std::move(st));
+      continue;
+    }
     double min_lambda = std::numeric_limits<double>::infinity();
     for (Index k : d.candidates) {
       const std::size_t kk = static_cast<std::size_t>(k);
@@ -384,7 +431,7 @@ std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, cons
         if (!(lam > 0.0)) continue;
         f = lam * gp.normal;
       }
-      const double area = surface_.contact_area(k, gp.normal);
+      const double area = points_.contact_area(surface_, k, gp.normal);
       st.nodes.push_back(surface_.nodes[kk]);
       st.nodal_force.push_back(f);
       st.gap.push_back(gp.g);
@@ -403,7 +450,59 @@ std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, cons
   return out;
 }
 
-// Layout per body (nb surface nodes): lambda [nb], lambda_b [3 nb], bonded [nb], anchor [3 nb],
+void ContactStaticSolver::add_point_state(const RigidBody& body, const BodyData& d, double t, const VecX& u,
+                                          ContactBodyState& st) const {
+  // Face points: the totals from the points (force sum_q w_q lambda_q n_q); the nodal outputs on the
+  // nodes the active points load: force sum_q w_q N_a f_q, the gap at the node, and as pressure the
+  // w-weighted mean of lambda over the active points of the faces around the node.
+  double min_lambda = std::numeric_limits<double>::infinity();
+  const std::size_t nn = static_cast<std::size_t>(points_.num_nodes);
+  std::vector<Vec3> nodal(nn, Vec3::Zero());
+  std::vector<double> wsum(nn, 0.0), psum(nn, 0.0);
+  std::vector<char> loaded(nn, 0);
+  int active = 0;
+  for (Index k : d.candidates) {
+    const std::size_t kk = static_cast<std::size_t>(k);
+    const double w = points_.weight[kk];
+    const GapPoint gp = body.gap(position(u, k), t);
+    Vec3 f;  // force of the body on the sample per unit weight (a traction)
+    if (d.bonded[kk]) {
+      f = -d.lambda_b[kk];
+    } else {
+      const double lam = d.lambda[kk];
+      min_lambda = std::min(min_lambda, lam);
+      st.complementarity = std::max(st.complementarity, w * lam * std::abs(gp.g));
+      if (!(lam > 0.0)) continue;
+      f = lam * gp.normal;
+    }
+    ++active;
+    st.area += points_.contact_area(surface_, k, gp.normal);
+    st.force -= w * f;
+    st.moment += (gp.closest - st.position).cross(-w * f);
+    st.max_penetration = std::max(st.max_penetration, -gp.g);
+    st.radius_max = std::max(st.radius_max, body.radial_distance(gp.closest, t));
+    for (Index i = points_.start[kk]; i < points_.start[kk + 1]; ++i) {
+      const std::size_t n = static_cast<std::size_t>(points_.node[static_cast<std::size_t>(i)]);
+      nodal[n] += (w * points_.shape[static_cast<std::size_t>(i)]) * f;
+      wsum[n] += w;
+      psum[n] += w * f.dot(gp.normal);
+      loaded[n] = 1;
+    }
+  }
+  for (std::size_t n = 0; n < nn; ++n) {
+    if (!loaded[n]) continue;
+    const Vec3 x = quadratic_->points[n] + u.segment<3>(3 * static_cast<Eigen::Index>(n));
+    st.nodes.push_back(static_cast<Index>(n));
+    st.nodal_force.push_back(nodal[n]);
+    st.gap.push_back(body.gap(x, t).g);
+    st.pressure.push_back(wsum[n] > 0.0 ? psum[n] / wsum[n] : 0.0);
+  }
+  st.active_nodes = active;
+  st.min_multiplier = std::isfinite(min_lambda) ? min_lambda : 0.0;
+  st.radius_equivalent = body.axisymmetric() ? std::sqrt(st.area / kPi) : 0.0;
+}
+
+// Layout per body (nb contact points): lambda [nb], lambda_b [3 nb], bonded [nb], anchor [3 nb],
 // the number of candidates and the candidates (surface-local indices; exact as doubles below 2^53).
 std::vector<double> ContactStaticSolver::committed_state() const {
   std::vector<double> out;
@@ -420,7 +519,7 @@ std::vector<double> ContactStaticSolver::committed_state() const {
 
 void ContactStaticSolver::restore_committed_state(const std::vector<double>& data,
                                                   std::vector<ContactBodyState> outputs) {
-  const std::size_t nb = static_cast<std::size_t>(surface_.size());
+  const std::size_t nb = static_cast<std::size_t>(points_.size());
   const auto bad = [] {
     return Error("contact checkpoint does not fit this contact surface and these bodies");
   };

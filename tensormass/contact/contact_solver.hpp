@@ -30,8 +30,23 @@
 //
 // Bonded bodies: a node that touches (g <= gap_tol at the start, or active at the end of an
 // accepted increment) is glued from then on to the body point it touched; it is never released.
+//
+// Contact points (contact_points.hpp). The constraint carrier is a contact point, a weighted
+// combination of nodes x_q = sum_a N_a x_a with a weight w_q: every term above is per point and
+// multiplied by w_q, and reaches node a times N_a. On linear tets a point is a boundary node (N = 1,
+// w = 1: the rule above, bit for bit). On quadratic tets (a QuadraticMesh given) the points are the
+// 6 quadrature points of each boundary 6-node triangle (degree-4 rule), w_q the rest area weight, so
+//   Phi = sum_q w_q/(2 eps_a) (<lambda_q - eps_a g_q>_+^2 - lambda_q^2)   (bonded: w_q (lambda_q . c_q +
+//   eps_a/2 |c_q|^2)),
+// lambda_q a pressure (Pa; bonded a traction), eps_a = eps / (boundary area / boundary vertices) an
+// area density (Pa/m), eps the vertex rule's (from K_0 at the boundary vertices, or contact.stiffness
+// in N/m). The tangent's blocks w_q N_a N_b (...) couple the 6 nodes of one face, which share a tet,
+// so the model's pattern holds them. The Uzawa update, the stopping test and gap_tol are per point;
+// the body force is sum_q w_q lambda_q n_q. Initial penetration is checked at the points.
 #pragma once
 
+#include "core/mesh/quadratic_mesh.hpp"
+#include "tensormass/contact/contact_points.hpp"
 #include "tensormass/contact/rigid_body.hpp"
 #include "tensormass/contact/surface_grid.hpp"
 #include "tensormass/solvers/static_solver.hpp"
@@ -71,7 +86,7 @@ struct ContactBodyState {
   Vec3 position = Vec3::Zero();  ///< reference point c(t)
   Vec3 force = Vec3::Zero();     ///< total force the sample exerts on the body, N
   Vec3 moment = Vec3::Zero();    ///< moment of that force about c(t), N m
-  int active_nodes = 0;
+  int active_nodes = 0;          ///< active nodes (face points: active quadrature points)
   double area = 0.0;  ///< sum over active nodes of the reference tributary area projected on n, m^2
   double radius_equivalent = 0.0;  ///< sqrt(area / pi) (axisymmetric bodies; 0 for the plane)
   double radius_max = 0.0;         ///< largest radial distance of an active contact point from the axis
@@ -108,6 +123,11 @@ class ContactStaticSolver {
   ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh, std::vector<RigidBody> bodies,
                       ContactOptions options, NewtonOptions newton, double t0, const VecX& u0,
                       int max_cutbacks = 8);
+  /// The same on the quadratic mesh `quadratic` of `mesh` when it is not null (the model's nodes are
+  /// its points; contact at face quadrature points), else on `mesh`'s nodes. Both must outlive it.
+  ContactStaticSolver(const MechanicalSystem& system, const Mesh& mesh, const QuadraticMesh* quadratic,
+                      std::vector<RigidBody> bodies, ContactOptions options, NewtonOptions newton, double t0,
+                      const VecX& u0, int max_cutbacks = 8);
 
   /// Equilibrium with contact at t_next from the accepted state at t_prev (u overwritten); the
   /// increment is halved up to max_cutbacks times when Newton or the outer loop fails, then
@@ -133,11 +153,12 @@ class ContactStaticSolver {
   }
   /// Its kind and, for CHOLMOD, how many solves fell back to LDL^T (not positive definite).
   const ConstrainedLinearSolver& linear_solver() const { return *linear_; }
-  double stiffness() const { return eps_; }  ///< eps, N/m
+  double stiffness() const { return eps_; }  ///< eps, N/m (face points: eps_a, Pa/m)
   double gap_tol() const { return gap_tol_; }
   const ContactOptions& options() const { return options_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
   const ContactSurface& surface() const { return surface_; }
+  const ContactPoints& points() const { return points_; }
   const SurfaceGrid& grid() const { return grid_; }
   /// The outputs at the last accepted time (t0 before the first step: zero forces).
   const std::vector<ContactBodyState>& state() const { return state_; }
@@ -155,27 +176,32 @@ class ContactStaticSolver {
 
  private:
   struct BodyData {
-    std::vector<double> lambda;     ///< normal multiplier per surface node (>= 0)
-    std::vector<Vec3> lambda_b;     ///< bonded multiplier per surface node
-    std::vector<char> bonded;       ///< glued nodes
+    std::vector<double> lambda;     ///< normal multiplier per contact point (>= 0)
+    std::vector<Vec3> lambda_b;     ///< bonded multiplier per contact point
+    std::vector<char> bonded;       ///< glued points
     std::vector<Vec3> anchor;       ///< glued point in the body frame (relative to c(t))
-    std::vector<Index> candidates;  ///< surface-local nodes evaluated this outer iteration
+    std::vector<Index> candidates;  ///< contact points evaluated this outer iteration
   };
 
   void find_candidates(double t, double margin, const VecX& u);
   Vec3 position(const VecX& u, Index surface_local) const;
   std::vector<ContactBodyState> evaluate_state(double t, const VecX& u) const;
+  void add_point_state(const RigidBody& body, const BodyData& d, double t, const VecX& u,
+                       ContactBodyState& st) const;
   void check_initial(double t0, const VecX& u0);
 
   const MechanicalSystem& system_;
   const Mesh& mesh_;
+  const QuadraticMesh* quadratic_ = nullptr;
   std::vector<RigidBody> bodies_;
   ContactOptions options_;
   NewtonOptions newton_;
   int max_cutbacks_;
   ContactSurface surface_;
+  ContactPoints points_;
   SurfaceGrid grid_;
   double eps_ = 0.0;
+  double area_per_vertex_ = 1.0;  ///< face points: eps_a = eps / area_per_vertex_
   double gap_tol_ = 0.0;
   std::vector<BodyData> committed_, trial_;
   std::vector<ContactBodyState> state_;

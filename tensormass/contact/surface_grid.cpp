@@ -67,35 +67,50 @@ Vec3 node_position(const Mesh& mesh, const VecX& u, Index n) {
   if (u.size() > 0) x += u.segment<3>(3 * static_cast<Eigen::Index>(n));
   return x;
 }
+
+std::vector<Vec3> surface_positions(const Mesh& mesh, const ContactSurface& surface, const VecX& u) {
+  std::vector<Vec3> x(surface.nodes.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    x[k] = node_position(mesh, u, surface.nodes[k]);
+    if (!x[k].allFinite())
+      throw Error("contact: non-finite position of surface node " + std::to_string(surface.nodes[k]));
+  }
+  return x;
+}
 }  // namespace
 
-SurfaceGrid::SurfaceGrid(const Mesh& mesh, const ContactSurface& surface, const VecX& u, double cell) {
-  cell_ = cell > 0.0 ? cell : 2.0 * surface.mean_edge;
-  // Keep the grid at most ~4 cells per surface node: a flat surface in a large box would otherwise
+SurfaceGrid::SurfaceGrid(const Mesh& mesh, const ContactSurface& surface, const VecX& u, double cell)
+    : SurfaceGrid(surface_positions(mesh, surface, u), surface.mean_edge, cell) {}
+
+void SurfaceGrid::refit(const Mesh& mesh, const ContactSurface& surface, const VecX& u) {
+  refit(surface_positions(mesh, surface, u));
+}
+
+SurfaceGrid::SurfaceGrid(const std::vector<Vec3>& x, double mean_edge, double cell) {
+  cell_ = cell > 0.0 ? cell : 2.0 * mean_edge;
+  // Keep the grid at most ~4 cells per point: a flat surface in a large box would otherwise
   // allocate mostly empty cells. Volume of the box / cell^3 <= 4 n.
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
-  for (Index n : surface.nodes) {
-    const Vec3 x = node_position(mesh, u, n);
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
+  for (const Vec3& p : x) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
   }
   const Vec3 ext = (hi - lo).cwiseMax(cell_);
-  const double budget = 4.0 * std::max<double>(1.0, static_cast<double>(surface.size()));
+  const double budget = 4.0 * std::max<double>(1.0, static_cast<double>(x.size()));
   const double cells = (ext.array() / cell_).prod();
   if (cells > budget) cell_ *= std::cbrt(cells / budget);
   if (!(cell_ > 0.0) || !std::isfinite(cell_))
     throw Error("contact: cannot size the surface grid (degenerate mesh?)");
-  refit(mesh, surface, u);
+  refit(x);
 }
 
-void SurfaceGrid::refit(const Mesh& mesh, const ContactSurface& surface, const VecX& u) {
-  const std::size_t n = surface.nodes.size();
-  pos_.resize(n);
+void SurfaceGrid::refit(const std::vector<Vec3>& x) {
+  const std::size_t n = x.size();
+  pos_ = x;
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (std::size_t k = 0; k < n; ++k) {
-    pos_[k] = node_position(mesh, u, surface.nodes[k]);
     if (!pos_[k].allFinite())
-      throw Error("contact: non-finite position of surface node " + std::to_string(surface.nodes[k]));
+      throw Error("contact: non-finite position of surface point " + std::to_string(k));
     lo = lo.cwiseMin(pos_[k]);
     hi = hi.cwiseMax(pos_[k]);
   }

@@ -54,6 +54,11 @@ class SurfaceGrid {
   /// Re-bins the surface nodes at X + u (same cell size; the grid box follows the nodes).
   void refit(const Mesh& mesh, const ContactSurface& surface, const VecX& u);
 
+  /// The same over arbitrary points (the contact points of a quadratic surface): `mean_edge` sizes
+  /// the cells as the surface's mean boundary edge does above; query() returns indices into x.
+  SurfaceGrid(const std::vector<Vec3>& x, double mean_edge, double cell = 0.0);
+  void refit(const std::vector<Vec3>& x);
+
   /// Surface-local indices (into ContactSurface::nodes) of the nodes whose current position lies in
   /// [lo, hi] (bounds may be infinite), in increasing order.
   std::vector<Index> query(const Vec3& lo, const Vec3& hi) const;

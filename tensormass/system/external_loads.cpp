@@ -1,5 +1,7 @@
 #include "tensormass/system/external_loads.hpp"
 
+#include "core/mesh/triangle_quadrature.hpp"
+
 #include "core/base/error.hpp"
 
 #include <Eigen/Geometry>
@@ -36,6 +38,17 @@ void ExternalLoads::add(SurfaceTraction t) {
   traction_.push_back(std::move(t));
 }
 void ExternalLoads::add(Gravity g) { gravity_.push_back(std::move(g)); }
+
+void ExternalLoads::add(QuadraticFaceLoad q) {
+  if (q.faces.empty())
+    throw Error("surface load '" + q.name + "' selects no boundary faces (check its face selector)");
+  for (const Tri6& f : q.faces)
+    for (Index n : f)
+      if (n < 0 || n >= mesh_->num_points())
+        throw Error("surface load '" + q.name + "': a face names node " + std::to_string(n) +
+                    " out of range");
+  quadratic_.push_back(std::move(q));
+}
 
 bool ExternalLoads::has_follower() const {
   for (const auto& p : pressure_)
@@ -76,6 +89,32 @@ void ExternalLoads::assemble(const VecX& u, double t, VecX& f) const {
       }
       const Vec3 area = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]);
       for (int a = 0; a < 3; ++a) f.segment<3>(3 * tri[a]) -= (pt / 3.0) * area;
+    }
+  }
+  if (!quadratic_.empty()) assemble_quadratic(t, f);
+}
+
+void ExternalLoads::assemble_quadratic(double t, VecX& f) const {
+  const auto rule = triangle_rule_degree4();
+  for (const auto& q : quadratic_) {
+    const double s = q.function(t);
+    const double pt = q.pressure * s;
+    const Vec3 tt = q.traction * s;
+    for (const Tri6& tri : q.faces) {
+      for (const TrianglePoint& r : rule) {
+        // n dA = (dx/dl1 x dx/dl2) dl1 dl2 over the unit right triangle (area 1/2).
+        const auto n = tri6_shape(r.l1, r.l2);
+        const auto dn = tri6_shape_gradient(r.l1, r.l2);
+        Vec3 d1 = Vec3::Zero(), d2 = Vec3::Zero();
+        for (std::size_t a = 0; a < 6; ++a) {
+          d1 += dn[a][0] * mesh_->points[static_cast<std::size_t>(tri[a])];
+          d2 += dn[a][1] * mesh_->points[static_cast<std::size_t>(tri[a])];
+        }
+        const Vec3 area = 0.5 * r.weight * d1.cross(d2);
+        const Vec3 load = area.norm() * tt - pt * area;
+        for (std::size_t a = 0; a < 6; ++a)
+          f.segment<3>(3 * static_cast<Eigen::Index>(tri[a])) += n[a] * load;
+      }
     }
   }
 }

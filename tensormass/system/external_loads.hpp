@@ -5,6 +5,7 @@
 
 #include "core/config/time_function.hpp"
 #include "core/mesh/mesh.hpp"
+#include "core/mesh/quadratic_mesh.hpp"
 #include "tensormass/kernels/elastic_model.hpp"
 
 #include <Eigen/SparseCore>
@@ -36,6 +37,18 @@ struct SurfaceTraction {
   TimeFunction function = TimeFunction::constant(1.0);
 };
 
+/// A dead pressure and traction on 6-node faces (quadratic elements): the consistent load
+/// f_a = int N_a (t - p n) dA over the reference face, by the degree-4 triangle rule
+/// (core/mesh/triangle_quadrature.hpp; exact on straight-sided faces). On a flat face a uniform
+/// load puts nothing on the corners and a third of the total on each midside node.
+struct QuadraticFaceLoad {
+  std::string name;
+  std::vector<Tri6> faces;       ///< outward (right-hand rule on the vertices)
+  double pressure = 0.0;         ///< Pa at f(t) = 1, positive pushes into the body
+  Vec3 traction = Vec3::Zero();  ///< Pa per unit reference area at f(t) = 1
+  TimeFunction function = TimeFunction::constant(1.0);
+};
+
 struct Gravity {
   Vec3 acceleration = Vec3::Zero();  ///< m/s^2
   TimeFunction function = TimeFunction::constant(1.0);
@@ -51,6 +64,7 @@ class ExternalLoads {
   void add(SurfacePressure p);
   void add(SurfaceTraction t);
   void add(Gravity g);
+  void add(QuadraticFaceLoad q);
 
   /// f_ext(u, t), overwrites f (size 3n).
   void assemble(const VecX& u, double t, VecX& f) const;
@@ -59,12 +73,15 @@ class ExternalLoads {
   void add_load_stiffness(const VecX& u, double t, std::vector<Eigen::Triplet<double>>& triplets) const;
 
  private:
+  void assemble_quadratic(double t, VecX& f) const;
+
   const Mesh* mesh_ = nullptr;
   VecX node_mass_;
   std::vector<NodalForce> nodal_;
   std::vector<SurfacePressure> pressure_;
   std::vector<SurfaceTraction> traction_;
   std::vector<Gravity> gravity_;
+  std::vector<QuadraticFaceLoad> quadratic_;
 };
 
 }  // namespace tmlab::tm

@@ -4,14 +4,18 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
+#include "core/mesh/quadratic_mesh.hpp"
 #include "core/testing/small_meshes.hpp"
 
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <filesystem>
+#include <fstream>
 #include <map>
+#include <sstream>
 
 namespace tmlab {
 namespace {
@@ -141,6 +145,52 @@ TEST(RepoMeshes, CommittedMeshesReadAndAreSane) {
     EXPECT_NEAR((r.bbox_max - r.bbox_min).maxCoeff(), c.max_extent, 1e-9) << c.file;
     EXPECT_LT(std::filesystem::file_size(path), 1000000u) << c.file;
   }
+}
+
+TEST(MeshGenerator, QuadraticGmshFileHasTet10InGmshOrder) {
+  // Every tet line is type 11 with Gmsh's node order: nodes 0-7 as VTK, node 8 the midside node of
+  // edge (2,3), node 9 of edge (1,3); the nodes are all the quadratic points; the reader refuses it
+  // (tmlab reads linear tets only).
+  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3::Ones(), 1, 1, 1);
+  const QuadraticMesh qm = make_quadratic(mesh);
+  const std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "tmlab_mesh_generator_p2";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "q.msh").string();
+  write_gmsh22_quadratic(mesh, qm, path);
+  std::ifstream in(path);
+  std::string line;
+  int tets = 0;
+  std::size_t nodes = 0;
+  while (std::getline(in, line)) {
+    if (line == "$Nodes") {
+      std::getline(in, line);
+      nodes = std::stoul(line);
+    }
+    std::istringstream ls(line);
+    long id = 0, type = 0, ntags = 0;
+    if (!(ls >> id >> type >> ntags) || type != 11 || ntags != 2) continue;
+    long tag = 0;
+    ls >> tag >> tag;
+    std::array<Index, 10> n{};
+    for (auto& v : n) {
+      long k = 0;
+      ls >> k;
+      v = static_cast<Index>(k - 1);
+    }
+    const Tet& t = mesh.tets[static_cast<std::size_t>(tets)];
+    for (int a = 0; a < 4; ++a) EXPECT_EQ(n[static_cast<std::size_t>(a)], t[static_cast<std::size_t>(a)]);
+    EXPECT_EQ(n[4], qm.midside_node(t[0], t[1]));
+    EXPECT_EQ(n[5], qm.midside_node(t[1], t[2]));
+    EXPECT_EQ(n[6], qm.midside_node(t[0], t[2]));
+    EXPECT_EQ(n[7], qm.midside_node(t[0], t[3]));
+    EXPECT_EQ(n[8], qm.midside_node(t[2], t[3]));
+    EXPECT_EQ(n[9], qm.midside_node(t[1], t[3]));
+    ++tets;
+  }
+  EXPECT_EQ(tets, mesh.num_tets());
+  EXPECT_EQ(nodes, qm.points.size());
+  EXPECT_THROW(read_mesh(path), Error);
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace
