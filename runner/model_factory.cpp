@@ -14,22 +14,10 @@
 #include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
-#include "tensormass/viscoelastic/viscoelastic_model.hpp"
-#if __has_include("tensormass/viscoelastic/viscoelastic_law_p2.hpp")
 #include "tensormass/viscoelastic/viscoelastic_law_p2.hpp"
-#define TMLAB_HAVE_P2_VISCO 1
-#endif
+#include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 namespace tmlab::tm::runner {
-
-namespace {
-
-[[noreturn]] void not_built(const CaseConfig& cfg) {
-  throw Error(cfg.file + ": key 'mesh.element': '" + to_string(cfg.mesh.element) +
-              "' is not in this build (its kernel is missing)");
-}
-
-}  // namespace
 
 std::unique_ptr<QuadraticMesh> make_quadratic_mesh(const CaseConfig& cfg, const Mesh& mesh) {
   if (!is_quadratic(cfg.mesh.element)) return nullptr;
@@ -38,22 +26,9 @@ std::unique_ptr<QuadraticMesh> make_quadratic_mesh(const CaseConfig& cfg, const 
 
 VecX make_node_mass(const CaseConfig& cfg, const Mesh& mesh, const QuadraticMesh* quadratic) {
   if (!quadratic) return lumped_node_mass(mesh, cfg.material.density);
-  // HRZ lumping of the straight-sided 10-node tet: the consistent mass's diagonal (rho V / 70 at a
-  // vertex, 8 rho V / 105 at a midside node) scaled to the element's mass, rho V / 36 and
-  // 4 rho V / 27 (sum 4/36 + 24/27 = 1).
-  const double rho = cfg.material.density;
-  if (!(rho > 0.0)) throw Error(cfg.file + ": key 'material.density' must be > 0");
-  VecX m = VecX::Zero(quadratic->num_points());
-  for (const Tet10& t : quadratic->tets) {
-    const Vec3& x0 = quadratic->points[static_cast<std::size_t>(t[0])];
-    const double v = (quadratic->points[static_cast<std::size_t>(t[1])] - x0)
-                         .dot((quadratic->points[static_cast<std::size_t>(t[2])] - x0)
-                                  .cross(quadratic->points[static_cast<std::size_t>(t[3])] - x0)) /
-                     6.0;
-    for (std::size_t a = 0; a < 4; ++a) m[t[a]] += rho * v / 36.0;
-    for (std::size_t a = 4; a < 10; ++a) m[t[a]] += 4.0 * rho * v / 27.0;
-  }
-  return m;
+  // HRZ lumping (tensormass/system/lumped_mass.hpp): row sums give negative vertex masses for P2.
+  if (!(cfg.material.density > 0.0)) throw Error(cfg.file + ": key 'material.density' must be > 0");
+  return hrz_lumped_node_mass(*quadratic, cfg.material.density);
 }
 
 std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh,
@@ -88,7 +63,6 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
     if (cfg.model == CaseModel::HyperelasticTL) {
       // The objective scheme on any law (history pk2, relaxation full; the class refuses the rest).
       if (quadratic) {
-#ifdef TMLAB_HAVE_P2_VISCO
         std::unique_ptr<ViscoelasticHyperelasticP2> vm;
         try {
           vm = std::make_unique<ViscoelasticHyperelasticP2>(*quadratic, law, prony, vo);
@@ -98,9 +72,6 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
         }
         visco = vm.get();
         return vm;
-#else
-        not_built(cfg);
-#endif
       }
       std::unique_ptr<ViscoelasticHyperelastic> vm;
       try {
