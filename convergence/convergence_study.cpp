@@ -75,10 +75,18 @@ CaseNames names_of(const CaseConfig& cfg) {
   return n;
 }
 
-/// The rig of level k (1-based): rigs::refined(base, ratio^(k-1)), every cell count of the rig's
-/// graded mesh (the contact rule's or the explicit form's cells and layers) times the ratio, rounded.
+/// The rig of level k (1-based). The explicit mesh form (cells > 0): cells and layers times
+/// ratio^(k-1), rounded. The contact rule (cells = 0): rigs::refined(base, ratio^(k-1)), every cell
+/// count of the rule's graded mesh times the ratio.
 rigs::RigSpec rig_level(const rigs::RigSpec& base, double ratio, int level) {
-  rigs::RigSpec s = rigs::refined(base, std::pow(ratio, level - 1));
+  const double f = std::pow(ratio, level - 1);
+  rigs::RigSpec s = base;
+  if (base.cells > 0) {
+    s.cells = static_cast<int>(std::lround(base.cells * f));
+    s.layers = static_cast<int>(std::lround(base.layers * f));
+  } else {
+    s = rigs::refined(base, f);
+  }
   s.name = level_name(level);
   return s;
 }

@@ -218,7 +218,11 @@ void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, Sp
       if (d.bonded[kk]) {
         // Phi = w (lambda . c + eps/2 |c|^2) with c = x - (anchor + c(t)).
         const Vec3 gap = x - (d.anchor[kk] + c);
-        if (r) add_force(d.lambda_b[kk] + eps_ * gap);
+        if (r && points_.nodal)  // the node's own terms, in the expression P1 always used (bit for bit:
+                                 // GCC may fuse r + eps gap into one rounding)
+          r->segment<3>(3 * static_cast<Eigen::Index>(points_.node[kk])) += d.lambda_b[kk] + eps_ * gap;
+        else if (r)
+          add_force(d.lambda_b[kk] + eps_ * gap);
         if (J) add_stiffness(eps_ * I);
         if (energy) *energy += w * (d.lambda_b[kk].dot(gap) + 0.5 * eps_ * gap.squaredNorm());
         continue;
@@ -230,7 +234,10 @@ void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, Sp
       const double pp = std::max(p, 0.0);
       if (energy) *energy += w * ((pp * pp - lam * lam) / (2.0 * eps_));
       if (p <= 0.0) continue;
-      if (r) add_force(-p * gp.normal);
+      if (r && points_.nodal)  // as above: r - p n may be fused; (1 * (-p n)) added is not
+        r->segment<3>(3 * static_cast<Eigen::Index>(points_.node[kk])) -= p * gp.normal;
+      else if (r)
+        add_force(-p * gp.normal);
       if (J) add_stiffness(eps_ * gp.normal * gp.normal.transpose() - p * gp.hessian);
     }
   }

@@ -63,7 +63,7 @@ TEST(CommandSpecs, NoCommandReadsAnOptionOutsideItsTable) {
   const std::map<std::string, std::vector<std::string>> files = {
       {"cmd_run.cpp", {"demo", "run"}},
       {"cmd_compare.cpp", {"compare"}},
-      {"cmd_mesh.cpp", {"cases", "mesh info", "mesh check"}},
+      {"cmd_mesh.cpp", {"cases", "mesh info", "mesh check", "mesh quadratic"}},
       {"cmd_paper.cpp", {"paper"}},
       {"cmd_hereditary.cpp", {"hereditary"}},
       {"cmd_workprecision.cpp", {"workprecision"}},
