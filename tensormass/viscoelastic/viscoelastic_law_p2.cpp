@@ -67,16 +67,11 @@ double ViscoelasticHyperelasticP2::branch_form(std::size_t slot, const double* h
   const auto np = static_cast<std::size_t>(num_points_per_tet());
   const double V = elastic_.point(static_cast<Index>(slot / np), static_cast<int>(slot % np)).weight;
   const double lam = c0_.lambda, mu = c0_.mu;
-  double psi = 0.0, d = 0.0;
-  for (std::size_t j = 0; j < prony().size(); ++j) {
-    const double* hj = h + 6 * j;
+  // Psi = sum_j alpha_j/2 V h_j : C_0^{-1} : h_j (the P1 model's branch form, at a point of weight V).
+  return branch_sums(h, rate, [&](const double* hj) {
     const double tr = hj[0] + hj[1] + hj[2];
-    const double q = V * (voigt_dot(hj, hj) - lam / (3.0 * lam + 2.0 * mu) * tr * tr) / (2.0 * mu);
-    psi += 0.5 * prony().alpha(j) * q;
-    d += prony().alpha(j) * q / prony().tau(j);
-  }
-  *rate = d;
-  return psi;
+    return V * (voigt_dot(hj, hj) - lam / (3.0 * lam + 2.0 * mu) * tr * tr) / (2.0 * mu);
+  });
 }
 
 void ViscoelasticHyperelasticP2::trial_changed() {
