@@ -268,8 +268,10 @@ class MeshBuilder {
       case ElemKind::OtherVolume:
         src_.fail("unsupported " + id + " (" + et.name + "): only 4-node tetrahedra are supported");
       case ElemKind::HighOrder:
-        src_.fail("unsupported " + id + " (" + et.name +
-                  "): only linear elements are supported; re-mesh with Mesh.ElementOrder = 1");
+        src_.fail(
+            "unsupported " + id + " (" + et.name +
+            "): mesh files hold linear elements only; re-mesh with Mesh.ElementOrder = 1 (for quadratic "
+            "tets set mesh.element = p2: tmlab adds the midside nodes to the linear mesh)");
       case ElemKind::Unknown:
         break;
     }
