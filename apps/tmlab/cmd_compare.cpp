@@ -85,8 +85,16 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     std::cerr << "tmlab compare: fast-model run (" << to_string(tm_cfg.model) << ")\n";
     const tmlab::RunResult a = tm::run_case(tm_cfg, opt);
     tmlab::RunResult b;
+    // The reference's element: P1, P2, or P2 with the F-bar of p2_mean_dilatation (it follows the
+    // case's mesh.element). p1_anp has no counterpart there: the reference runs plain P1 tets.
+    const std::string reference_element =
+        "P" + std::to_string(degree) +
+        (cfg.mesh.element == ElementKind::P2MeanDilatation ? " mean dilatation (F-bar per cell)" : "");
     if (against == "reference") {
-      std::cerr << "tmlab compare: deal.II reference run (P" << degree << ")\n";
+      std::cerr << "tmlab compare: deal.II reference run (" << reference_element << ")\n";
+      if (cfg.mesh.element == ElementKind::P1Anp)
+        std::cerr << "tmlab compare: note: the reference has no averaged-nodal-pressure element; it runs "
+                     "plain P1 tets, so the differences include the two elements' (docs/elements.md)\n";
       b = run_model(cfg, opt, "reference", degree, time_integration);
     } else {
       CaseConfig o = cfg;
@@ -101,6 +109,8 @@ int cmd_compare(const std::vector<std::string>& args, const std::string& command
     cmp["a"] = a.dir;
     cmp["b"] = b.dir;
     cmp["against"] = against;
+    cmp["element"] = to_string(cfg.mesh.element);
+    if (against == "reference") cmp["reference_element"] = reference_element;
     ManifestInput mi;
     mi.command_line = opt.command_line;
     mi.config = p.config(kManifest);

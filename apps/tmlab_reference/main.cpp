@@ -1,9 +1,12 @@
 // tmlab_reference: runs one case file with the deal.II reference solver (docs/reference-fem.md).
+// --degree defaults to the case's element's (2 for mesh.element p2 and p2_mean_dilatation, whose F-bar
+// form the reference then runs; 1 otherwise).
 //   tmlab_reference CASE.json [--degree 1|2] [--law stvk|neo_hookean|yeoh] [--results DIR]
 //                   [--solver direct|direct_klu|cg_amg] [--cells tet|hex] [--hex NX,NY,NZ] [--rtol R]
 //                   [--time-integration fixed_step|ida] [--ida-rtol R] [--ida-atol A] [--quiet]
 // Works under `mpirun -np N`: every rank runs the case, rank 0 writes the result directory.
 #include "core/config/case_config.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/results/run_output.hpp"
 #include "reference_fem/dealii/reference_runner.hpp"
@@ -38,6 +41,7 @@ int main(int argc, char** argv) {
   opt.command_line = tmlab::command_line(argc, argv);
   opt.plots = false;
   bool quiet = false;
+  bool degree_given = false;
   try {
     for (int i = 1; i < argc; ++i) {
       const std::string a = argv[i];
@@ -45,9 +49,10 @@ int main(int argc, char** argv) {
         if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
         return argv[++i];
       };
-      if (a == "--degree")
+      if (a == "--degree") {
         ro.degree = std::stoi(value());
-      else if (a == "--law")
+        degree_given = true;
+      } else if (a == "--law")
         ro.law = tmlab::ref::parse_law(value(), "--law");
       else if (a == "--results")
         opt.results_root = value();
@@ -84,6 +89,7 @@ int main(int argc, char** argv) {
   opt.log = quiet ? nullptr : &std::cout;
   try {
     const tmlab::CaseConfig cfg = tmlab::load_case(case_file, TMLAB_SOURCE_DIR);
+    if (!degree_given) ro.degree = tmlab::is_quadratic(cfg.mesh.element) ? 2 : 1;
     const auto r = tmlab::ref::run_reference_case(cfg, opt, ro);
     if (tmlab::ref::MpiSession::rank() == 0 && !quiet)
       std::cout << "results     " << r.dir

@@ -10,6 +10,9 @@
 //   * pressure: dead load on the selected boundary faces (a surface group's triangles, or the
 //     boundary faces all of whose vertices are selected), integrated with the face quadrature;
 //   * gravity: body force rho g, integrated consistently (for P1 the same as lumped nodal masses);
+//   * element: mesh.element p2_mean_dilatation runs the F-bar form of the fast model's element
+//     (Discretisation::mean_dilatation, solid.cpp "Mean dilatation"); p1_anp runs plain P1 (the
+//     reference has no averaged-nodal-pressure form; docs/elements.md);
 //   * contact: the case's rigid bodies by the fast model's augmented Lagrangian (contact.hpp): P1 at
 //     the mesh vertices, the same rule and stopping test, so P1 runs agree to round-off; P2 at the
 //     quadrature points of the boundary faces (the vertex rule leaves the P2 edge nodes free).
@@ -18,6 +21,7 @@
 #include "core/base/error.hpp"
 #include "core/base/interrupt.hpp"
 #include "core/config/dirichlet_conditions.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_ops.hpp"
 #include "core/mesh/mesh_quality.hpp"
@@ -98,6 +102,7 @@ std::string reference_result_name(const CaseConfig& cfg, const ReferenceOptions&
   std::string s = cfg.name + "-reference";
   if (ro.cells == CellType::Hex) s += "-hex";
   if (ro.degree == 2) s += "-p2";
+  if (cfg.mesh.element == ElementKind::P2MeanDilatation) s += "-mean_dilatation";
   if (ro.time_integration == TimeIntegration::Ida) s += "-ida";
   return s;
 }
@@ -136,6 +141,10 @@ void check_supported(const CaseConfig& cfg, const ReferenceOptions& ro, unsigned
         "nodal_force history is not objective (docs/theory/seed-errata.md) and has no continuum counterpart");
   if (ro.degree != 1 && ro.degree != 2)
     throw Error("reference: degree must be 1 or 2 (got " + std::to_string(ro.degree) + ")");
+  if (vs.enabled && cfg.mesh.element == ElementKind::P2MeanDilatation)
+    throw Error(cfg.file +
+                ": key 'mesh.element' 'p2_mean_dilatation' has no viscoelastic form in the reference (nor in "
+                "the fast model), and key 'material.viscoelastic' is given: use \"element\": \"p2\"");
   const MaterialLaw law = ro.law.value_or(cfg.material.law);
   if (vs.enabled && vs.relaxation == PronyRelaxation::Deviatoric && law != MaterialLaw::StVK)
     throw Error(
@@ -426,14 +435,21 @@ Problem::Problem(const CaseConfig& config, const ReferenceOptions& options, MPI_
   const ViscoelasticSpec& vs = cfg.material.viscoelastic;
   if (vs.enabled)
     prony = PronySeries::make(vs.convention, vs.weights, vs.taus, vs.integration, vs.relaxation);
-  solid = std::make_unique<Solid>(comm, coarse, Discretisation{!hex, static_cast<unsigned>(ro.degree)},
-                                  material, prony, newton_parameters(cfg, ro), log);
+  // The fast model's p2_mean_dilatation element: the same F-bar form (solid.cpp, "Mean dilatation").
+  const Discretisation disc{!hex, static_cast<unsigned>(ro.degree),
+                            cfg.mesh.element == ElementKind::P2MeanDilatation};
+  solid = std::make_unique<Solid>(comm, coarse, disc, material, prony, newton_parameters(cfg, ro), log);
   vmap = coarse_vertex_map(*solid, coarse);
   add_dirichlet(*this);
   add_loads(*this);
   solid->finalize_setup();
   for (const auto& pr : cfg.output.probes) probe_nodes.push_back(probe_node(nodes(), pr, cfg.file));
   if (cfg.contact.enabled) add_contact(*this);
+}
+
+/// "mean_dilatation" (F-bar per cell) or "standard": the reference's volumetric form.
+std::string volumetric_name(const Problem& p) {
+  return p.solid->discretisation().mean_dilatation ? "mean_dilatation" : "standard";
 }
 
 /// Vertex values in node order, gathered from the DoF owners.
@@ -481,6 +497,7 @@ void write_inputs(const RunOutput& out, const Problem& p, const RunOptions& opt)
   mi.command_line = opt.command_line;
   mi.config = effective_case_json(p.cfg);
   mi.config["reference"] = {{"degree", ro.degree},
+                            {"volumetric", volumetric_name(p)},
                             {"law", to_string(ro.law.value_or(p.cfg.material.law))},
                             {"cells", to_string(ro.cells)},
                             {"linear_solver", to_string(ro.linear_solver)},
@@ -780,6 +797,7 @@ nlohmann::json summarise(const Problem& p, const Recorder& rec, const SteppingRe
                             {"discretisation",
                              {{"element", p.hex ? "FE_Q" : "FE_SimplexP"},
                               {"degree", ro.degree},
+                              {"volumetric", volumetric_name(p)},
                               {"n_dofs", p.solid->n_dofs()},
                               {"mpi_ranks", p.n_ranks}}},
                             {"solver",
@@ -836,8 +854,9 @@ RunResult run_reference_case(const CaseConfig& cfg, const RunOptions& opt, const
     StepRecorder rec(p, out.get(), staging);
     if (log)
       *log << "reference: " << cfg.name << ", " << p.material.name() << ", " << (p.hex ? "Q" : "P")
-           << ro.degree << ", " << p.solid->n_dofs() << " DoFs, " << p.n_ranks << " rank(s), "
-           << to_string(ro.linear_solver) << " solver\n";
+           << ro.degree << (p.solid->discretisation().mean_dilatation ? " mean dilatation" : "") << ", "
+           << p.solid->n_dofs() << " DoFs, " << p.n_ranks << " rank(s), " << to_string(ro.linear_solver)
+           << " solver\n";
     const SteppingReport r =
         ro.time_integration == TimeIntegration::Ida ? step_ida(p, rec, log) : step_fixed(p, rec);
     nlohmann::json summary;

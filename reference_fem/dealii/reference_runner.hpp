@@ -19,7 +19,7 @@ namespace tmlab::ref {
 
 /// What the reference adds to a case: discretisation, constitutive law and solver choices.
 struct ReferenceOptions {
-  int degree = 1;  ///< polynomial degree: 1 or 2
+  int degree = 1;  ///< polynomial degree: 1 or 2 (the volumetric form follows the case's mesh.element)
   /// Unset: the case's law (material.law, docs/case-files.md). Set: an override of a case given by
   /// E and nu: stvk | neo_hookean | yeoh (tmlab_reference --law).
   std::optional<MaterialLaw> law;
@@ -50,7 +50,8 @@ struct ReferenceOptions {
 };
 
 /// Runs the case with the deal.II reference and writes <results_root>/<case name>-reference (P1)
-/// or -reference-p2 (P2): manifest.json, timeseries.h5, displacement.h5, vtu/ + result.pvd and
+/// or -reference-p2 (P2; -reference-p2-mean_dilatation for mesh.element p2_mean_dilatation, whose
+/// F-bar form the reference then runs): manifest.json, timeseries.h5, displacement.h5, vtu/ + result.pvd and
 /// summary.json last (FAILED on errors). Under mpirun every rank must call it; rank 0 writes the
 /// files and every rank returns the same summary. Input errors throw tmlab::Error.
 /// MPI must be initialised by the caller: create an MpiSession in main() (tmlab_reference, the

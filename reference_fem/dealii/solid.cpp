@@ -38,7 +38,169 @@ namespace tmlab::ref {
 using namespace dealii;
 using Clock = std::chrono::steady_clock;
 
-namespace {}  // namespace
+// =====================================================================================================
+// Mean dilatation (F-bar with one volume change per cell)
+// =====================================================================================================
+//
+// The fast model's p2_mean_dilatation element (tensormass/kernels/hyperelastic_p2.hpp), written for
+// any cell of this solver. With the cell's quadrature points q, weights w_q = JxW_q (reference
+// volume) and V = sum_q w_q:
+//
+//   F_q = I + Grad u(X_q),   J_q = det F_q,
+//   Jbar = sum_q w_q J_q / V                        (the cell's current volume over its rest volume),
+//   alpha_q = (Jbar / J_q)^{1/3},   Fbar_q = alpha_q F_q   (so det Fbar_q = Jbar at every point),
+//   Ebar_q = (Fbar_q^T Fbar_q - I) / 2,   W_cell = sum_q w_q W(Ebar_q),
+//
+// the law (materials.hpp) evaluated at Ebar exactly as the standard element evaluates it at E. The
+// force is dW_cell/dU and the tangent d^2 W_cell/dU^2; every Fbar_q depends on all the cell's DoFs
+// through Jbar, so the cell matrix is dense (the pattern is the element's own). On an affine field
+// every J_q is Jbar, alpha_q = 1 and Fbar = F: the standard element's energy and force (so a
+// homogeneous solution is one of both); its tangent differs, since l_qi below is not zero there.
+//
+// Derivatives. Cell DoF i is the shape function e_{c_i} N_i, with g_qi = Grad N_i(X_q), so
+// dF_q/dU_i = e_{c_i} (x) g_qi. With v_qi = F_q^{-T} g_qi:
+//   b_qi = d(ln J_q)/dU_i = F_q^{-T} : (e_{c_i} (x) g_qi) = (v_qi)_{c_i},
+//   jb_i = d(ln Jbar)/dU_i = sum_q w_q J_q b_qi / (V Jbar),
+//   l_qi = d(ln alpha_q)/dU_i = (jb_i - b_qi) / 3,
+//   G_qi = dFbar_q/dU_i = alpha_q (e_{c_i} (x) g_qi + l_qi F_q).
+// The second derivatives of the logarithms: d^2(ln J)/dF^2 [A, B] = -tr(F^{-1} A F^{-1} B), so
+//   HJ_qij = d^2(ln J_q)/dU_i dU_j = -(v_qi)_{c_j} (v_qj)_{c_i},
+//   Hbar_ij = d^2(ln Jbar)/dU_i dU_j = sum_q w_q J_q (b_qi b_qj + HJ_qij) / (V Jbar) - jb_i jb_j,
+//   d^2(ln alpha_q)/dU_i dU_j = (Hbar_ij - HJ_qij) / 3.
+// With Pbar_q = Fbar_q S(Ebar_q) (first Piola-Kirchhoff stress of Fbar) and its derivative
+// A_q[dFbar] = dFbar S + Fbar (D : sym(Fbar^T dFbar)):
+//   f_i  = sum_q w_q Pbar_q : G_qi,
+//   K_ij = sum_q w_q [ G_qi : A_q[G_qj] + alpha_q (m_qi l_qj + l_qi m_qj)
+//                      + alpha_q (Pbar_q : F_q) (l_qi l_qj + (Hbar_ij - HJ_qij) / 3) ],
+// m_qi = Pbar_q : (e_{c_i} (x) g_qi) = (Pbar_q g_qi)_{c_i}. (The last two terms are the derivative of
+// G_qi itself: G_q is linear in alpha_q, in F_q and in l_q.) tests/test_reference_solid.cpp checks the
+// tangent against central differences of the force and the force against those of the energy.
+
+namespace {
+
+/// The F-bar kinematics of one cell (see above) at the displacement gradients grad_u of its points.
+struct MeanDilatationKinematics {
+  std::vector<Tensor<2, 3>> F, Fbar;
+  std::vector<double> J;
+  double Jbar = 1.0, volume = 0.0;
+  bool in_domain = true;  ///< every J_q > 0 ((Jbar / J_q)^{1/3} and the laws need it)
+};
+
+MeanDilatationKinematics mean_dilatation_kinematics(const FEValues<3>& fev,
+                                                    const std::vector<Tensor<2, 3>>& grad_u) {
+  const std::size_t nq = grad_u.size();
+  MeanDilatationKinematics k;
+  k.F.resize(nq);
+  k.Fbar.resize(nq);
+  k.J.resize(nq);
+  double wJ = 0.0;
+  for (unsigned q = 0; q < nq; ++q) {
+    k.F[q] = Tensor<2, 3>(unit_symmetric_tensor<3>()) + grad_u[q];
+    k.J[q] = determinant(k.F[q]);
+    if (!(k.J[q] > 0.0)) k.in_domain = false;
+    wJ += fev.JxW(q) * k.J[q];
+    k.volume += fev.JxW(q);
+  }
+  // Jbar = sum_q w_q J_q / V;  Fbar_q = (Jbar / J_q)^{1/3} F_q.
+  k.Jbar = wJ / k.volume;
+  if (k.in_domain)  // else Fbar stays zero: the callers stop at in_domain
+    for (unsigned q = 0; q < nq; ++q) k.Fbar[q] = std::cbrt(k.Jbar / k.J[q]) * k.F[q];
+  return k;
+}
+
+SymTensor2 green_strain(const Tensor<2, 3>& F) {
+  return 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
+}
+
+/// W_cell = sum_q w_q W(Ebar_q); +inf outside the domain.
+double mean_dilatation_energy(const Material& m, const FEValues<3>& fev,
+                              const std::vector<Tensor<2, 3>>& grad_u) {
+  const MeanDilatationKinematics k = mean_dilatation_kinematics(fev, grad_u);
+  if (!k.in_domain) return std::numeric_limits<double>::infinity();
+  double w = 0.0;
+  for (unsigned q = 0; q < grad_u.size(); ++q) w += m.energy(green_strain(k.Fbar[q])) * fev.JxW(q);
+  return w;
+}
+
+/// Adds the cell force f_i to cell_r and, with cell_K, the lower triangle (j <= i) of the cell
+/// tangent K_ij (the formulas above). comp[i] = c_i. Returns false outside the domain (nothing added).
+bool add_mean_dilatation_cell(const Material& m, const FEValues<3>& fev,
+                              const std::vector<Tensor<2, 3>>& grad_u, const std::vector<unsigned>& comp,
+                              Vector<double>& cell_r, FullMatrix<double>* cell_K) {
+  const MeanDilatationKinematics k = mean_dilatation_kinematics(fev, grad_u);
+  if (!k.in_domain) return false;
+  const unsigned n = static_cast<unsigned>(comp.size()), nq = static_cast<unsigned>(grad_u.size());
+  const double VJbar = k.volume * k.Jbar;
+  // Per point q and DoF i (index q n + i): g_qi = Grad N_i, v_qi = F_q^{-T} g_qi, b_qi = (v_qi)_{c_i};
+  // and jb_i = sum_q w_q J_q b_qi / (V Jbar).
+  std::vector<Tensor<1, 3>> g(nq * n), v(nq * n);
+  std::vector<double> b(nq * n), jb(n, 0.0);
+  for (unsigned q = 0; q < nq; ++q) {
+    const Tensor<2, 3> FinvT = transpose(invert(k.F[q]));
+    for (unsigned i = 0; i < n; ++i) {
+      const unsigned qi = q * n + i;
+      g[qi] = fev.shape_grad_component(i, q, comp[i]);
+      v[qi] = FinvT * g[qi];
+      b[qi] = v[qi][comp[i]];
+      jb[i] += fev.JxW(q) * k.J[q] * b[qi] / VJbar;
+    }
+  }
+  // HJ_qij = -(v_qi)_{c_j} (v_qj)_{c_i};  Hbar_ij = sum_q w_q J_q (b_qi b_qj + HJ_qij) / (V Jbar) - jb_i jb_j
+  // (lower triangles; both are symmetric).
+  auto HJ = [&](unsigned q, unsigned i, unsigned j) {
+    return -v[q * n + i][comp[j]] * v[q * n + j][comp[i]];
+  };
+  FullMatrix<double> Hbar;
+  if (cell_K) {
+    Hbar.reinit(n, n);
+    for (unsigned q = 0; q < nq; ++q) {
+      const double c = fev.JxW(q) * k.J[q] / VJbar;
+      for (unsigned i = 0; i < n; ++i)
+        for (unsigned j = 0; j <= i; ++j) Hbar(i, j) += c * (b[q * n + i] * b[q * n + j] + HJ(q, i, j));
+    }
+    for (unsigned i = 0; i < n; ++i)
+      for (unsigned j = 0; j <= i; ++j) Hbar(i, j) -= jb[i] * jb[j];
+  }
+  std::vector<double> l(n), mq(n);
+  std::vector<Tensor<2, 3>> G(n), AG(n);
+  for (unsigned q = 0; q < nq; ++q) {
+    const double w = fev.JxW(q);
+    const double alpha = std::cbrt(k.Jbar / k.J[q]);
+    const Tensor<2, 3>& Fbar = k.Fbar[q];
+    // The law at Ebar: S = dW/dE, D = dS/dE; Pbar = Fbar S.
+    const SymTensor2 Ebar = green_strain(Fbar);
+    const Tensor<2, 3> S(m.stress(Ebar));
+    SymTensor4 D;
+    if (cell_K) D = m.tangent(Ebar);
+    const Tensor<2, 3> Pbar = Fbar * S;
+    const double PF = scalar_product(Pbar, k.F[q]);
+    for (unsigned i = 0; i < n; ++i) {
+      const unsigned qi = q * n + i;
+      // l_qi = (jb_i - b_qi)/3;  G_qi = alpha_q (e_{c_i} (x) g_qi + l_qi F_q).
+      l[i] = (jb[i] - b[qi]) / 3.0;
+      G[i] = l[i] * k.F[q];
+      for (unsigned c = 0; c < 3; ++c) G[i][comp[i]][c] += g[qi][c];
+      G[i] *= alpha;
+      // Internal force: f_i += w_q Pbar_q : G_qi.
+      cell_r(i) += scalar_product(Pbar, G[i]) * w;
+      if (cell_K) {
+        // m_qi = (Pbar_q g_qi)_{c_i};  A_q[G_qi] = G_qi S + Fbar (D : sym(Fbar^T G_qi)).
+        mq[i] = (Pbar * g[qi])[comp[i]];
+        AG[i] = G[i] * S + Fbar * Tensor<2, 3>(D * symmetrize(transpose(Fbar) * G[i]));
+      }
+    }
+    if (cell_K)
+      // K_ij += w_q [G_qi : A_q[G_qj] + alpha_q (m_qi l_qj + l_qi m_qj)
+      //              + alpha_q (Pbar_q : F_q)(l_qi l_qj + (Hbar_ij - HJ_qij)/3)].
+      for (unsigned i = 0; i < n; ++i)
+        for (unsigned j = 0; j <= i; ++j)
+          (*cell_K)(i, j) += w * (scalar_product(G[i], AG[j]) + alpha * (mq[i] * l[j] + l[i] * mq[j]) +
+                                  alpha * PF * (l[i] * l[j] + (Hbar(i, j) - HJ(q, i, j)) / 3.0));
+  }
+  return true;
+}
+
+}  // namespace
 
 // =====================================================================================================
 // Materials
@@ -153,6 +315,8 @@ Solid::Solid(MPI_Comm comm, Triangulation<3>& coarse, const Discretisation& disc
       prony_(std::move(prony)),
       newton_(newton) {
   if (disc.degree < 1 || disc.degree > 2) throw Error("reference: degree must be 1 or 2");
+  if (disc.mean_dilatation && prony_)
+    throw Error("reference: the mean-dilatation (F-bar) form has no viscoelastic (Prony) form");
   // The coarse mesh is the same on every rank; METIS partitions it (deterministically) and the
   // fully distributed triangulation keeps each rank's cells plus one layer of ghosts.
   const unsigned n_ranks = Utilities::MPI::n_mpi_processes(comm);
@@ -281,6 +445,7 @@ void Solid::assemble(const TrilinosWrappers::MPI::Vector& u_ghost, double t, dou
     *rhs = 0.0;
   }
   const SymTensor2 I = unit_symmetric_tensor<3>();
+  const bool fbar = disc_.mean_dilatation;
   for (const auto& cell : dof_handler_.active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     fev.reinit(cell);
@@ -290,10 +455,16 @@ void Solid::assemble(const TrilinosWrappers::MPI::Vector& u_ghost, double t, dou
     if (tangent) cell_K = 0.0;
     std::vector<std::shared_ptr<QPData>> qp;
     if (prony_) qp = qp_data_.get_data(cell);
+    // Mean dilatation: the cell's force and tangent at once (its points are coupled through Jbar; see
+    // "Mean dilatation" above). Outside the domain (a det F <= 0) the residual is NaN, so that the
+    // line search shortens the step, as the fast model's NaN forces do.
+    if (fbar && mode != Mode::External &&
+        !add_mean_dilatation_cell(material_, fev, grad_u, comp, cell_r, tangent ? &cell_K : nullptr))
+      for (unsigned i = 0; i < n; ++i) cell_r(i) = std::numeric_limits<double>::quiet_NaN();
 
     for (unsigned q = 0; q < nq; ++q) {
       const double JxW = fev.JxW(q);
-      if (mode != Mode::External) {
+      if (mode != Mode::External && !fbar) {
         // Kinematics: F = I + Grad u, E = (F^T F - I)/2.
         const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
         const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - I);
@@ -816,6 +987,10 @@ double Solid::stored_energy(const TrilinosWrappers::MPI::Vector& u_ghost, bool w
     if (!cell->is_locally_owned()) continue;
     fev.reinit(cell);
     fev[disp].get_function_gradients(u_ghost, grad_u);
+    if (disc_.mean_dilatation) {  // int W(Ebar) dV (no Prony history with mean dilatation)
+      w += mean_dilatation_energy(material_, fev, grad_u);
+      continue;
+    }
     for (unsigned q = 0; q < qcell_.size(); ++q) {
       const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
       const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
@@ -878,12 +1053,16 @@ void Solid::cell_fields(Vector<float>& volume_ratio, Vector<float>& von_mises) c
     std::vector<std::shared_ptr<const QPData>> qp;
     if (prony_) qp = qp_data_.get_data(cell);
     double vol = 0.0, jsum = 0.0, vmsum = 0.0;
+    // With mean dilatation the stress is the law's at Fbar (det Fbar = Jbar); the mean of det F is Jbar.
+    std::optional<MeanDilatationKinematics> md;
+    if (disc_.mean_dilatation) md = mean_dilatation_kinematics(fev, grad_u);
     for (unsigned q = 0; q < qcell_.size(); ++q) {
       const Tensor<2, 3> F = unit_symmetric_tensor<3>() + grad_u[q];
-      const SymTensor2 E = 0.5 * (symmetrize(transpose(F) * F) - unit_symmetric_tensor<3>());
+      const Tensor<2, 3> Fe = md ? md->Fbar[q] : F;  // the law's F
+      const SymTensor2 E = 0.5 * (symmetrize(transpose(Fe) * Fe) - unit_symmetric_tensor<3>());
       const SymTensor2 S = committed_stress(material_, prony_, prony_ ? &qp[q]->prony : nullptr, E);
       const double J = determinant(F);
-      const SymTensor2 sigma = symmetrize(F * Tensor<2, 3>(S) * transpose(F)) / J;
+      const SymTensor2 sigma = symmetrize(Fe * Tensor<2, 3>(S) * transpose(Fe)) / determinant(Fe);
       const SymTensor2 dev = deviator(sigma);
       jsum += J * fev.JxW(q);
       vmsum += std::sqrt(1.5 * (dev * dev)) * fev.JxW(q);

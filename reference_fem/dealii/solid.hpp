@@ -12,6 +12,12 @@
 // F = I + Grad u, E = (F^T F - I)/2. Its derivative in direction du is the tangent
 //   K(u)[du, v] = int ( sym(F^T Grad v) : D : sym(F^T Grad du) + Grad v S : Grad du ) dV
 // (material plus geometric stiffness); the external loads are dead loads (independent of u).
+//
+// Mean dilatation (Discretisation::mean_dilatation; the fast model's p2_mean_dilatation element,
+// docs/elements.md): per cell, one volume change Jbar = int J dV / int dV replaces each point's, and
+// the law sees Fbar = (Jbar / J)^{1/3} F (F-bar). The cell energy int W(Ebar) dV is then a function of
+// all the cell's DoFs at once, so force and tangent are assembled per cell (solid.cpp, "Mean
+// dilatation"; the tangent is dense in the cell's DoFs, and the sparsity pattern stays the element's).
 #pragma once
 
 #include "core/config/line_search.hpp"
@@ -46,6 +52,9 @@ using dealii::types::global_dof_index;
 struct Discretisation {
   bool simplex = true;  ///< FE_SimplexP + QGaussSimplex + MappingFE; false: FE_Q + QGauss + MappingQ1
   unsigned degree = 1;  ///< 1 or 2
+  /// F-bar with one mean dilatation per cell (the fast model's p2_mean_dilatation); elastic only (no
+  /// Prony history). For P1 tets F is constant per cell, so it changes nothing there.
+  bool mean_dilatation = false;
 };
 
 /// Newton and linear-solver parameters (step-44 keeps these in parameter structs; so do we).
@@ -121,6 +130,7 @@ class Solid {
   const dealii::Triangulation<3>& triangulation() const { return tria_; }
   const dealii::FESystem<3>& fe() const { return *fe_; }
   const dealii::Mapping<3>& mapping() const { return *mapping_; }
+  const Discretisation& discretisation() const { return disc_; }
   const dealii::IndexSet& locally_owned_dofs() const { return owned_; }
   const dealii::IndexSet& locally_relevant_dofs() const { return relevant_; }
   global_dof_index n_dofs() const { return dof_handler_.n_dofs(); }
@@ -161,13 +171,15 @@ class Solid {
   /// int W(E(u)) dV over all ranks for any ghosted displacement u (no history terms): the
   /// hyperelastic part of the potential the Newton line search decreases.
   double hyperelastic_energy(const dealii::TrilinosWrappers::MPI::Vector& u_ghost) const;
-  /// Smallest det F over the quadrature points of all ranks.
+  /// Smallest det F over the quadrature points of all ranks (the displacement's F, also with mean
+  /// dilatation, whose Fbar needs every det F > 0).
   double min_volume_ratio() const;
   /// Reaction of each condition: sum over its DoFs of f_int - f_ext at time t (summed over ranks).
   std::vector<dealii::Tensor<1, 3>> reactions(double t) const;
   int n_conditions() const { return static_cast<int>(conditions_.size()); }
   const std::string& condition_name(int k) const { return conditions_[k].name; }
-  /// Cell averages of det F and of the von Mises Cauchy stress, per active cell (for output).
+  /// Cell averages of det F and of the von Mises Cauchy stress, per active cell (for output; with mean
+  /// dilatation the stress of Fbar, and the mean det F is Jbar).
   void cell_fields(dealii::Vector<float>& volume_ratio, dealii::Vector<float>& von_mises) const;
 
   /// Global residual f_int(u) - f_ext(t) (unconstrained) and, when K is given, the tangent

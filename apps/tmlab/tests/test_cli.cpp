@@ -253,6 +253,8 @@ TEST_F(Cli, CompareWritesTheDifferences) {
     EXPECT_FALSE(fs::exists(cdir / ".incomplete"));
     EXPECT_FALSE(fs::exists(dir_ / "res" / "cube-uniaxial" / "compare.json"));
     EXPECT_EQ(c["against"], against);
+    EXPECT_EQ(c["element"], "p1");
+    if (against == "reference") EXPECT_EQ(c["reference_element"], "P1");
     EXPECT_LT(c["rel_diff_displacement"].get<double>(), 1e-8) << c.dump();
     EXPECT_LT(c["rel_diff_reaction"].get<double>(), 1e-8) << c.dump();
     EXPECT_LT(c["rel_diff_energy"].get<double>(), 1e-8) << c.dump();
@@ -270,6 +272,37 @@ TEST_F(Cli, CompareWritesTheDifferences) {
     EXPECT_EQ(r.status, 2) << bad << ": " << r.output;
     EXPECT_NE(r.output.find("--degree"), std::string::npos) << r.output;
   }
+}
+
+/// `tmlab compare` on a p2_mean_dilatation case: the reference runs the same F-bar P2 element
+/// (docs/elements.md), so the two agree to the solvers' tolerance; compare.json names both elements.
+TEST_F(Cli, CompareGivesTheReferenceTheMeanDilatationElement) {
+#ifndef TMLAB_HAVE_REFERENCE
+  GTEST_SKIP() << "built without the deal.II reference";
+#endif
+  const fs::path c = write("md.json", R"({"name": "md", "model": "hyperelastic_tl",
+    "mesh": {"file": "meshes/cube_n2.msh", "scale": 0.01, "element": "p2_mean_dilatation"},
+    "material": {"law": "neo_hookean", "E": 10000, "nu": 0.49, "density": 1000},
+    "boundary": [{"name": "base", "nodes": {"group": "zmin"}}],
+    "loads": [{"type": "pressure", "faces": {"group": "zmax"}, "pressure": 800,
+               "function": {"type": "ramp", "t0": 0, "t1": 1}},
+              {"type": "traction", "faces": {"group": "xmax"}, "traction": [0, 500, 0],
+               "function": {"type": "ramp", "t0": 0, "t1": 1}}],
+    "solver": {"type": "static", "steps": 2, "newton": {"rtol": 1e-12}}})");
+  const Result r = run("compare '" + c.string() + "' --no-plots --results '" + (dir_ / "res").string() + "'");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("deal.II reference run (P2 mean dilatation"), std::string::npos) << r.output;
+  std::ifstream in(dir_ / "res" / "md-compare" / "compare.json");
+  const auto cmp = nlohmann::json::parse(in);
+  EXPECT_EQ(cmp["element"], "p2_mean_dilatation");
+  EXPECT_EQ(cmp["reference_element"], "P2 mean dilatation (F-bar per cell)");
+  EXPECT_EQ(fs::path(cmp["b"].get<std::string>()).filename(), "md-reference-p2-mean_dilatation");
+  // The reference's Newton tolerance stays its default (1e-10), so the agreement is the solvers'.
+  EXPECT_LT(cmp["rel_diff_displacement"].get<double>(), 1e-8) << cmp.dump();
+  EXPECT_LT(cmp["rel_diff_energy"].get<double>(), 1e-8) << cmp.dump();
+  std::printf(
+      "[ measured ] tmlab compare, p2_mean_dilatation cube (nu = 0.49): displacement %.2e, energy %.2e\n",
+      cmp["rel_diff_displacement"].get<double>(), cmp["rel_diff_energy"].get<double>());
 }
 
 /// `tmlab paper fig7` end to end on a reduced parameter file (one scheme, one short cycle): the

@@ -1,8 +1,10 @@
 // The deal.II reference end to end, through the same case files as the tensor-mass runner:
 //   (1) same discretisation, same answer: P1 St VK equals tmlab::tm::run_case in every nodal
-//       displacement (cube with all load types, the liver demo, Prony-viscoelastic cubes);
+//       displacement (cube with all load types, the liver demo, Prony-viscoelastic cubes); the
+//       fast model's p2 and p2_mean_dilatation equal the reference's P2 and its F-bar form;
 //   (2) homogeneous closed forms: uniaxial St VK (P1 and P2), neo-Hookean simple shear, Prony
-//       relaxation of a stretched cube, no relaxation of a hydrostatic stretch (deviatoric);
+//       relaxation of a stretched cube, no relaxation of a hydrostatic stretch (deviatoric); mean
+//       dilatation equals P2 on a homogeneous stretch;
 //   (5) a hex (FE_Q2) and a tet (FE_SimplexP2) run of a beam converge to the same answer;
 //   (6) contact: the reference's gap and contact boundary equal the fast model's (tensormass/contact);
 //       a frictionless platen pressing a cube gives the solution and force of the same prescribed
@@ -156,6 +158,98 @@ TEST_F(ReferenceRunnerTest, P1StVKEqualsTensorMassOnLiver) {
   std::printf(
       "[ measured ] liver-probe: max relative nodal difference %.3e, probe reaction %.6f N vs %.6f N\n", d,
       ra.back(), rb.back());
+}
+
+nlohmann::json viscoelastic_cube(const std::string& integration, const std::string& relaxation);
+
+/// The cube under dead pressure and traction with a 10-node element (no gravity: the fast model's
+/// quadratic gravity uses HRZ nodal masses, the reference the consistent body force; no point forces,
+/// which P2 concentrates into a singularity).
+nlohmann::json quadratic_cube(const std::string& element) {
+  nlohmann::json j = nlohmann::json::parse(R"({
+    "name": "cube-quadratic",
+    "model": "hyperelastic_tl",
+    "mesh": {"file": "meshes/cube_n4.msh", "scale": 0.01},
+    "material": {"law": "neo_hookean", "E": 10000, "nu": 0.45, "density": 1000},
+    "boundary": [{"name": "base", "nodes": {"group": "zmin"}}],
+    "loads": [
+      {"type": "pressure", "faces": {"group": "zmax"}, "pressure": 1000,
+       "function": {"type": "smooth_ramp", "t0": 0, "t1": 1}},
+      {"type": "traction", "faces": {"group": "xmax"}, "traction": [0, 600, -200],
+       "function": {"type": "ramp", "t0": 0, "t1": 1}}
+    ],
+    "solver": {"type": "static", "steps": 4, "newton": {"rtol": 1e-12}},
+    "output": {"probes": [{"name": "top", "point": [0.005, 0.005, 0.01]}]}
+  })");
+  j["mesh"]["element"] = element;
+  return j;
+}
+
+// p2 and p2_mean_dilatation: the fast model's 10-node tets against the reference's P2 (standard, and
+// the F-bar form the reference runs for mesh.element p2_mean_dilatation). The discrete equations are
+// the same (test_reference_solid compares them pointwise), so the solutions agree to the solvers'
+// tolerance.
+TEST_F(ReferenceRunnerTest, P2ElementsEqualTheFastModelsWithAndWithoutMeanDilatation) {
+  ReferenceOptions ro;
+  ro.degree = 2;
+  ro.newton_rtol = 1e-12;
+  std::vector<double> probe_z;
+  for (const std::string element : {"p2", "p2_mean_dilatation"}) {
+    const auto a = run_tm(quadratic_cube(element));
+    const auto b = run_ref(quadratic_cube(element), ro);
+    const bool md = element == "p2_mean_dilatation";
+    EXPECT_EQ(b.summary["discretisation"]["volumetric"], md ? "mean_dilatation" : "standard");
+    EXPECT_EQ(fs::path(b.dir).filename(),
+              md ? "cube-quadratic-reference-p2-mean_dilatation" : "cube-quadratic-reference-p2");
+    const double d = max_rel_diff(a.dir, b.dir);
+    EXPECT_LE(d, 1e-10) << element;
+    const auto ra = series(a.dir, "reaction_base_z"), rb = series(b.dir, "reaction_base_z");
+    ASSERT_EQ(ra.size(), rb.size());
+    for (std::size_t i = 0; i < ra.size(); ++i)
+      EXPECT_NEAR(ra[i], rb[i], 1e-10 * std::abs(rb.back())) << element << " step " << i;
+    const auto ea = series(a.dir, "elastic_energy"), eb = series(b.dir, "elastic_energy");
+    EXPECT_NEAR(ea.back(), eb.back(), 1e-10 * std::abs(eb.back())) << element;
+    probe_z.push_back(series(b.dir, "probe_top_z").back());
+    std::printf(
+        "[ measured ] cube, neo-Hookean nu = 0.45, fast %s vs reference: max relative nodal "
+        "difference %.3e, base reaction z %.9e N vs %.9e N\n",
+        element.c_str(), d, ra.back(), rb.back());
+  }
+  // The two elements are different discretisations of the same problem.
+  EXPECT_GT(std::abs(probe_z[0] - probe_z[1]), 1e-4 * std::abs(probe_z[0]));
+}
+
+TEST_F(ReferenceRunnerTest, MeanDilatationEqualsP2OnAHomogeneousStretch) {
+  // Uniaxial stretch on rollers: F is the same at every point, so Fbar = F and the F-bar solution is
+  // the standard P2 one (and the closed form of UniaxialStVKReactionMatchesClosedFormP1AndP2).
+  ReferenceOptions ro;
+  ro.degree = 2;
+  nlohmann::json j = uniaxial_cube(0.002);
+  const auto a = run_ref(j, ro);
+  j["mesh"]["element"] = "p2_mean_dilatation";
+  const auto b = run_ref(j, ro);
+  const double d = max_rel_diff(a.dir, b.dir);
+  EXPECT_LE(d, 1e-12);
+  const double fa = a.summary["final_reactions_N"]["pull"][0].get<double>(),
+               fb = b.summary["final_reactions_N"]["pull"][0].get<double>();
+  EXPECT_NEAR(fa, fb, 1e-12 * std::abs(fa));
+  std::printf("[ measured ] uniaxial St VK, P2 vs P2 mean dilatation: nodal %.2e, reaction %.2e (relative)\n",
+              d, std::abs(fa - fb) / std::abs(fa));
+}
+
+TEST_F(ReferenceRunnerTest, RefusesMeanDilatationWithViscoelasticity) {
+  nlohmann::json j = viscoelastic_cube("exact_linear", "full");
+  j["mesh"]["element"] = "p2_mean_dilatation";
+  ReferenceOptions ro;
+  ro.degree = 2;
+  try {
+    run_ref(j, ro);
+    FAIL() << "a viscoelastic p2_mean_dilatation case ran";
+  } catch (const Error& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("key 'mesh.element' 'p2_mean_dilatation'"), std::string::npos) << m;
+    EXPECT_NE(m.find("key 'material.viscoelastic'"), std::string::npos) << m;
+  }
 }
 
 nlohmann::json viscoelastic_cube(const std::string& integration, const std::string& relaxation) {

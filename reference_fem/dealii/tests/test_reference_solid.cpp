@@ -1,6 +1,13 @@
 // The solver's internals (deal.II level):
 //   * the assembled tangent is the derivative of the assembled residual (central differences),
 //     for every law, P1/P2 simplices and Q2 hexahedra, with and without Prony history;
+//   * the fast model's 10-node tet (tensormass/kernels/hyperelastic_p2.hpp), standard and with mean
+//     dilatation, has the reference's P2 energy, force and tangent on the same mesh to round-off, for
+//     every law;
+//   * mean dilatation (F-bar per cell, the fast model's p2_mean_dilatation): the tangent is the
+//     derivative of the residual and the residual that of the energy (central differences), for every
+//     law on P2 tets (and Q2 hexes); on an affine field its residual and energy are the standard
+//     element's (so a homogeneous solution is one of both), on a non-affine field they are not;
 //   * (3) refinement study with a manufactured solution (body force b0 = -Div P(u_exact), exact
 //     Dirichlet data on the whole boundary): L2 and H1 errors converge at the rates k+1 and k of
 //     P1 and P2 (the finest P2 level is labelled slow);
@@ -17,9 +24,12 @@
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "core/mesh/mesh_ops.hpp"
+#include "core/mesh/quadratic_mesh.hpp"
 #include "reference_fem/dealii/contact.hpp"
 #include "reference_fem/dealii/ida_dae.hpp"
 #include "reference_fem/dealii/solid.hpp"
+#include "tensormass/kernels/hyperelastic_p2.hpp"
+#include "tensormass/materials/law_factory.hpp"
 
 #include <deal.II/base/function.h>
 #include <deal.II/base/quadrature_lib.h>
@@ -99,6 +109,247 @@ TEST(ReferenceSolid, TangentIsTheDerivativeOfTheResidual) {
   const double e = tangent_fd_error("neo_hookean", true, 2, true);
   EXPECT_LE(e, 1e-7) << "with Prony history";
   std::printf("[ measured ] tangent vs central differences, neo_hookean P2 + Prony: %.2e\n", e);
+}
+
+// ---- mean dilatation (F-bar per cell) --------------------------------------------------------------
+
+/// Every law of materials.hpp as a case file gives it (the fast model builds its law from the same
+/// parameters), nu about 0.45 and some strain stiffening.
+std::vector<std::pair<MaterialLaw, LawParameters>> every_law_parameters() {
+  std::vector<std::pair<MaterialLaw, LawParameters>> out;
+  LawParameters ep;
+  ep.young = 1000.0, ep.poisson = 0.45;
+  out.emplace_back(MaterialLaw::StVK, ep);
+  out.emplace_back(MaterialLaw::NeoHookean, ep);
+  LawParameters ye;
+  ye.c10 = 170.0, ye.c20 = 250.0, ye.c30 = 80.0, ye.kappa = 3500.0;
+  out.emplace_back(MaterialLaw::Yeoh, ye);
+  LawParameters mr;
+  mr.c10 = 150.0, mr.c01 = 50.0, mr.kappa = 4000.0;
+  out.emplace_back(MaterialLaw::MooneyRivlin, mr);
+  LawParameters og;
+  og.mu = {300.0, -20.0}, og.alpha = {2.5, -2.0}, og.kappa = 5000.0;
+  out.emplace_back(MaterialLaw::Ogden, og);
+  LawParameters vw;
+  vw.c1 = 200.0, vw.c2 = 1.5, vw.kappa = 6000.0;
+  out.emplace_back(MaterialLaw::VerondaWestmann, vw);
+  return out;
+}
+
+std::vector<std::pair<std::string, Material>> every_law() {
+  std::vector<std::pair<std::string, Material>> out;
+  for (const auto& [law, p] : every_law_parameters())
+    out.emplace_back(to_string(law), Material::make(law, p));
+  return out;
+}
+
+/// A Solid on the unit cube (2^3 cells, tets or hexes) without loads, so that its residual is the
+/// internal force.
+std::unique_ptr<Solid> unloaded_cube(Triangulation<3>& coarse, const Material& m, bool simplex,
+                                     unsigned degree, bool mean_dilatation) {
+  make_cube(coarse, simplex, 2);
+  return std::make_unique<Solid>(MPI_COMM_SELF, coarse, Discretisation{simplex, degree, mean_dilatation}, m,
+                                 std::nullopt, NewtonParameters{});
+}
+
+TrilinosWrappers::MPI::Vector random_field(const Solid& s, double amplitude, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF);
+  for (auto i : s.locally_owned_dofs()) u[i] = amplitude * d(rng);
+  u.compress(VectorOperation::insert);
+  return u;
+}
+
+double energy_at(const Solid& s, const TrilinosWrappers::MPI::Vector& u) {
+  TrilinosWrappers::MPI::Vector g(s.locally_owned_dofs(), s.locally_relevant_dofs(), MPI_COMM_SELF);
+  g = u;
+  return s.hyperelastic_energy(g);
+}
+
+TEST(ReferenceSolidMeanDilatation, TangentAndForceAreTheDerivativesForEveryLaw) {
+  for (const auto& [name, m] : every_law())
+    for (const auto& [simplex, degree] : std::vector<std::pair<bool, unsigned>>{{true, 2}, {false, 2}}) {
+      if (!simplex && name != "neo_hookean") continue;  // one law on Q2 hexes
+      Triangulation<3> coarse;
+      const auto s = unloaded_cube(coarse, m, simplex, degree, true);
+      const auto u = random_field(*s, 0.03, 7), v = random_field(*s, 1.0, 11);
+      TrilinosWrappers::MPI::Vector r0, rp, rm, Kv(u), up(u), um(u);
+      TrilinosWrappers::SparseMatrix K;
+      s->residual_and_tangent(u, 1.0, 0.0, r0, &K);
+      K.vmult(Kv, v);
+      // The tangent: K v against (R(u + h v) - R(u - h v)) / 2h.
+      const double h = 1e-6;
+      up.add(h, v);
+      um.add(-h, v);
+      s->residual_and_tangent(up, 1.0, 0.0, rp, nullptr);
+      s->residual_and_tangent(um, 1.0, 0.0, rm, nullptr);
+      TrilinosWrappers::MPI::Vector fd(rp);
+      fd -= rm;
+      fd /= 2 * h;
+      fd -= Kv;
+      const double ek = fd.l2_norm() / Kv.l2_norm();
+      // The force: R(u) . v against the fourth-order central difference of W(u + h v).
+      const double he = 1e-5;
+      auto W = [&](double a) {
+        TrilinosWrappers::MPI::Vector x(u);
+        x.add(a, v);
+        return energy_at(*s, x);
+      };
+      const double dW = (8.0 * (W(he) - W(-he)) - (W(2 * he) - W(-2 * he))) / (12.0 * he), rv = r0 * v;
+      const double ef = std::abs(dW - rv) / std::abs(rv);
+      EXPECT_LE(ek, 1e-7) << name << (simplex ? " P" : " Q") << degree;
+      EXPECT_LE(ef, 1e-8) << name << (simplex ? " P" : " Q") << degree;
+      std::printf(
+          "[ measured ] mean dilatation %s %s%u: tangent vs central differences %.2e, force vs "
+          "energy differences %.2e\n",
+          name.c_str(), simplex ? "P" : "Q", degree, ek, ef);
+    }
+}
+
+TEST(ReferenceSolidMeanDilatation, EqualsTheStandardElementOnAnAffineField) {
+  // u = (F0 - I) X: F is F0 at every point, so J_q = Jbar and Fbar = F. The P2 interpolant of an
+  // affine field is exact, so setting the DoFs at their support points gives it.
+  const Material m = Material::make("neo_hookean", 1000.0, 0.45);
+  Triangulation<3> ca, cb;
+  const auto md = unloaded_cube(ca, m, true, 2, true), st = unloaded_cube(cb, m, true, 2, false);
+  Tensor<2, 3> H;  // F0 - I: stretch, shear and a volume change
+  H[0][0] = 0.12, H[0][1] = 0.05, H[1][1] = -0.04, H[1][2] = 0.07, H[2][0] = -0.03, H[2][2] = 0.09;
+  std::map<global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(md->mapping(), md->dof_handler(), support);
+  TrilinosWrappers::MPI::Vector u(md->locally_owned_dofs(), MPI_COMM_SELF);
+  std::vector<global_dof_index> dofs(md->fe().n_dofs_per_cell());
+  for (const auto& cell : md->dof_handler().active_cell_iterators()) {
+    cell->get_dof_indices(dofs);
+    for (unsigned i = 0; i < dofs.size(); ++i)
+      u[dofs[i]] = (H * support.at(dofs[i]))[md->fe().system_to_component_index(i).first];
+  }
+  u.compress(VectorOperation::insert);
+  ASSERT_EQ(md->n_dofs(), st->n_dofs());  // the same DoF numbering: the same mesh and element
+  // Residual and energy agree (sum_q w_q l_qi = 0 when every J_q is Jbar); the tangents do not, and
+  // need not: l_qi, the derivative of ln alpha_q, is not zero there (the F-bar element's stiffness to
+  // non-affine variations is its own).
+  TrilinosWrappers::MPI::Vector ra, rb;
+  md->residual_and_tangent(u, 1.0, 0.0, ra, nullptr);
+  st->residual_and_tangent(u, 1.0, 0.0, rb, nullptr);
+  TrilinosWrappers::MPI::Vector d(ra);
+  d -= rb;
+  // Interior DoFs have zero force under a homogeneous stress: relative to the boundary forces.
+  const double er = d.l2_norm() / rb.l2_norm();
+  const double wa = energy_at(*md, u), wb = energy_at(*st, u), ew = std::abs(wa - wb) / wb;
+  EXPECT_LE(er, 1e-13);
+  EXPECT_LE(ew, 1e-13);
+  std::printf(
+      "[ measured ] affine field: mean dilatation vs standard P2, residual %.2e, energy %.2e "
+      "(relative)\n",
+      er, ew);
+  // A non-affine field: the two elements differ (the option does something).
+  const auto w = random_field(*md, 0.03, 9);
+  md->residual_and_tangent(w, 1.0, 0.0, ra, nullptr);
+  st->residual_and_tangent(w, 1.0, 0.0, rb, nullptr);
+  d = ra;
+  d -= rb;
+  const double en = d.l2_norm() / rb.l2_norm();
+  EXPECT_GE(en, 1e-3);
+  std::printf("[ measured ] random field: mean dilatation vs standard P2 residual %.2e (relative)\n", en);
+}
+
+/// The reference's P2 (standard or mean dilatation) and the fast model's HyperelasticP2 on the same
+/// mesh evaluated at the same displacement field: max over energy, internal force and tangent times a
+/// vector of the relative differences. DoFs are matched through their support points (the deal.II
+/// P2 edge DoFs sit at the edge midpoints, as the quadratic mesh's midside nodes).
+struct SameMeshDifferences {
+  double energy = 0.0, force = 0.0, tangent = 0.0;
+};
+
+SameMeshDifferences fast_vs_reference(MaterialLaw law, const LawParameters& params, bool mean_dilatation) {
+  const Mesh mesh = make_box_mesh(Vec3::Zero(), Vec3(0.02, 0.01, 0.01), 3, 2, 2);
+  const QuadraticMesh qm = make_quadratic(mesh);
+  tm::P2Options po;
+  po.volumetric =
+      mean_dilatation ? tm::P2Options::Volumetric::MeanDilatation : tm::P2Options::Volumetric::Standard;
+  const tm::HyperelasticP2 fast(qm, tm::make_law(law, params, "test"), po);
+
+  std::vector<Point<3>> points;
+  for (const Vec3& x : mesh.points) points.emplace_back(x[0], x[1], x[2]);
+  std::vector<std::array<unsigned, 4>> tets;
+  for (const auto& t : mesh.tets)
+    tets.push_back({static_cast<unsigned>(t[0]), static_cast<unsigned>(t[1]), static_cast<unsigned>(t[2]),
+                    static_cast<unsigned>(t[3])});
+  Triangulation<3> coarse;
+  build_tet_triangulation(points, tets, coarse);
+  Solid s(MPI_COMM_SELF, coarse, Discretisation{true, 2, mean_dilatation}, Material::make(law, params),
+          std::nullopt, NewtonParameters{});
+
+  // DoF d of the reference = component c of node a of the quadratic mesh: fast index 3 a + c.
+  std::map<global_dof_index, Point<3>> support;
+  DoFTools::map_dofs_to_support_points(s.mapping(), s.dof_handler(), support);
+  std::vector<Eigen::Index> fast_index(s.n_dofs(), -1);
+  std::vector<global_dof_index> dofs(s.fe().n_dofs_per_cell());
+  for (const auto& cell : s.dof_handler().active_cell_iterators()) {
+    cell->get_dof_indices(dofs);
+    for (unsigned i = 0; i < dofs.size(); ++i) {
+      const Point<3>& x = support.at(dofs[i]);
+      Index node = -1;
+      for (Index a = 0; a < qm.num_points() && node < 0; ++a)
+        if ((qm.points[static_cast<std::size_t>(a)] - Vec3(x[0], x[1], x[2])).norm() < 1e-12) node = a;
+      if (node < 0) throw std::runtime_error("no quadratic-mesh node at a P2 support point");
+      fast_index[dofs[i]] = 3 * node + s.fe().system_to_component_index(i).first;
+    }
+  }
+  // A non-affine field with gradients up to ~0.1 and a direction.
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> d(-1.0, 1.0);
+  TrilinosWrappers::MPI::Vector u(s.locally_owned_dofs(), MPI_COMM_SELF), v(u), r, Kv(u);
+  tm::VecX uf(fast.num_dofs()), vf(fast.num_dofs()), ff, Kvf;
+  for (auto i : s.locally_owned_dofs()) {
+    u[i] = uf[fast_index[i]] = 2e-4 * d(rng);
+    v[i] = vf[fast_index[i]] = d(rng);
+  }
+  u.compress(VectorOperation::insert);
+  v.compress(VectorOperation::insert);
+  TrilinosWrappers::SparseMatrix K;
+  s.residual_and_tangent(u, 1.0, 0.0, r, &K);  // no loads: r = f_int
+  K.vmult(Kv, v);
+  fast.internal_force(uf, ff);
+  fast.tangent_apply(uf, vf, Kvf);
+  double df = 0.0, nf = 0.0, dk = 0.0, nk = 0.0;
+  for (auto i : s.locally_owned_dofs()) {
+    df += std::pow(r[i] - ff[fast_index[i]], 2), nf += r[i] * r[i];
+    dk += std::pow(Kv[i] - Kvf[fast_index[i]], 2), nk += Kv[i] * Kv[i];
+  }
+  const double we = energy_at(s, u), wf = fast.energy(uf);
+  return {std::abs(we - wf) / std::abs(we), std::sqrt(df / nf), std::sqrt(dk / nk)};
+}
+
+TEST(ReferenceSolidMeanDilatation, EqualsTheFastModelsP2ElementsOnTheSameMesh) {
+  // The discrete equations are the same (same rule, QGaussSimplex<3>(3); same F-bar; same laws), so
+  // energy, force and tangent agree to round-off: P2 and P2 with mean dilatation, every law.
+  for (const auto& [law, params] : every_law_parameters())
+    for (const bool md : {false, true}) {
+      const SameMeshDifferences e = fast_vs_reference(law, params, md);
+      EXPECT_LE(e.energy, 1e-12) << to_string(law) << (md ? " mean dilatation" : "");
+      EXPECT_LE(e.force, 1e-12) << to_string(law) << (md ? " mean dilatation" : "");
+      EXPECT_LE(e.tangent, 1e-12) << to_string(law) << (md ? " mean dilatation" : "");
+      std::printf(
+          "[ measured ] fast HyperelasticP2%s vs reference, %s: energy %.2e, force %.2e, tangent "
+          "%.2e (relative)\n",
+          md ? " mean dilatation" : "", to_string(law).c_str(), e.energy, e.force, e.tangent);
+    }
+}
+
+TEST(ReferenceSolidMeanDilatation, RefusesPronyHistory) {
+  Triangulation<3> coarse;
+  make_cube(coarse, true, 1);
+  const auto p = PronySeries::make(PronyConvention::LongTerm, {0.5}, {0.1}, PronyIntegration::Midpoint,
+                                   PronyRelaxation::Full);
+  try {
+    Solid s(MPI_COMM_SELF, coarse, Discretisation{true, 2, true}, Material::make("neo_hookean", 1000.0, 0.3),
+            p, NewtonParameters{});
+    FAIL() << "Prony history accepted with mean dilatation";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("mean-dilatation"), std::string::npos) << e.what();
+  }
 }
 
 // ---- manufactured solution ----------------------------------------------------------------------
