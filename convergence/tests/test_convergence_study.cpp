@@ -319,10 +319,17 @@ TEST_F(ConvergenceStudy, ViscoelasticCubeShowsItsSchemesOrdersInTime) {
   // The Prony recursion's error in time: O(dt^2) for the midpoint factor, O(dt) for backward Euler
   // (docs/theory/viscoelasticity.md; verification/cases/analytic-prony-relaxation). Were dt not
   // refined, the levels would agree exactly and there would be no order at all.
-  const std::vector<std::pair<std::string, double>> schemes{{"midpoint", 2.0}, {"backward_euler", 1.0}};
-  for (const auto& [integration, order] : schemes) {
+  // From dt = 0.125 s (dt / tau = 0.25) down: the next term of the error expansion is O(dt / tau)
+  // relative, so the orders of the two triples are within 0.1 of 2 (midpoint: measured 1.955 and
+  // 1.989) and 0.15 of 1 (backward Euler, whose second term is larger: 0.889 and 0.936 at t = 1 s).
+  struct Scheme {
+    std::string integration;
+    double order, tolerance;
+  };
+  for (const auto& [integration, order, tolerance] :
+       std::vector<Scheme>{{"midpoint", 2.0, 0.1}, {"backward_euler", 1.0, 0.15}}) {
     StudyOptions o;
-    o.case_config = load_case(visco_cube(integration).string(), dir_.string());
+    o.case_config = load_case(visco_cube(integration, 16).string(), dir_.string());
     o.refine = Refine::Time;
     o.levels = 4;
     o.times = {1.0, 2.0};
@@ -332,8 +339,8 @@ TEST_F(ConvergenceStudy, ViscoelasticCubeShowsItsSchemesOrdersInTime) {
     const StudyResult r = run_study(plan, o, out);
     ASSERT_EQ(r.levels.size(), 4u);
     for (std::size_t k = 0; k < 4; ++k) {
-      EXPECT_EQ(r.levels[k].steps, 8 << k);
-      EXPECT_DOUBLE_EQ(r.levels[k].size, 0.25 / (1 << k));
+      EXPECT_EQ(r.levels[k].steps, 16 << k);
+      EXPECT_DOUBLE_EQ(r.levels[k].size, 0.125 / (1 << k));
       EXPECT_EQ(r.levels[k].tets, r.levels[0].tets);  // one mesh
     }
     ASSERT_EQ(r.quantities.size(), 2u);
@@ -342,7 +349,8 @@ TEST_F(ConvergenceStudy, ViscoelasticCubeShowsItsSchemesOrdersInTime) {
       EXPECT_EQ(a.verdict, "asymptotic") << integration << " t = " << q.time << ": " << a.reason;
       ASSERT_EQ(a.triples.size(), 2u);
       for (const TripleOrder& t : a.triples)
-        EXPECT_NEAR(t.order, order, 0.15) << integration << " t = " << q.time << " levels " << t.first + 1;
+        EXPECT_NEAR(t.order, order, tolerance)
+            << integration << " t = " << q.time << " levels " << t.first + 1;
       std::cerr << integration << " reaction at t = " << q.time << ": orders " << a.triples[0].order << ", "
                 << a.triples[1].order << ", extrapolated " << a.extrapolated << " N, finest GCI " << a.gci[3]
                 << "\n";
@@ -353,7 +361,7 @@ TEST_F(ConvergenceStudy, ViscoelasticCubeShowsItsSchemesOrdersInTime) {
     EXPECT_FALSE(j.contains("h_definition"));
     EXPECT_EQ(j["quantities"][0]["dt_s"].size(), 4u);
     EXPECT_FALSE(j["quantities"][0].contains("h_m"));
-    EXPECT_EQ(j["levels"][3]["steps"], 64);
+    EXPECT_EQ(j["levels"][3]["steps"], 128);
     const std::string md = study_markdown(plan, r, "tmlab converge visco.json --refine-in time");
     EXPECT_NE(md.find("| level | steps | dt (s) |"), std::string::npos) << md;
   }
