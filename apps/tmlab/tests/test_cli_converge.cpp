@@ -231,6 +231,51 @@ TEST_F(CliConverge, TimeStepsOfAViscoelasticCase) {
   EXPECT_NE(r.output.find("| level | steps | dt (s) |"), std::string::npos) << r.output;
 }
 
+TEST_F(CliConverge, TimeStepsOfAViscoelasticRig) {
+  // The indentation rig with a standard linear solid: --steps-per-segment doubles per level, one
+  // mesh (meshes/mesh.msh) for every level.
+  const fs::path out = dir_ / "study";
+  const Result r =
+      run_argv({"converge",
+                "indentation",
+                "--cells",
+                "2",
+                "--layers",
+                "1",
+                "--depth",
+                "0.0005",
+                "--hold",
+                "1",
+                "--steps-per-segment",
+                "2",
+                "--material",
+                R"({"E": 3000, "nu": 0.45, "density": 1000, "viscoelastic": {"scheme": "objective",
+           "prony": {"convention": "long_term", "terms": [{"weight": 1.0, "tau": 0.5}]}}})",
+                "--refine-in",
+                "time",
+                "--levels",
+                "3",
+                "--out",
+                out.string(),
+                "--no-plots"},
+               dir_ / "converge.log");
+  ASSERT_EQ(r.status, 0) << r.output;
+  expect_complete(out, 3, "dt_s");
+  const nlohmann::json j = read_json(out / "converge.json");
+  EXPECT_EQ(j["options"]["steps"], nlohmann::json({4, 8, 16}));  // 2 segments (ramp, hold) of 1 s
+  for (std::size_t k = 0; k < 3; ++k) {
+    EXPECT_EQ(j["levels"][k]["tets"], 24);
+    EXPECT_DOUBLE_EQ(j["levels"][k]["dt_s"].get<double>(), 0.5 / (1 << k));
+  }
+  EXPECT_TRUE(fs::exists(out / "meshes" / "mesh.msh"));
+  EXPECT_FALSE(fs::exists(out / "meshes" / "level-2.msh"));
+  // The force relaxes during the hold, and the levels differ (the steps changed).
+  const nlohmann::json& f1 = j["quantities"][0]["values"];
+  EXPECT_EQ(j["quantities"][0]["name"], "contact_indenter_force_z");
+  EXPECT_NE(f1[0], f1[1]);
+  EXPECT_GT(f1[2].get<double>(), j["quantities"][1]["values"][2].get<double>());
+}
+
 TEST_F(CliConverge, ResumeReusesTheLevelsAnInterruptedStudyFinished) {
   const fs::path visco = visco_case();
   const auto args = [&visco](const fs::path& out, std::vector<std::string> extra) {
