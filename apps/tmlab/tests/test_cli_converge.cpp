@@ -2,8 +2,10 @@
 // three levels give a complete result folder with converge.json's fields and finite values; bad
 // options exit 2 naming the option and leave no folder behind; a folder holding files tmlab did
 // not write is refused and kept. --refine-in time refines a viscoelastic case's steps (dt halves,
-// the mesh stays); --resume continues an interrupted study, reusing its complete levels (the same
-// numbers as an uninterrupted study), and refuses one planned otherwise, leaving it as it was.
+// the mesh stays; a rig's --steps-per-segment doubles); --resume continues an interrupted study,
+// reusing its complete levels (the same numbers as an uninterrupted study), refuses one planned
+// otherwise, leaving it as it was, and continues a study that FAILED at a level (here: a level folder
+// holding a file tmlab did not write, which is kept).
 #include "cli_test_support.hpp"
 
 #include <gtest/gtest.h>
@@ -331,6 +333,39 @@ TEST_F(CliConverge, ResumeReusesTheLevelsAnInterruptedStudyFinished) {
   EXPECT_EQ(b["levels"][1]["run"], "new");
   EXPECT_EQ(a["quantities"][0]["values"], b["quantities"][0]["values"]);  // bit for bit
   EXPECT_EQ(a["quantities"][0]["order"], b["quantities"][0]["order"]);
+}
+
+TEST_F(CliConverge, AFailedLevelResumesAndFilesTmlabDidNotWriteAreKept) {
+  const fs::path visco = visco_case();
+  const fs::path out = dir_ / "study";
+  const std::vector<std::string> args = {"converge", visco.string(), "--refine-in", "time",      "--levels",
+                                         "3",        "--no-plots",   "--out",       out.string()};
+  std::vector<std::string> resume = args;
+  resume.push_back("--resume");
+  {
+    const StopAfterLevels stop(1);
+    ASSERT_EQ(run_argv(args, dir_ / "stopped.log").status, 130);
+  }
+  // Someone's file where level 2 will run: that level's run refuses the folder, the study FAILS,
+  // and the file stays.
+  const fs::path level2 = out / ".incomplete" / "levels" / "level-2";
+  fs::create_directories(level2);
+  std::ofstream(level2 / "notes.txt") << "mine\n";
+  const Result failed = run_argv(resume, dir_ / "failed.log");
+  EXPECT_EQ(failed.status, 1) << failed.output;
+  EXPECT_NE(failed.output.find("notes.txt"), std::string::npos) << failed.output;
+  EXPECT_TRUE(fs::exists(out / "FAILED"));
+  EXPECT_EQ(tmlab::testing::read_file(level2 / "notes.txt"), "mine\n");
+  EXPECT_TRUE(fs::exists(out / ".incomplete" / "levels" / "level-1" / "summary.json"));
+  // The file moved away, the failed study resumes: level 1 reused, the others run.
+  fs::remove(level2 / "notes.txt");
+  const Result resumed = run_argv(resume, dir_ / "resumed.log");
+  ASSERT_EQ(resumed.status, 0) << resumed.output;
+  expect_complete(out, 3, "dt_s");
+  const nlohmann::json j = read_json(out / "converge.json");
+  EXPECT_EQ(j["levels"][0]["run"], "reused");
+  EXPECT_EQ(j["levels"][1]["run"], "new");
+  EXPECT_EQ(j["levels"][2]["run"], "new");
 }
 
 }  // namespace
