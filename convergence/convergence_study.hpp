@@ -174,7 +174,8 @@ struct StudyResult {
 enum class LevelAction { Run, Reuse, Continue };
 
 /// --resume: what to do with each level run found in `staging` (the interrupted study's staging
-/// folder, <dir>/.incomplete; nothing there: every level runs). Reads only; throws tmlab::Error
+/// folder, <dir>/.incomplete; nothing there: every level runs). Reads the folder only (the meshes
+/// it compares are generated into a temporary folder of its own, removed after); throws tmlab::Error
 /// ("--resume: levels/level-2 was run from another plan: ...; run without --resume ...") for a
 /// level whose effective case or mesh differs from the plan's, or a level folder the plan does not
 /// have.
