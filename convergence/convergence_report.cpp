@@ -13,6 +13,17 @@ namespace {
 using nlohmann::json;
 
 const char* kHDefinition = "(V / tets)^(1/3): the mesh volume per tet, as a length (Celik et al. 2008)";
+const char* kDtDefinition =
+    "the time step: t_end / steps (static load steps) or solver.dt (dynamics); the mesh is fixed";
+
+bool in_time(const StudyPlan& plan) { return plan.refine == Refine::Time; }
+/// The key of the level size in converge.json: h_m in space, dt_s in time.
+const char* size_key(const StudyPlan& plan) { return in_time(plan) ? "dt_s" : "h_m"; }
+/// The level size as shown in converge.md: h in mm, dt in s.
+std::string size_header(const StudyPlan& plan) { return in_time(plan) ? "dt (s)" : "h (mm)"; }
+std::string size_cell(const StudyPlan& plan, double size) {
+  return significant(in_time(plan) ? size : 1e3 * size, 4);
+}
 
 std::string order_method(const ConvergenceAnalysis& a) {
   return a.constant_ratio
@@ -34,6 +45,7 @@ std::string quantity_label(const QuantityResult& q) {
 json plan_json(const StudyPlan& plan) {
   json j = {{"kind", plan.kind},
             {"name", plan.name},
+            {"refine", to_string(plan.refine)},
             {"levels", plan.levels.size()},
             {"ratio", plan.ratio},
             {"quantities", plan.quantities},
@@ -50,6 +62,12 @@ json plan_json(const StudyPlan& plan) {
   } else {
     j["case_file"] = plan.base.file;
     j["mesh_file"] = plan.base.mesh.file;
+  }
+  if (in_time(plan)) {
+    j["time_dependence"] = plan.time_dependence;
+    json steps = json::array();
+    for (const LevelPlan& l : plan.levels) steps.push_back(l.steps);
+    j["steps"] = steps;
   }
   return j;
 }
@@ -69,8 +87,11 @@ json study_json(const StudyPlan& plan, const StudyResult& result) {
     e["dofs"] = l.dofs;
     e["volume_m3"] = l.volume;
     e["h_m"] = l.h;
+    e["steps"] = l.steps;
+    e["dt_s"] = l.dt;
     e["wall_seconds"] = l.wall_seconds;
     e["dir"] = l.dir;
+    e["run"] = l.run;
     levels.push_back(e);
   }
   json quantities = json::array();
@@ -84,7 +105,7 @@ json study_json(const StudyPlan& plan, const StudyResult& result) {
     json per_level = json::array();
     for (std::size_t k = 0; k < a.value.size(); ++k)
       per_level.push_back({{"level", k + 1},
-                           {"h_m", a.h[k]},
+                           {size_key(plan), a.h[k]},
                            {"value", a.value[k]},
                            {"relative_error", finite_or_null(a.relative_error[k])},
                            {"gci", finite_or_null(a.gci[k])}});
@@ -95,7 +116,7 @@ json study_json(const StudyPlan& plan, const StudyResult& result) {
          {"unit", q.unit},
          {"time_s", q.time},
          {"values", a.value},
-         {"h_m", a.h},
+         {size_key(plan), a.h},
          {"ratios", ratios},
          {"constant_ratio", a.constant_ratio},
          {"order_method", order_method(a)},
@@ -115,7 +136,7 @@ json study_json(const StudyPlan& plan, const StudyResult& result) {
   }
   return {{"format", "tmlab-converge/1"},
           {"options", plan_json(plan)},
-          {"h_definition", kHDefinition},
+          {in_time(plan) ? "dt_definition" : "h_definition", in_time(plan) ? kDtDefinition : kHDefinition},
           {"levels", levels},
           {"quantities", quantities}};
 }
@@ -123,27 +144,37 @@ json study_json(const StudyPlan& plan, const StudyResult& result) {
 std::string study_markdown(const StudyPlan& plan, const StudyResult& result,
                            const std::string& command_line) {
   std::ostringstream md;
-  md << "# Convergence study: " << plan.kind << " " << plan.name << "\n\n"
+  md << "# Convergence study in " << (in_time(plan) ? "time" : "space") << ": " << plan.kind << " "
+     << plan.name << "\n\n"
      << "`" << command_line << "`\n\n"
-     << "h = " << kHDefinition
+     << (in_time(plan)
+             ? std::string("dt = ") + kDtDefinition + " (time dependence: " + plan.time_dependence + ")"
+             : std::string("h = ") + kHDefinition)
      << ". Observed order from each level triple, Richardson extrapolation from the "
      << "two finest levels, estimated error |f_k - f_inf| / |f_inf|, GCI_k = 1.25 |f_k - f_k-1| / |f_k| / "
      << "(r_k^p - 1) (docs/convergence.md).\n\n";
-  md << "| level | " << (plan.kind == "rig" ? "cells x layers" : "refinements")
-     << " | tets | nodes | h (mm) | wall (s) |\n"
-     << "|---|---|---|---|---|---|\n";
-  for (const LevelResult& l : result.levels)
-    md << "| " << l.level << " | "
-       << (plan.kind == "rig" ? std::to_string(l.cells) + " x " + std::to_string(l.layers)
-                              : std::to_string(l.refinements))
-       << " | " << l.tets << " | " << l.points << " | " << significant(1e3 * l.h, 4) << " | "
-       << significant(l.wall_seconds, 3) << " |\n";
+  if (in_time(plan)) {
+    md << "| level | steps | dt (s) | tets | nodes | wall (s) | run |\n|---|---|---|---|---|---|---|\n";
+    for (const LevelResult& l : result.levels)
+      md << "| " << l.level << " | " << l.steps << " | " << significant(l.dt, 4) << " | " << l.tets << " | "
+         << l.points << " | " << significant(l.wall_seconds, 3) << " | " << l.run << " |\n";
+  } else {
+    md << "| level | " << (plan.kind == "rig" ? "cells x layers" : "refinements")
+       << " | tets | nodes | h (mm) | wall (s) | run |\n"
+       << "|---|---|---|---|---|---|---|\n";
+    for (const LevelResult& l : result.levels)
+      md << "| " << l.level << " | "
+         << (plan.kind == "rig" ? std::to_string(l.cells) + " x " + std::to_string(l.layers)
+                                : std::to_string(l.refinements))
+         << " | " << l.tets << " | " << l.points << " | " << significant(1e3 * l.h, 4) << " | "
+         << significant(l.wall_seconds, 3) << " | " << l.run << " |\n";
+  }
   for (const QuantityResult& q : result.quantities) {
     const ConvergenceAnalysis& a = q.analysis;
     md << "\n## " << quantity_label(q) << "\n\n"
-       << "| level | h (mm) | value | est. error | GCI |\n|---|---|---|---|---|\n";
+       << "| level | " << size_header(plan) << " | value | est. error | GCI |\n|---|---|---|---|---|\n";
     for (std::size_t k = 0; k < a.value.size(); ++k)
-      md << "| " << k + 1 << " | " << significant(1e3 * a.h[k], 4) << " | " << cell(a.value[k], 8) << " | "
+      md << "| " << k + 1 << " | " << size_cell(plan, a.h[k]) << " | " << cell(a.value[k], 8) << " | "
          << percent(a.relative_error[k]) << " | " << percent(a.gci[k]) << " |\n";
     md << "\nobserved orders:";
     for (const TripleOrder& t : a.triples)

@@ -15,12 +15,15 @@
 namespace tmlab::convergence {
 
 /// The effective options of the study (manifest.json's config): the source (the rig's spec or
-/// the case file), levels, ratio, quantities, times.
+/// the case file), what the levels refine, levels, ratio, quantities, times (time: the time
+/// dependence and each level's steps).
 nlohmann::json plan_json(const StudyPlan& plan);
 
-/// converge.json: "options" (plan_json), "h_definition", "levels" (level, cells / layers or
-/// refinements, points, tets, dofs, volume_m3, h_m, wall_seconds, dir) and "quantities": per
-/// quantity and time its name, unit, time_s, values, h_m, ratios, constant_ratio, order_method,
+/// converge.json: "options" (plan_json; "refine": space | time), "h_definition" (time:
+/// "dt_definition"), "levels" (level, cells / layers or refinements, points, tets, dofs, volume_m3,
+/// h_m, steps, dt_s, wall_seconds, dir, run: new | reused | continued) and "quantities": per quantity
+/// and time its name, unit, time_s, values, the level sizes (h_m in space, dt_s in time), ratios,
+/// constant_ratio, order_method,
 /// observed_orders (levels, order or null, problem), order_spread, verdict, reason, note, order,
 /// extrapolated (null when not asymptotic) with extrapolation_note, and per level its value,
 /// estimated relative error and GCI (null when not available).

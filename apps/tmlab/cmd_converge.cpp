@@ -1,8 +1,10 @@
-// tmlab converge: a mesh-convergence study of a rig (the options of `tmlab rig`) or a case file
-// (convergence/convergence_study.hpp; docs/convergence.md). Writes <results>/converge/NAME/ (or
-// --out): converge.json, converge.md, converge.png, meshes/ and levels/ (each level's run),
-// manifest.json and summary.json last (run_with_protocol). Every option is checked before the
-// folder is touched: bad options exit 2 and leave nothing behind.
+// tmlab converge: a convergence study in space (meshes) or time (--refine-in time: time steps) of a
+// rig (the options of `tmlab rig`) or a case file (convergence/convergence_study.hpp;
+// docs/convergence.md). Writes <results>/converge/NAME/ (or --out): converge.json, converge.md,
+// converge.png, meshes/ and levels/ (each level's run), manifest.json and summary.json last
+// (run_with_protocol). Every option is checked before the folder is touched: bad options exit 2 and
+// leave nothing behind. --resume checks the level runs an interrupted or failed study left
+// (check_resume) before the folder is touched, then reuses the complete ones.
 #include "cli_args.hpp"
 #include "command_specs.hpp"
 #include "commands.hpp"
@@ -11,8 +13,10 @@
 #include "convergence/convergence_report.hpp"
 #include "convergence/convergence_study.hpp"
 #include "core/base/error.hpp"
+#include "core/results/result_dir.hpp"
 #include "core/results/run_output.hpp"
 #include "core/results/run_protocol.hpp"
+#include "core/results/unit_checkpoint.hpp"
 
 #include <filesystem>
 #include <fstream>
@@ -43,6 +47,7 @@ convergence::StudyOptions study_options(const ParsedOptions& p, const std::strin
   }
   o.tmlab_root = tmlab_root();
   o.levels = static_cast<int>(p.whole("--levels"));
+  o.refine = p.text("--refine-in") == "time" ? convergence::Refine::Time : convergence::Refine::Space;
   o.ratio = p.decimal("--ratio");
   o.quantities = p.all("--quantity");
   for (const std::string& t : p.all("--time")) o.times.push_back(parse_double("--time", t));
@@ -64,14 +69,22 @@ int cmd_converge(const std::vector<std::string>& args, const std::string& comman
   }
   const fs::path dir =
       p.given("--out") ? fs::path(p.text("--out")) : fs::path(results_root(p)) / "converge" / plan.name;
-  RunOutput out(dir, &std::cerr);
+  // --resume: the levels the stopped study left are checked against this plan before the folder is
+  // touched (a refused resume leaves it as it was); a complete level of the same plan is reused.
+  const bool resume = p.flag("--resume");
+  std::vector<convergence::LevelAction> actions;
+  if (resume) {
+    refuse_resume_of_complete(result_dir::resolve(dir), "convergence study");
+    actions = convergence::check_resume(plan, result_dir::resolve(dir) / RunOutput::kStaging);
+  }
+  RunOutput out(dir, &std::cerr, resume ? RunOutput::Previous::ResumeStopped : RunOutput::Previous::Discard);
   ManifestInput mi;
   mi.command_line = split_words(command_line);
   mi.config = {{"options", p.config(kManifest)}, {"study", convergence::plan_json(plan)}};
   if (plan.kind == "case") mi.input_files = {plan.base.file, plan.base.mesh.file};
   convergence::StudyResult result;
   run_with_protocol(out, mi, [&] {
-    result = convergence::run_study(plan, o, out.staging_dir());
+    result = convergence::run_study(plan, o, out.staging_dir(), actions);
     out.write_json("converge.json", convergence::study_json(plan, result));
     {
       std::ofstream md(out.file("converge.md"));

@@ -95,14 +95,22 @@ CommandSpec rig_spec() {
 CommandSpec converge_spec() {
   CommandSpec c{"converge",
                 {"indentation|unconfined|confined|tension [rig options] [options]", "CASE [options]"},
-                "a mesh-convergence study: the rig (the options of tmlab rig) or the case\n"
+                "a convergence study: the rig (the options of tmlab rig) or the case\n"
                 "on --levels meshes refined by --ratio (a case's mesh: every tet split\n"
-                "into 8), each quantity's observed order, Richardson extrapolation,\n"
-                "errors and GCI; results/converge/NAME/ (converge.json, .md, PNG;\n"
-                "docs/convergence.md)",
-                {whole("--levels", "N", 3, 8, "number of meshes, coarsest first").def("3").role(kResult),
+                "into 8) or, --refine-in time, time steps divided by --ratio; each\n"
+                "quantity's observed order, Richardson extrapolation, errors and GCI;\n"
+                "results/converge/NAME/ (converge.json, .md, PNG; docs/convergence.md)",
+                {whole("--levels", "N", 3, 8, "number of meshes (or time steps), coarsest first")
+                     .def("3")
+                     .role(kResult),
+                 choice("--refine-in", {"space", "time"},
+                        "what the levels refine: the mesh, or the time step (the mesh fixed;\n"
+                        "a rig's --steps-per-segment, a case's solver.steps or solver.dt)")
+                     .def("space")
+                     .role(kResult),
                  decimal("--ratio", "R", open(1.0, 10.0),
-                         "refinement ratio of cells and layers per level (rig; a case: 2)")
+                         "refinement ratio per level: of a rig's cells and layers (a case's\n"
+                         "mesh: 2), or with --refine-in time of the steps")
                      .def("2")
                      .role(kResult),
                  text("--quantity", "NAME",
@@ -117,6 +125,9 @@ CommandSpec converge_spec() {
                      .role(kResult),
                  text("--out", "DIR", "the result folder (default <results>/converge/NAME)"),
                  text("--name", "N", "the rig's name (default: the test's)").role(kManifest),
+                 flag("--resume",
+                      "continue an interrupted or failed study: its complete levels of the\n"
+                      "same plan reused, the others run again"),
                  results_option(), no_plots_option()}};
   add_rig_sample_loading(c.options);
   add_rig_mesh_material(c.options);

@@ -3,7 +3,8 @@
 
 Usage: python3 tmlab_converge_plot.py DIR
 
-Writes DIR/converge.png, one row per quantity and time: left, the value against h (log h), with the
+Writes DIR/converge.png, one row per quantity and time: left, the value against h (log h; a study in
+time, options.refine = "time": against the time step dt), with the
 Richardson-extrapolated value as a dashed line when the levels are asymptotic; right, log-log
 against h, the estimated relative error |f_k - f_inf| / |f_inf| and the GCI when asymptotic, else
 the relative change between successive levels |f_k - f_k-1| / |f_k|, with a line of the observed
@@ -33,15 +34,18 @@ def main():
             doc = json.load(f)
         quantities = doc["quantities"]
         name = doc["options"]["name"]
+        in_time = doc["options"].get("refine", "space") == "time"
     except (OSError, ValueError, KeyError) as e:
         fail(f"{path}: {e}")
     if not quantities:
         fail(f"{path}: no quantities")
+    size_label = "dt (s, log)" if in_time else "h (mm, log)"
     rows = len(quantities)
     fig, axes = plt.subplots(rows, 2, figsize=(10, 3.6 * rows), squeeze=False)
     for row, q in enumerate(quantities):
         try:
-            h = [1e3 * x for x in q["h_m"]]
+            # The level sizes: dt in s (time) or h in mm (space).
+            h = list(q["dt_s"]) if in_time else [1e3 * x for x in q["h_m"]]
             v = q["values"]
             unit = q["unit"]
             label = f'{q["name"]} at t = {q["time_s"]:g} s'
@@ -56,7 +60,7 @@ def main():
         if asymptotic and f_inf is not None:
             ax.axhline(f_inf, ls="--", color="k", lw=0.8, label=f"extrapolated {f_inf:.6g}")
         ax.invert_xaxis()
-        label_axes(ax, f"{name}: {label}", "h (mm, log)", f"value ({unit})" if unit else "value")
+        label_axes(ax, f"{name}: {label}", size_label, f"value ({unit})" if unit else "value")
         ax = axes[row][1]
         if asymptotic:
             err = [lv["relative_error"] for lv in levels]
@@ -79,7 +83,7 @@ def main():
             if len(title) > 60:
                 title = title[:57] + "..."
         ax.invert_xaxis()
-        label_axes(ax, title, "h (mm, log)", "relative error")
+        label_axes(ax, title, size_label, "relative error")
     save(fig, os.path.join(d, "converge.png"), 110)
 
 

@@ -225,14 +225,15 @@ RunOutput::RunOutput(fs::path dir, std::ostream* log, Previous previous)
                 "; wait for it to finish, or write elsewhere with --results DIR");
   }
   try {
-    take(log, previous == Previous::ResumeInterrupted);
+    take(log, previous);
   } catch (...) {
     release_lock();
     throw;
   }
 }
 
-void RunOutput::take(std::ostream* log, bool keep_staging) {
+void RunOutput::take(std::ostream* log, Previous previous) {
+  const bool keep_staging = previous != Previous::Discard;
   // We hold the lock: any RUNNING marker is stale. Look again: the folder may have changed.
   const result_dir::Inventory inv = result_dir::inspect(dir_);
   result_dir::check_may_take(dir_, inv);
@@ -245,16 +246,20 @@ void RunOutput::take(std::ostream* log, bool keep_staging) {
   }
   // Resumable: a run stopped by a signal (INTERRUPTED), or one whose process died (a stale RUNNING:
   // SIGKILL, a crash), with its staged files; the command then finds its checkpoint there.
-  const bool resumable =
-      inv.has_marker && (fs::exists(dir_ / kInterrupted) || stale) && fs::is_directory(staging_dir());
+  // ResumeStopped: also a run that FAILED.
+  const bool stopped = fs::exists(dir_ / kInterrupted) || stale ||
+                       (previous == Previous::ResumeStopped && fs::exists(dir_ / kFailed));
+  const bool resumable = inv.has_marker && stopped && fs::is_directory(staging_dir());
   if (keep_staging && !resumable) {
     if (inv.has_marker && fs::exists(dir_ / kSummary))
       throw Error(dir_.string() +
                   ": --resume: nothing to resume: it holds a complete result (summary.json); " +
                   "run without --resume to compute it again");
-    throw Error(dir_.string() +
-                ": --resume: nothing to resume (no INTERRUPTED marker with staged files: the last run " +
-                "finished, failed, or never started); run without --resume");
+    throw Error(dir_.string() + ": --resume: nothing to resume (no INTERRUPTED" +
+                (previous == Previous::ResumeStopped ? " or FAILED" : "") +
+                " marker with staged files: the last run " +
+                (previous == Previous::ResumeStopped ? "finished" : "finished, failed,") +
+                " or never started); run without --resume");
   }
   result_dir::clear_previous(dir_, inv, keep_staging);
   run_id_ = result_dir::write_marker(dir_, "", {});

@@ -99,8 +99,10 @@ class RunOutput {
   /// be reused; the INTERRUPTED marker is cleared. A run whose process died (a stale RUNNING
   /// marker: SIGKILL, a crash) resumes the same way from its last scheduled checkpoint. Resuming a
   /// directory without one of these markers and staged files is refused (tmlab::Error: nothing to
-  /// resume).
-  enum class Previous { Discard, ResumeInterrupted };
+  /// resume). ResumeStopped also resumes a run that FAILED (its staged files kept): for a command
+  /// whose finished parts are complete result folders checked one by one before reuse (`tmlab
+  /// converge --resume`: a level that failed runs again, the finished ones are reused).
+  enum class Previous { Discard, ResumeInterrupted, ResumeStopped };
   RunOutput(std::filesystem::path dir, std::ostream* log, Previous previous);
   /// When neither finalize() nor fail() ran: writes FAILED (never throws). Releases the lock.
   ~RunOutput();
@@ -138,7 +140,7 @@ class RunOutput {
  private:
   enum class State { Running, Finalized, Failed, Interrupted };
   void mark_stopped(State state, const char* marker, const std::string& message) noexcept;
-  void take(std::ostream* log, bool keep_staging);
+  void take(std::ostream* log, Previous previous);
   void release_lock() noexcept;
   std::filesystem::path dir_;
   std::string run_id_;

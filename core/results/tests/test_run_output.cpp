@@ -255,6 +255,33 @@ TEST_F(RunOutputTest, ResumeKeepsTheStagedFilesOfAnInterruptedRun) {
   fresh.finalize();
 }
 
+TEST_F(RunOutputTest, ResumeStoppedAlsoKeepsTheStagedFilesOfAFailedRun) {
+  const fs::path dir = root_ / "failed";
+  using Previous = tmlab::RunOutput::Previous;
+  {
+    tmlab::RunOutput out(dir);
+    write_file(out.file("part-1/summary.json"), "{}");
+    out.fail("part 2 did not converge");
+  }
+  ASSERT_TRUE(fs::exists(dir / "FAILED"));
+  // ResumeInterrupted does not take a failed run; ResumeStopped does, keeping its staged parts.
+  EXPECT_THROW(tmlab::RunOutput(dir, nullptr, Previous::ResumeInterrupted), tmlab::Error);
+  ASSERT_TRUE(fs::exists(dir / "FAILED"));  // the refusal changed nothing
+  {
+    tmlab::RunOutput resumed(dir, nullptr, Previous::ResumeStopped);
+    EXPECT_FALSE(fs::exists(dir / "FAILED"));
+    EXPECT_TRUE(fs::exists(resumed.file("part-1/summary.json")));
+    resumed.finalize();
+  }
+  // A complete result has nothing to resume, whichever way.
+  try {
+    tmlab::RunOutput again(dir, nullptr, Previous::ResumeStopped);
+    ADD_FAILURE() << "a complete result was resumed";
+  } catch (const tmlab::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("nothing to resume"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(RunOutputTest, ResumeContinuesARunWhoseProcessDied) {
   // What SIGKILL leaves: a RUNNING marker of a process that is gone and the staged files.
   const fs::path dir = root_ / "killed";
