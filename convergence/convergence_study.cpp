@@ -319,9 +319,11 @@ StudyPlan plan_study(const StudyOptions& o) {
       try {
         rigs::validate(l.rig);
       } catch (const Error& e) {
-        throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" +
-                    std::to_string(l.cells) + " cells, " + std::to_string(l.layers) +
-                    " layers): " + e.what() + " (fewer --levels or a coarser first level)");
+        const std::string size =
+            l.cells > 0 ? std::to_string(l.cells) + " cells, " + std::to_string(l.layers) + " layers"
+                        : "refinement " + number(l.rig.refinement);
+        throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" + size +
+                    "): " + e.what() + " (fewer --levels or a coarser first level)");
       }
       l.steps = static_cast<long>(rigs::rig_load_steps(l.rig));
       l.dt = l.rig.history.t.back() / static_cast<double>(l.steps);
@@ -631,8 +633,10 @@ StudyResult run_study(const StudyPlan& plan, const StudyOptions& o, const fs::pa
       os << "level " << l.level << "/" << n << ": ";
       if (in_time)
         os << l.steps << " steps, dt = " << number(l.dt) << " s";
-      else if (plan.kind == "rig")
+      else if (plan.kind == "rig" && l.cells > 0)
         os << l.cells << " cells, " << l.layers << " layers";
+      else if (plan.kind == "rig")  // the mesh rule's form: every cell count of the graded mesh scaled
+        os << "refinement " << number(l.rig.refinement);
       else
         os << l.refinements << " refinement" << (l.refinements == 1 ? "" : "s");
       if (!in_time) os << ", " << r.tets << " tets, " << r.points << " nodes, h = " << number(r.h) << " m";
