@@ -64,11 +64,12 @@ RigidContact::RigidContact(const ContactSpec& spec, const std::string& file, con
 
 void RigidContact::allocate() {
   const std::size_t np = points_.size();
+  const std::size_t nc = rule_ == ContactRule::Vertices ? np : group_area_.size();
   committed_.assign(spec_.bodies.size(), BodyData{});
   for (BodyData& d : committed_) {
-    d.lambda.assign(np, 0.0);
+    d.lambda.assign(nc, 0.0);
     d.lambda_b.assign(np, Vec3::Zero());
-    d.bonded.assign(np, 0);
+    d.bonded.assign(nc, 0);
     d.anchor.assign(np, Vec3::Zero());
   }
   trial_ = committed_;
@@ -83,6 +84,8 @@ void RigidContact::build_face_points(const Solid& solid) {
                      update_values | update_quadrature_points | update_JxW_values | update_normal_vectors);
   std::vector<global_dof_index> cell_dofs(fe.n_dofs_per_cell());
   points_.clear();
+  group_ = {0};
+  group_area_.clear();
   for (const auto& cell : solid.dof_handler().active_cell_iterators()) {
     if (!cell->is_locally_owned()) continue;
     for (const unsigned f : cell->face_indices()) {
@@ -111,6 +114,11 @@ void RigidContact::build_face_points(const Solid& solid) {
         p.w = fv.JxW(q);
         points_.push_back(std::move(p));
       }
+      // The face is one constraint: its points group_.back() .. points_.size().
+      double area = 0.0;
+      for (std::size_t i = group_.back(); i < points_.size(); ++i) area += points_[i].w;
+      group_.push_back(points_.size());
+      group_area_.push_back(area);
     }
   }
 }
@@ -136,16 +144,21 @@ double RigidContact::vertex_stiffness(Solid& solid, double t0) const {
 }
 
 double RigidContact::face_stiffness(Solid& solid, double t0) const {
-  // The penalty's stiffness on a face node a is eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the
-  // boundary mass matrix's diagonal): eps_a is chosen so that its mean over the boundary nodes is
-  // the vertex rule's eps, stiffness_factor x the mean diagonal of K_0 over the same nodes' DoFs
-  // (contact.stiffness: that nodal eps given in N/m). The sum of M_aa over all nodes needs no
-  // deduplication: it is sum_q w_q sum_a N_a^2 over the points.
+  // The face rule's penalty stiffens face node a by eps_a sum_f |G_a|^2 / A_f, G_a = sum_q w_q N_a
+  // (at rest): eps_a = nodal * N_b / S, S = sum_f sum_a G_a^2 / A_f, N_b the boundary-face nodes, so
+  // that this stiffness averaged over those nodes is the nodal scale, stiffness_factor x the mean
+  // diagonal of K_0 over their DoFs (contact.stiffness: that nodal eps given in N/m). The fast
+  // model's ContactStaticSolver uses the same definition.
   std::set<global_dof_index> dofs;  // this rank's owned boundary-face DoFs
-  double mass = 0.0;
-  for (const Site& p : points_) {
-    for (std::size_t a = 0; a < p.N.size(); ++a) mass += p.w * p.N[a] * p.N[a];
-    for (global_dof_index d : p.dofs)
+  double S = 0.0;
+  for (std::size_t c = 0; c + 1 < group_.size(); ++c) {
+    const std::size_t nn = points_[group_[c]].N.size();
+    for (std::size_t a = 0; a < nn; ++a) {
+      double G = 0.0;
+      for (std::size_t i = group_[c]; i < group_[c + 1]; ++i) G += points_[i].w * points_[i].N[a];
+      S += G * G / group_area_[c];
+    }
+    for (global_dof_index d : points_[group_[c]].dofs)
       if (solid.locally_owned_dofs().is_element(d)) dofs.insert(d);
   }
   double stiffness = 0.0;
@@ -156,10 +169,10 @@ double RigidContact::face_stiffness(Solid& solid, double t0) const {
     for (global_dof_index d : dofs) stiffness += K0.diag_element(d);
     stiffness = Utilities::MPI::sum(stiffness, comm_);
   }
-  mass = Utilities::MPI::sum(mass, comm_);
+  S = Utilities::MPI::sum(S, comm_);
   const double n_dofs = Utilities::MPI::sum(static_cast<double>(dofs.size()), comm_);
   const double nodal = spec_.stiffness > 0.0 ? spec_.stiffness : spec_.stiffness_factor * stiffness / n_dofs;
-  const double eps = nodal / (mass / (n_dofs / 3.0));
+  const double eps = nodal * (n_dofs / 3.0) / S;
   if (!(eps > 0.0) || !std::isfinite(eps))
     throw Error(file_ +
                 ": key 'contact.stiffness': the reference tangent gives no positive stiffness scale; "
@@ -220,8 +233,22 @@ void RigidContact::start(Solid& solid, double t0, double t_end, const std::vecto
       throw Error(m.str());
     }
     check_extent(body, nearest, t0, t_end, U0);
-    // Points touching a bonded body are glued (vertices at U0; face points at the solid's solution).
+    // Points touching a bonded body are glued (vertices at U0; faces, when all their points touch,
+    // at the solid's solution).
     if (body.mode != ContactBodyMode::Bonded) continue;
+    if (rule_ == ContactRule::FacePoints) {
+      for (std::size_t c = 0; c + 1 < group_.size(); ++c) {
+        bool touches = true;
+        for (std::size_t i = group_[c]; i < group_[c + 1] && touches; ++i)
+          touches = body_gap(body, position(solid.solution(), points_[i]), t0).g <= gap_tol_;
+        if (!touches) continue;
+        committed_[b].bonded[c] = 1;
+        for (std::size_t i = group_[c]; i < group_[c + 1]; ++i)
+          committed_[b].anchor[i] =
+              body_gap(body, position(solid.solution(), points_[i]), t0).closest - body.position(t0);
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Site& p = points_[i];
       Vec3 x;
@@ -274,6 +301,68 @@ void RigidContact::check_extent(const ContactBodySpec& body, double g0, double t
   }
 }
 
+double RigidContact::face_gap(const ContactBodySpec& body, const TrilinosVector& u, double t,
+                              std::size_t f) const {
+  double g = 0.0;
+  for (std::size_t i = group_[f]; i < group_[f + 1]; ++i)
+    g += points_[i].w * body_gap(body, position(u, points_[i]), t).g;
+  return g / group_area_[f];
+}
+
+void RigidContact::add_face_terms(const ContactBodySpec& body, const BodyData& d, double t, std::size_t f,
+                                  const TrilinosVector& u, TrilinosVector& r,
+                                  const AffineConstraints<double>* constraints,
+                                  TrilinosWrappers::SparseMatrix* K, TrilinosVector* rhs) const {
+  const bool penalty = spec_.method == ContactEnforcement::Penalty;
+  // Every point of the face has the face's DoFs and nodes in the same order.
+  const std::vector<global_dof_index>& dofs = points_[group_[f]].dofs;
+  const unsigned nn = static_cast<unsigned>(points_[group_[f]].N.size());
+  Vector<double> vf(3 * nn), minus_f(3 * nn);
+  FullMatrix<double> M(3 * nn, 3 * nn);
+  if (d.bonded[f]) {
+    // Per point: w (lambda . c + eps/2 |c|^2), c = x - (anchor + c(t)).
+    const Vec3 c = body.position(t);
+    for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+      const Site& pt = points_[i];
+      const Vec3 force = d.lambda_b[i] + eps_ * (position(u, pt) - (d.anchor[i] + c));
+      for (unsigned a = 0; a < nn; ++a)
+        for (unsigned k = 0; k < 3; ++k) {
+          vf(3 * a + k) += (pt.w * pt.N[a]) * force[k];
+          for (unsigned e = 0; e < nn; ++e) M(3 * a + k, 3 * e + k) += pt.w * pt.N[a] * pt.N[e] * eps_;
+        }
+    }
+  } else {
+    // Phi = A (<lambda - eps g_f>_+^2 - lambda^2) / (2 eps), g_f = sum_q w_q g_q / A: node a gets
+    // -p G_a, G_a = sum_q w_q N_a n_q, and the blocks (eps/A) G_a G_b^T - p sum_q w_q N_a N_b H_q.
+    const double A = group_area_[f];
+    std::vector<GapPoint> gp;
+    double gf = 0.0;
+    for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+      gp.push_back(body_gap(body, position(u, points_[i]), t));
+      gf += points_[i].w * gp.back().g;
+    }
+    gf /= A;
+    const double p = (penalty ? 0.0 : d.lambda[f]) - eps_ * gf;
+    if (p <= 0.0) return;
+    std::vector<Vec3> G(nn, Vec3::Zero());
+    for (std::size_t i = group_[f]; i < group_[f + 1]; ++i)
+      for (unsigned a = 0; a < nn; ++a) G[a] += (points_[i].w * points_[i].N[a]) * gp[i - group_[f]].normal;
+    for (unsigned a = 0; a < nn; ++a)
+      for (unsigned e = 0; e < nn; ++e) {
+        Eigen::Matrix3d H = (eps_ / A) * G[a] * G[e].transpose();
+        for (std::size_t i = group_[f]; i < group_[f + 1]; ++i)
+          H -= (p * points_[i].w * points_[i].N[a] * points_[i].N[e]) * gp[i - group_[f]].hessian;
+        for (unsigned k = 0; k < 3; ++k)
+          for (unsigned l = 0; l < 3; ++l) M(3 * a + k, 3 * e + l) = H(k, l);
+      }
+    for (unsigned a = 0; a < nn; ++a)
+      for (unsigned k = 0; k < 3; ++k) vf(3 * a + k) = -p * G[a][k];
+  }
+  for (unsigned i = 0; i < 3 * nn; ++i) minus_f(i) = -vf(i);
+  r.add(dofs, vf);
+  if (K) constraints->distribute_local_to_global(M, minus_f, dofs, *K, *rhs, true);
+}
+
 std::string RigidContact::describe() const {
   std::ostringstream m;
   m << file_ << ": key 'contact' (";
@@ -294,6 +383,11 @@ void RigidContact::add_terms(const TrilinosVector& u, double t, TrilinosVector& 
     const ContactBodySpec& body = spec_.bodies[b];
     const BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
+    if (rule_ == ContactRule::FacePoints) {
+      for (std::size_t face = 0; face + 1 < group_.size(); ++face)
+        add_face_terms(body, d, t, face, u, r, constraints, K, rhs);
+      continue;
+    }
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Site& pt = points_[i];
       const Vec3 x = position(u, pt);
@@ -339,6 +433,21 @@ double RigidContact::energy(const TrilinosVector& u, double t) const {
     const ContactBodySpec& body = spec_.bodies[b];
     const BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
+    if (rule_ == ContactRule::FacePoints) {
+      for (std::size_t f = 0; f + 1 < group_.size(); ++f) {
+        if (d.bonded[f]) {
+          for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+            const Vec3 gap = position(u, points_[i]) - (d.anchor[i] + c);
+            phi += points_[i].w * (d.lambda_b[i].dot(gap) + 0.5 * eps_ * gap.squaredNorm());
+          }
+          continue;
+        }
+        const double lam = penalty ? 0.0 : d.lambda[f];
+        const double pp = std::max(lam - eps_ * face_gap(body, u, t, f), 0.0);
+        phi += group_area_[f] * ((pp * pp - lam * lam) / (2.0 * eps_));
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Site& pt = points_[i];
       const Vec3 x = position(u, pt);
@@ -363,6 +472,25 @@ bool RigidContact::update(const TrilinosVector& u, double t) {
     const ContactBodySpec& body = spec_.bodies[b];
     BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
+    if (rule_ == ContactRule::FacePoints) {
+      for (std::size_t f = 0; f + 1 < group_.size(); ++f) {
+        if (d.bonded[f]) {
+          for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+            const Vec3 gap = position(u, points_[i]) - (d.anchor[i] + c);
+            d.lambda_b[i] += eps_ * gap;
+            natural = std::max(natural, gap.lpNorm<Eigen::Infinity>());
+          }
+          continue;
+        }
+        const double old = penalty ? 0.0 : d.lambda[f];
+        const double next = std::max(0.0, old - eps_ * face_gap(body, u, t, f));
+        d.lambda[f] = next;
+        if (penalty) continue;
+        natural = std::max(natural, std::abs(next - old) / eps_);
+        if ((old > 0.0) != (next > 0.0) && std::max(old, next) > eps_ * gap_tol_) ++changes;
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < points_.size(); ++i) {
       const Vec3 x = position(u, points_[i]);
       if (d.bonded[i]) {
@@ -392,6 +520,19 @@ void RigidContact::commit(const TrilinosVector& u, double t) {
     const ContactBodySpec& body = spec_.bodies[b];
     if (body.mode != ContactBodyMode::Bonded) continue;
     BodyData& d = committed_[b];
+    if (rule_ == ContactRule::FacePoints) {
+      for (std::size_t f = 0; f + 1 < group_.size(); ++f) {
+        if (d.bonded[f] || !(d.lambda[f] > 0.0)) continue;
+        d.bonded[f] = 1;
+        for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+          const GapPoint gp = body_gap(body, position(u, points_[i]), t);
+          d.anchor[i] = gp.closest - body.position(t);
+          d.lambda_b[i] = -d.lambda[f] * gp.normal;
+        }
+        d.lambda[f] = 0.0;
+      }
+      continue;
+    }
     for (std::size_t i = 0; i < points_.size(); ++i) {
       if (d.bonded[i] || !(d.lambda[i] > 0.0)) continue;
       const GapPoint gp = body_gap(body, position(u, points_[i]), t);
@@ -413,7 +554,30 @@ std::vector<ContactBodyOutput> RigidContact::outputs(const TrilinosVector& u, do
     o.name = body.name;
     o.position = body.position(t);
     double min_lambda = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < points_.size(); ++i) {
+    if (rule_ == ContactRule::FacePoints)
+      for (std::size_t f = 0; f + 1 < group_.size(); ++f) {
+        // A face: active when glued or lambda_f > 0; its points carry the face's pressure.
+        if (!d.bonded[f]) {
+          const double lam = group_area_[f] * d.lambda[f];
+          min_lambda = std::min(min_lambda, lam);
+          o.complementarity = std::max(o.complementarity, lam * std::abs(face_gap(body, u, t, f)));
+          if (!(lam > 0.0)) continue;
+        }
+        ++o.active_nodes;
+        for (std::size_t i = group_[f]; i < group_[f + 1]; ++i) {
+          const Site& pt = points_[i];
+          const GapPoint gp = body_gap(body, position(u, pt), t);
+          const Vec3 f_q = d.bonded[f] ? Vec3(-pt.w * d.lambda_b[i]) : Vec3(pt.w * d.lambda[f] * gp.normal);
+          const double area = pt.w * std::max(0.0, -pt.normal.dot(gp.normal));
+          if (area > 0.0) o.max_pressure = std::max(o.max_pressure, f_q.dot(gp.normal) / area);
+          o.area += area;
+          o.force -= f_q;
+          o.moment += (gp.closest - o.position).cross(-f_q);
+          o.max_penetration = std::max(o.max_penetration, -gp.g);
+          o.radius_max = std::max(o.radius_max, body_radial_distance(body, gp.closest, t));
+        }
+      }
+    for (std::size_t i = 0; rule_ == ContactRule::Vertices && i < points_.size(); ++i) {
       const Site& pt = points_[i];
       const GapPoint gp = body_gap(body, position(u, pt), t);
       Vec3 f;  // force of the body on the sample at this point

@@ -27,26 +27,23 @@
 //     quadratic surface bulges into the body and a uniform pressure is carried by the corners alone
 //     (the consistent P2 load puts it on the midside nodes): measured on the seed-like indentation,
 //     26.4 mN (8 cells) and 28.2 mN (16) against a converged 36.4 mN.
-//   FacePoints: the constraint at the quadrature points q of every boundary triangle (Witherden-
-//     Vincent, 6 points, degree 4; weights w_q = reference area weights), at the interpolated surface
-//     point x_q = sum_a N_a(xi_q) x_a of the face's nodes (P2: 3 corners + 3 midsides):
-//       Phi_k(u) = sum_q w_q/(2 eps_a) (<lambda_q - eps_a g_q(u)>_+^2 - lambda_q^2),
-//       bonded  Phi_k = sum_q w_q (lambda_q . c_q + eps_a/2 |c_q|^2),
-//     lambda_q a contact PRESSURE (Pa; bonded a traction), eps_a an area density (Pa/m): the penalty
-//     stiffens face node a by eps_a M_aa, M_aa = sum_q w_q N_a(xi_q)^2 (the boundary mass diagonal),
-//     and eps_a is chosen so that this is on average the vertex rule's scale, stiffness_factor x the
-//     mean K_0 diagonal over the boundary nodes' DoFs (material stiffness / h; contact.stiffness is
-//     read as that nodal N/m). (Scaled by area instead, eps_a M_aa is ~10x weaker than the vertex
-//     rule's eps on a P2 corner, and the Uzawa loop contracts by only ~0.8 per iteration.) The
-//     residual is sum_q w_q (-p_q n_q) N_a on node a, the tangent w_q N_a N_b (eps_a n n^T - p_q H_g)
-//     (bonded eps_a I); the Uzawa update, the stopping test (natural residual |dlambda|/eps_a <=
-//     gap_tol, no active-set change) and gap_tol are the vertex rule's, per point. It is a Gauss-
-//     point-to-rigid discretisation of the continuum contact potential int_Gamma Phi(g) dA: a uniform
-//     pressure gives the consistent load (P2: nothing on the corners, a third of each face's force on
-//     each midside node), and the contact traction converges with the field instead of being lumped
-//     on the vertices. Body force = sum_q w_q lambda_q n_q. The initial checks (penetration, a body
-//     not touching, a rig larger than its mesh) stay on the vertices; points touching a bonded body at
-//     the start (the solid's current solution) are glued.
+//   FacePoints: one constraint per boundary triangle f (P2: 3 corners + 3 midsides), evaluated at its
+//     quadrature points q (Witherden-Vincent, 6 points, degree 4; w_q = reference area weights) at the
+//     interpolated surface points x_q = sum_a N_a(xi_q) x_a: the face's weighted (mean) gap
+//     g_f = sum_q w_q g_q / A_f (A_f = sum_q w_q) and one multiplier lambda_f, the face's contact
+//     PRESSURE (Pa) (a mortar-style rule with a face-constant pressure, the fast model's):
+//       Phi_k(u) = sum_f A_f/(2 eps_a) (<lambda_f - eps_a g_f(u)>_+^2 - lambda_f^2),
+//     node a of f gets -p_f G_a, G_a = sum_q w_q N_a n_q, the tangent (eps_a/A_f) G_a G_b^T -
+//     p_f sum_q w_q N_a N_b H_g (within the face's cell); update lambda_f <- <lambda_f - eps_a g_f>_+,
+//     stopping test and gap_tol per face. eps_a = nodal * N_b / S, S = sum_f sum_a (sum_q w_q N_a)^2 /
+//     A_f, N_b the boundary-face nodes, nodal = stiffness_factor x the mean K_0 diagonal over their
+//     DoFs (or contact.stiffness, N/m). A uniform pressure gives the consistent load (P2: nothing on
+//     the corners, a third of each face's force on each midside node). (One multiplier per point, 6
+//     per face, three times the face nodes, made the constraints redundant: the Uzawa loop did not
+//     settle on a sphere; docs/contact.md.) Bonded faces glue their points: per point
+//     w_q (lambda_q . c_q + eps_a/2 |c_q|^2). Body force = sum_f lambda_f sum_q w_q n_q. The initial
+//     checks (penetration, a body not touching, a rig larger than its mesh) stay on the vertices;
+//     faces whose points all touch a bonded body at the start (the solid's current solution) are glued.
 //
 // MPI: every rank holds the whole boundary but evaluates only the vertices whose DoFs it owns (face
 // points: those of the boundary faces of its own cells); counts, residuals and body totals are
@@ -144,14 +141,23 @@ class RigidContact final : public NodalConstraints {
     std::size_t vertex = 0;      ///< vertex rule: boundary-local index (for the tributary area)
   };
   struct BodyData {
-    std::vector<double> lambda;  ///< normal multiplier per point (vertex: N; face point: Pa)
-    std::vector<Vec3> lambda_b;  ///< bonded multiplier
-    std::vector<char> bonded;
-    std::vector<Vec3> anchor;  ///< glued point relative to c(t)
+    std::vector<double> lambda;  ///< normal multiplier per vertex (N) or per face (face rule: Pa)
+    std::vector<Vec3> lambda_b;  ///< bonded multiplier per point
+    std::vector<char> bonded;    ///< per vertex or face
+    std::vector<Vec3> anchor;    ///< glued point relative to c(t), per point
   };
   Vec3 position(const dealii::TrilinosWrappers::MPI::Vector& u_ghost, const Site& p) const;
   /// The face rule's points on the boundary faces of the solid's locally owned cells.
   void build_face_points(const Solid& solid);
+  /// Face rule: the weighted (mean) gap of face f, m, and its terms (see the header comment).
+  double face_gap(const ContactBodySpec& body, const dealii::TrilinosWrappers::MPI::Vector& u, double t,
+                  std::size_t f) const;
+  void add_face_terms(const ContactBodySpec& body, const BodyData& d, double t, std::size_t f,
+                      const dealii::TrilinosWrappers::MPI::Vector& u,
+                      dealii::TrilinosWrappers::MPI::Vector& r,
+                      const dealii::AffineConstraints<double>* constraints,
+                      dealii::TrilinosWrappers::SparseMatrix* K,
+                      dealii::TrilinosWrappers::MPI::Vector* rhs) const;
   void allocate();
   /// eps of the vertex rule (N/m) and of the face rule (Pa/m); see the header comment.
   double vertex_stiffness(Solid& solid, double t0) const;
@@ -170,6 +176,9 @@ class RigidContact final : public NodalConstraints {
   std::vector<std::size_t> mine_;  ///< boundary-local indices of the vertices this rank owns
   ContactRule rule_;
   std::vector<Site> points_;
+  /// Face rule: face f (one constraint) holds the points group_[f] .. group_[f+1], of area group_area_[f].
+  std::vector<std::size_t> group_;
+  std::vector<double> group_area_;
   double eps_ = 0.0, gap_tol_ = 0.0, natural_ = 0.0;
   std::vector<BodyData> committed_, trial_;
 };

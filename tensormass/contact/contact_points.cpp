@@ -42,6 +42,8 @@ ContactPoints ContactPoints::at_nodes(const Mesh& mesh, const ContactSurface& su
   p.face.assign(surface.nodes.size(), -1);
   for (Index n : surface.nodes) p.rest.push_back(mesh.points[static_cast<std::size_t>(n)]);
   p.nodes = surface.nodes;
+  p.group = p.start;
+  p.group_area.assign(surface.nodes.size(), 1.0);
   return p;
 }
 
@@ -50,9 +52,11 @@ ContactPoints ContactPoints::at_face_quadrature(const QuadraticMesh& qm, const C
   p.nodal = false;
   p.num_nodes = qm.num_points();
   p.start.push_back(0);
+  p.group.push_back(0);
   const auto rule = triangle_rule_degree4();
   for (std::size_t f = 0; f < surface.faces.size(); ++f) {
     const Tri6 t = qm.triangle(surface.faces[f]);
+    double area = 0.0;
     for (const TrianglePoint& r : rule) {
       const auto n = tri6_shape(r.l1, r.l2);
       Vec3 x = Vec3::Zero();
@@ -63,9 +67,12 @@ ContactPoints ContactPoints::at_face_quadrature(const QuadraticMesh& qm, const C
       }
       p.start.push_back(static_cast<Index>(p.node.size()));
       p.weight.push_back(r.weight * surface.face_area[f]);
+      area += p.weight.back();
       p.rest.push_back(x);
       p.face.push_back(static_cast<Index>(f));
     }
+    p.group.push_back(static_cast<Index>(p.weight.size()));
+    p.group_area.push_back(area);
   }
   p.nodes = p.node;
   std::sort(p.nodes.begin(), p.nodes.end());

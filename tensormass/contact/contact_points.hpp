@@ -6,9 +6,11 @@
 //   at_nodes:           P1, one point per boundary node (one node, N = 1, w = 1): lambda is a nodal
 //                       force (N) and eps a stiffness (N/m), the node-to-rigid rule unchanged.
 //   at_face_quadrature: P2, the 6 points of the degree-4 triangle rule (core/mesh/triangle_quadrature.hpp)
-//                       on each boundary 6-node triangle, w_q = the rest area weight: lambda is a
-//                       contact pressure (Pa) and eps an area density (Pa/m). A uniform pressure then
-//                       gives the consistent quadratic load (corners 0, midside nodes A/3 each).
+//                       on each boundary 6-node triangle, w_q = the rest area weight. The constraint
+//                       is then one per face (a group of 6 points): its weighted mean gap
+//                       g_f = sum_q w_q g_q / A_f >= 0 with one multiplier, the face's contact
+//                       pressure (Pa), eps an area density (Pa/m) (contact_solver.hpp). A uniform
+//                       pressure gives the consistent quadratic load (corners 0, midside nodes A/3 each).
 #pragma once
 
 #include "core/mesh/mesh.hpp"
@@ -30,8 +32,14 @@ struct ContactPoints {
   std::vector<Index> face;     ///< the point's face in ContactSurface::faces (-1 for a nodal point)
   std::vector<Index> nodes;    ///< sorted, unique nodes of all points (the DOFs contact touches)
   Index num_nodes = 0;         ///< node count of the model the points belong to
+  /// The constraints: constraint c acts on the points group[c] .. group[c+1] (nodal: one point each;
+  /// face quadrature: the 6 points of boundary face c, which all list that face's 6 nodes in the
+  /// same order).
+  std::vector<Index> group;
+  std::vector<double> group_area;  ///< A_c = sum of its points' weights (nodal: 1), m^2 on faces
 
   Index size() const { return static_cast<Index>(weight.size()); }
+  Index num_constraints() const { return static_cast<Index>(group_area.size()); }
   /// Current position x_q = X_q + sum_a N_a u_a (u node-major; empty: the rest position).
   Vec3 position(const VecX& u, Index q) const;
   /// Current positions of every point.

@@ -119,29 +119,44 @@ ContactStaticSolver::ContactStaticSolver(const MechanicalSystem& system, const M
   if (options_.stiffness > 0.0) {
     eps_ = options_.stiffness;
   } else {
-    // A nodal stiffness scale of the sample: the mean diagonal of K_0 over the boundary DOFs.
+    // A nodal stiffness scale of the sample: the mean diagonal of K_0 over the boundary DOFs (the
+    // boundary vertices; quadratic faces: all face nodes).
     const VecX diag = system_.reference_tangent().diagonal();
+    const std::vector<Index>& over = points_.nodal ? surface_.nodes : points_.nodes;
     double sum = 0.0;
-    for (Index n : surface_.nodes)
+    for (Index n : over)
       for (int c = 0; c < 3; ++c) sum += diag[3 * static_cast<Eigen::Index>(n) + c];
-    eps_ = options_.stiffness_factor * sum / (3.0 * static_cast<double>(surface_.size()));
+    eps_ = options_.stiffness_factor * sum / (3.0 * static_cast<double>(over.size()));
     if (!(eps_ > 0.0) || !std::isfinite(eps_))
       throw Error("contact: the reference tangent gives no positive stiffness scale; give contact.stiffness");
   }
   if (!points_.nodal) {
-    // Face points: the area density whose product with a vertex's mean tributary area is eps.
-    double area = 0.0;
-    for (double a : surface_.face_area) area += a;
-    area_per_vertex_ = area / static_cast<double>(surface_.size());
-    eps_ /= area_per_vertex_;
+    // Faces: eps_a such that the penalty's stiffness eps_a |G_a|^2 / A_f, summed over the faces of
+    // node a and averaged over the face nodes, is the nodal eps (G_a = sum_q w_q N_a at rest).
+    double S = 0.0;
+    for (Index c = 0; c < points_.num_constraints(); ++c) {
+      const std::size_t cc = static_cast<std::size_t>(c);
+      const Index q0 = points_.group[cc], n0 = points_.start[static_cast<std::size_t>(q0)];
+      const Index nn = points_.start[static_cast<std::size_t>(q0) + 1] - n0;
+      for (Index a = 0; a < nn; ++a) {
+        double G = 0.0;
+        for (Index q = q0; q < points_.group[cc + 1]; ++q)
+          G += points_.weight[static_cast<std::size_t>(q)] *
+               points_.shape[static_cast<std::size_t>(points_.start[static_cast<std::size_t>(q)] + a)];
+        S += G * G / points_.group_area[cc];
+      }
+    }
+    face_scale_ = static_cast<double>(points_.nodes.size()) / S;
+    eps_ *= face_scale_;
   }
 
   const std::size_t nb = static_cast<std::size_t>(points_.size());
+  const std::size_t nc = static_cast<std::size_t>(points_.num_constraints());
   committed_.resize(bodies_.size());
   for (BodyData& d : committed_) {
-    d.lambda.assign(nb, 0.0);
+    d.lambda.assign(nc, 0.0);
     d.lambda_b.assign(nb, Vec3::Zero());
-    d.bonded.assign(nb, 0);
+    d.bonded.assign(nc, 0);
     d.anchor.assign(nb, Vec3::Zero());
   }
   check_initial(t0, u0);
@@ -165,8 +180,8 @@ void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
         worst = -gp.g;
         worst_node = k;
       }
-      // Nodes touching a bonded body at t0 are glued where they touch.
-      if (body.mode == ContactMode::Bonded && gp.g <= gap_tol_) {
+      // Nodes touching a bonded body at t0 are glued where they touch (faces: below).
+      if (points_.nodal && body.mode == ContactMode::Bonded && gp.g <= gap_tol_) {
         BodyData& d = committed_[b];
         d.bonded[static_cast<std::size_t>(k)] = 1;
         d.anchor[static_cast<std::size_t>(k)] = gp.closest - body.position(t0);
@@ -180,7 +195,102 @@ void ContactStaticSolver::check_initial(double t0, const VecX& u0) {
           << " m): place the body clear of, or touching, the surface at the start";
       throw Error(msg.str());
     }
+    // Faces touching a bonded body at t0 (all their points) are glued where their points touch.
+    if (points_.nodal || body.mode != ContactMode::Bonded) continue;
+    BodyData& d = committed_[b];
+    for (Index c = 0; c < points_.num_constraints(); ++c) {
+      const std::size_t cc = static_cast<std::size_t>(c);
+      bool touches = true;
+      for (Index q = points_.group[cc]; q < points_.group[cc + 1] && touches; ++q)
+        touches = body.gap(position(u0, q), t0).g <= gap_tol_;
+      if (!touches) continue;
+      d.bonded[cc] = 1;
+      for (Index q = points_.group[cc]; q < points_.group[cc + 1]; ++q)
+        d.anchor[static_cast<std::size_t>(q)] = body.gap(position(u0, q), t0).closest - body.position(t0);
+      d.candidates.push_back(c);
+    }
   }
+}
+
+double ContactStaticSolver::face_gap(const RigidBody& body, double t, Index c, const VecX& u) const {
+  const std::size_t cc = static_cast<std::size_t>(c);
+  double g = 0.0;
+  for (Index q = points_.group[cc]; q < points_.group[cc + 1]; ++q)
+    g += points_.weight[static_cast<std::size_t>(q)] * body.gap(position(u, q), t).g;
+  return g / points_.group_area[cc];
+}
+
+void ContactStaticSolver::add_face_terms(const RigidBody& body, const BodyData& d, double t, Index c,
+                                         const VecX& u, VecX* r, SpMat* J, double* energy) const {
+  const bool penalty = options_.method == ContactMethod::Penalty;
+  const std::size_t cc = static_cast<std::size_t>(c);
+  const Index q0 = points_.group[cc], q1 = points_.group[cc + 1];
+  // Every point of the face lists the face's nodes in the same order: node a of the face is the
+  // entry start[q] + a of each point q.
+  const Index n0 = points_.start[static_cast<std::size_t>(q0)];
+  const int nn = static_cast<int>(points_.start[static_cast<std::size_t>(q0) + 1] - n0);
+  const auto node_dof = [&](int a) {
+    return 3 * static_cast<Eigen::Index>(points_.node[static_cast<std::size_t>(n0 + a)]);
+  };
+  const auto shape = [&](Index q, int a) {
+    return points_.shape[static_cast<std::size_t>(points_.start[static_cast<std::size_t>(q)] + a)];
+  };
+  const auto add_block = [&](int a, int b, const Eigen::Matrix3d& K) {
+    const Eigen::Index da = node_dof(a), db = node_dof(b);
+    for (int p = 0; p < 3; ++p)
+      for (int q = 0; q < 3; ++q) J->coeffRef(da + p, db + q) += K(p, q);
+  };
+  if (d.bonded[cc]) {
+    // Per point: w (lambda . c + eps/2 |c|^2) with c = x - (anchor + c(t)).
+    const Vec3 ct = body.position(t);
+    for (Index q = q0; q < q1; ++q) {
+      const std::size_t qq = static_cast<std::size_t>(q);
+      const double w = points_.weight[qq];
+      const Vec3 gap = position(u, q) - (d.anchor[qq] + ct);
+      if (energy) *energy += w * (d.lambda_b[qq].dot(gap) + 0.5 * eps_ * gap.squaredNorm());
+      if (r)
+        for (int a = 0; a < nn; ++a)
+          r->segment<3>(node_dof(a)) += (w * shape(q, a)) * (d.lambda_b[qq] + eps_ * gap);
+      if (J)
+        for (int a = 0; a < nn; ++a)
+          for (int b = 0; b < nn; ++b)
+            add_block(a, b, (w * shape(q, a) * shape(q, b) * eps_) * Eigen::Matrix3d::Identity());
+    }
+    return;
+  }
+  // Phi = A (<lambda - eps g_f>_+^2 - lambda^2) / (2 eps), g_f = sum_q w_q g_q / A.
+  const double A = points_.group_area[cc];
+  std::vector<GapPoint> gp;
+  gp.reserve(static_cast<std::size_t>(q1 - q0));
+  double gf = 0.0;
+  for (Index q = q0; q < q1; ++q) {
+    gp.push_back(body.gap(position(u, q), t));
+    gf += points_.weight[static_cast<std::size_t>(q)] * gp.back().g;
+  }
+  gf /= A;
+  const double lam = penalty ? 0.0 : d.lambda[cc];
+  const double p = lam - eps_ * gf;
+  const double pp = std::max(p, 0.0);
+  if (energy) *energy += A * ((pp * pp - lam * lam) / (2.0 * eps_));
+  if (p <= 0.0) return;
+  // G_a = sum_q w_q N_a n_q: dg_f/dx_a = G_a / A, so dPhi/dx_a = -p G_a.
+  std::vector<Vec3> G(static_cast<std::size_t>(nn), Vec3::Zero());
+  for (Index q = q0; q < q1; ++q)
+    for (int a = 0; a < nn; ++a)
+      G[static_cast<std::size_t>(a)] += (points_.weight[static_cast<std::size_t>(q)] * shape(q, a)) *
+                                        gp[static_cast<std::size_t>(q - q0)].normal;
+  if (r)
+    for (int a = 0; a < nn; ++a) r->segment<3>(node_dof(a)) -= p * G[static_cast<std::size_t>(a)];
+  if (J)
+    for (int a = 0; a < nn; ++a)
+      for (int b = 0; b < nn; ++b) {
+        Eigen::Matrix3d K =
+            (eps_ / A) * G[static_cast<std::size_t>(a)] * G[static_cast<std::size_t>(b)].transpose();
+        for (Index q = q0; q < q1; ++q)
+          K -= (p * points_.weight[static_cast<std::size_t>(q)] * shape(q, a) * shape(q, b)) *
+               gp[static_cast<std::size_t>(q - q0)].hessian;
+        add_block(a, b, K);
+      }
 }
 
 void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, SpMat* J,
@@ -191,6 +301,10 @@ void ContactStaticSolver::add_contact_terms(const VecX& u, double t, VecX* r, Sp
     const RigidBody& body = bodies_[b];
     const BodyData& d = trial_[b];
     const Vec3 c = body.position(t);
+    if (!points_.nodal) {
+      for (Index k : d.candidates) add_face_terms(body, d, t, k, u, r, J, energy);
+      continue;
+    }
     for (Index k : d.candidates) {
       const std::size_t kk = static_cast<std::size_t>(k);
       const double w = points_.weight[kk];
@@ -253,6 +367,11 @@ void ContactStaticSolver::find_candidates(double t, double margin, const VecX& u
     std::vector<Index> near;
     for (Index k : grid_.query(lo, hi))
       if (body.gap(position(u, k), t).g <= margin) near.push_back(k);
+    if (!points_.nodal) {  // the faces of those points
+      for (Index& k : near) k = points_.face[static_cast<std::size_t>(k)];
+      std::sort(near.begin(), near.end());
+      near.erase(std::unique(near.begin(), near.end()), near.end());
+    }
     // Keep every node that carries a multiplier or is glued (their force must stay in the residual).
     std::vector<Index> keep;
     for (Index k : d.candidates) {
@@ -294,6 +413,30 @@ bool ContactStaticSolver::solve(double t, double t_from, VecX& u, ContactStepRep
       const RigidBody& body = bodies_[b];
       BodyData& d = trial_[b];
       const Vec3 c = body.position(t);
+      if (!points_.nodal) {
+        for (Index k : d.candidates) {
+          const std::size_t kk = static_cast<std::size_t>(k);
+          if (d.bonded[kk]) {
+            for (Index q = points_.group[kk]; q < points_.group[kk + 1]; ++q) {
+              const std::size_t qq = static_cast<std::size_t>(q);
+              const Vec3 gap = position(u, q) - (d.anchor[qq] + c);
+              d.lambda_b[qq] += eps_ * gap;
+              natural = std::max(natural, gap.lpNorm<Eigen::Infinity>());
+            }
+            ++active;
+            continue;
+          }
+          const double g = face_gap(body, t, k, u);
+          const double old = penalty ? 0.0 : d.lambda[kk];
+          const double next = std::max(0.0, old - eps_ * g);
+          d.lambda[kk] = next;
+          if (next > 0.0) ++active;
+          if (penalty) continue;
+          natural = std::max(natural, std::abs(next - old) / eps_);
+          if ((old > 0.0) != (next > 0.0) && std::max(old, next) > eps_ * gap_tol_) ++changes;
+        }
+        continue;
+      }
       for (Index k : d.candidates) {
         const std::size_t kk = static_cast<std::size_t>(k);
         const Vec3 x = position(u, k);
@@ -323,10 +466,16 @@ bool ContactStaticSolver::solve(double t, double t_from, VecX& u, ContactStepRep
       Vec3 lo, hi;
       body.bounding_box(t, 0.0, lo, hi);
       std::vector<Index> add;
-      for (Index k : grid_.query(lo, hi))
+      for (Index k : grid_.query(lo, hi)) {
+        const Index ck = points_.nodal ? k : points_.face[static_cast<std::size_t>(k)];
         if (body.gap(position(u, k), t).g < -gap_tol_ &&
-            !std::binary_search(d.candidates.begin(), d.candidates.end(), k))
-          add.push_back(k);
+            !std::binary_search(d.candidates.begin(), d.candidates.end(), ck))
+          add.push_back(ck);
+      }
+      if (!points_.nodal) {
+        std::sort(add.begin(), add.end());
+        add.erase(std::unique(add.begin(), add.end()), add.end());
+      }
       missed += static_cast<int>(add.size());
       d.candidates = sorted_union(d.candidates, add);
     }
@@ -349,6 +498,17 @@ void ContactStaticSolver::accept(double t, const VecX& u) {
     for (Index k : d.candidates) {
       const std::size_t kk = static_cast<std::size_t>(k);
       if (d.bonded[kk] || !(d.lambda[kk] > 0.0)) continue;
+      if (!points_.nodal) {  // a face: its points glued where they are, each with the face's pressure
+        d.bonded[kk] = 1;
+        for (Index q = points_.group[kk]; q < points_.group[kk + 1]; ++q) {
+          const std::size_t qq = static_cast<std::size_t>(q);
+          const GapPoint gq = bodies_[b].gap(position(u, q), t);
+          d.anchor[qq] = gq.closest - bodies_[b].position(t);
+          d.lambda_b[qq] = -d.lambda[kk] * gq.normal;
+        }
+        d.lambda[kk] = 0.0;
+        continue;
+      }
       const GapPoint gp = bodies_[b].gap(position(u, k), t);
       d.bonded[kk] = 1;
       d.anchor[kk] = gp.closest - bodies_[b].position(t);
@@ -364,7 +524,7 @@ void ContactStaticSolver::add_mass_scale(double c_a) {
   for (Index n : surface_.nodes)
     for (int c = 0; c < 3; ++c) sum += system_.mass()[3 * static_cast<Eigen::Index>(n) + c];
   const double add = options_.stiffness_factor * c_a * sum / (3.0 * static_cast<double>(surface_.size()));
-  eps_ += points_.nodal ? add : add / area_per_vertex_;
+  eps_ += points_.nodal ? add : add * face_scale_;
 }
 
 ContactStepReport ContactStaticSolver::advance(double t_prev, double t_next, VecX& u) {
@@ -459,41 +619,43 @@ std::vector<ContactBodyState> ContactStaticSolver::evaluate_state(double t, cons
 
 void ContactStaticSolver::add_point_state(const RigidBody& body, const BodyData& d, double t, const VecX& u,
                                           ContactBodyState& st) const {
-  // Face points: the totals from the points (force sum_q w_q lambda_q n_q); the nodal outputs on the
-  // nodes the active points load: force sum_q w_q N_a f_q, the gap at the node, and as pressure the
-  // w-weighted mean of lambda over the active points of the faces around the node.
+  // Quadratic faces: the totals from the points of the active faces (force sum_q w_q lambda_f n_q);
+  // the nodal outputs on the nodes those points load: force sum_q w_q N_a f_q, the gap at the node,
+  // and as pressure the area-weighted mean of lambda_f over the active faces around the node.
   double min_lambda = std::numeric_limits<double>::infinity();
   const std::size_t nn = static_cast<std::size_t>(points_.num_nodes);
   std::vector<Vec3> nodal(nn, Vec3::Zero());
   std::vector<double> wsum(nn, 0.0), psum(nn, 0.0);
   std::vector<char> loaded(nn, 0);
   int active = 0;
-  for (Index k : d.candidates) {
-    const std::size_t kk = static_cast<std::size_t>(k);
-    const double w = points_.weight[kk];
-    const GapPoint gp = body.gap(position(u, k), t);
-    Vec3 f;  // force of the body on the sample per unit weight (a traction)
-    if (d.bonded[kk]) {
-      f = -d.lambda_b[kk];
-    } else {
-      const double lam = d.lambda[kk];
+  for (Index c : d.candidates) {
+    const std::size_t cc = static_cast<std::size_t>(c);
+    if (!d.bonded[cc]) {
+      const double lam = d.lambda[cc];
       min_lambda = std::min(min_lambda, lam);
-      st.complementarity = std::max(st.complementarity, w * lam * std::abs(gp.g));
+      st.complementarity =
+          std::max(st.complementarity, points_.group_area[cc] * lam * std::abs(face_gap(body, t, c, u)));
       if (!(lam > 0.0)) continue;
-      f = lam * gp.normal;
     }
     ++active;
-    st.area += points_.contact_area(surface_, k, gp.normal);
-    st.force -= w * f;
-    st.moment += (gp.closest - st.position).cross(-w * f);
-    st.max_penetration = std::max(st.max_penetration, -gp.g);
-    st.radius_max = std::max(st.radius_max, body.radial_distance(gp.closest, t));
-    for (Index i = points_.start[kk]; i < points_.start[kk + 1]; ++i) {
-      const std::size_t n = static_cast<std::size_t>(points_.node[static_cast<std::size_t>(i)]);
-      nodal[n] += (w * points_.shape[static_cast<std::size_t>(i)]) * f;
-      wsum[n] += w;
-      psum[n] += w * f.dot(gp.normal);
-      loaded[n] = 1;
+    for (Index k = points_.group[cc]; k < points_.group[cc + 1]; ++k) {
+      const std::size_t kk = static_cast<std::size_t>(k);
+      const double w = points_.weight[kk];
+      const GapPoint gp = body.gap(position(u, k), t);
+      // force of the body on the sample per unit weight (a traction)
+      const Vec3 f = d.bonded[cc] ? Vec3(-d.lambda_b[kk]) : Vec3(d.lambda[cc] * gp.normal);
+      st.area += points_.contact_area(surface_, k, gp.normal);
+      st.force -= w * f;
+      st.moment += (gp.closest - st.position).cross(-w * f);
+      st.max_penetration = std::max(st.max_penetration, -gp.g);
+      st.radius_max = std::max(st.radius_max, body.radial_distance(gp.closest, t));
+      for (Index i = points_.start[kk]; i < points_.start[kk + 1]; ++i) {
+        const std::size_t n = static_cast<std::size_t>(points_.node[static_cast<std::size_t>(i)]);
+        nodal[n] += (w * points_.shape[static_cast<std::size_t>(i)]) * f;
+        wsum[n] += w;
+        psum[n] += w * f.dot(gp.normal);
+        loaded[n] = 1;
+      }
     }
   }
   for (std::size_t n = 0; n < nn; ++n) {
@@ -509,8 +671,9 @@ void ContactStaticSolver::add_point_state(const RigidBody& body, const BodyData&
   st.radius_equivalent = body.axisymmetric() ? std::sqrt(st.area / kPi) : 0.0;
 }
 
-// Layout per body (nb contact points): lambda [nb], lambda_b [3 nb], bonded [nb], anchor [3 nb],
-// the number of candidates and the candidates (surface-local indices; exact as doubles below 2^53).
+// Layout per body (nb contact points, nc constraints; nodal nc = nb): lambda [nc], lambda_b [3 nb],
+// bonded [nc], anchor [3 nb], the number of candidates and the candidates (constraint indices;
+// exact as doubles below 2^53).
 std::vector<double> ContactStaticSolver::committed_state() const {
   std::vector<double> out;
   for (const BodyData& d : committed_) {
@@ -527,6 +690,7 @@ std::vector<double> ContactStaticSolver::committed_state() const {
 void ContactStaticSolver::restore_committed_state(const std::vector<double>& data,
                                                   std::vector<ContactBodyState> outputs) {
   const std::size_t nb = static_cast<std::size_t>(points_.size());
+  const std::size_t nc = static_cast<std::size_t>(points_.num_constraints());
   const auto bad = [] {
     return Error("contact checkpoint does not fit this contact surface and these bodies");
   };
@@ -538,9 +702,9 @@ void ContactStaticSolver::restore_committed_state(const std::vector<double>& dat
   };
   std::vector<BodyData> restored(bodies_.size());
   for (BodyData& d : restored) {
-    d.lambda.resize(nb);
+    d.lambda.resize(nc);
     d.lambda_b.resize(nb);
-    d.bonded.resize(nb);
+    d.bonded.resize(nc);
     d.anchor.resize(nb);
     for (double& l : d.lambda) l = take();
     for (Vec3& l : d.lambda_b)
@@ -549,11 +713,11 @@ void ContactStaticSolver::restore_committed_state(const std::vector<double>& dat
     for (Vec3& a : d.anchor)
       for (int c = 0; c < 3; ++c) a[c] = take();
     const double n = take();
-    if (!(n >= 0.0 && n <= static_cast<double>(nb))) throw bad();
+    if (!(n >= 0.0 && n <= static_cast<double>(nc))) throw bad();
     d.candidates.resize(static_cast<std::size_t>(n));
     for (Index& k : d.candidates) {
       const double v = take();
-      if (!(v >= 0.0 && v < static_cast<double>(nb))) throw bad();
+      if (!(v >= 0.0 && v < static_cast<double>(nc))) throw bad();
       k = static_cast<Index>(v);
     }
   }

@@ -32,17 +32,24 @@
 // accepted increment) is glued from then on to the body point it touched; it is never released.
 //
 // Contact points (contact_points.hpp). The constraint carrier is a contact point, a weighted
-// combination of nodes x_q = sum_a N_a x_a with a weight w_q: every term above is per point and
-// multiplied by w_q, and reaches node a times N_a. On linear tets a point is a boundary node (N = 1,
-// w = 1: the rule above, bit for bit). On quadratic tets (a QuadraticMesh given) the points are the
-// 6 quadrature points of each boundary 6-node triangle (degree-4 rule), w_q the rest area weight, so
-//   Phi = sum_q w_q/(2 eps_a) (<lambda_q - eps_a g_q>_+^2 - lambda_q^2)   (bonded: w_q (lambda_q . c_q +
-//   eps_a/2 |c_q|^2)),
-// lambda_q a pressure (Pa; bonded a traction), eps_a = eps / (boundary area / boundary vertices) an
-// area density (Pa/m), eps the vertex rule's (from K_0 at the boundary vertices, or contact.stiffness
-// in N/m). The tangent's blocks w_q N_a N_b (...) couple the 6 nodes of one face, which share a tet,
-// so the model's pattern holds them. The Uzawa update, the stopping test and gap_tol are per point;
-// the body force is sum_q w_q lambda_q n_q. Initial penetration is checked at the points.
+// combination of nodes x_q = sum_a N_a x_a with a weight w_q. On linear tets a point is a boundary
+// node (N = 1, w = 1: the rule above, bit for bit). On quadratic tets (a QuadraticMesh given) the
+// points are the 6 quadrature points of each boundary 6-node triangle (degree-4 rule), w_q the rest
+// area weight, and the constraint is one per FACE f (mortar-style, a face-constant pressure): its
+// weighted gap  g_f = sum_q w_q g_q / A_f  (A_f = sum_q w_q, the face's mean gap) and one multiplier
+// lambda_f, the face's contact pressure (Pa):
+//   Phi = sum_f A_f/(2 eps_a) (<lambda_f - eps_a g_f>_+^2 - lambda_f^2),
+//   force on node a  -p_f G_a,  G_a = sum_q w_q N_a(xi_q) n_q,  p_f = <lambda_f - eps_a g_f>_+,
+//   tangent  (eps_a/A_f) G_a G_b^T - p_f sum_q w_q N_a N_b H_q   (the face's 6 nodes share a tet),
+//   update  lambda_f <- <lambda_f - eps_a g_f(u_k)>_+ ; the stopping test and gap_tol per face.
+// One multiplier per face (about 2 per boundary vertex) against about 4 face nodes per vertex: the
+// constraints are not redundant, as one per quadrature point (6 per face, 3x the nodes) were, whose
+// Uzawa loop did not settle on curved contact (docs/contact.md). eps_a (Pa/m) = eps N_b / S with
+// S = sum_f sum_a |G_a|^2 / A_f at rest and N_b the face nodes: the penalty's nodal stiffness is then
+// on average the nodal eps (from K_0 over the face nodes' DOFs, or contact.stiffness in N/m). Bonded
+// faces glue their 6 points: w_q (lambda_q . c_q + eps_a/2 |c_q|^2) per point (a traction). A face
+// is glued at t0 when all its points touch, or at the end of an increment in which it was active.
+// The body force is sum_f lambda_f sum_q w_q n_q. Initial penetration is checked at the points.
 #pragma once
 
 #include "core/mesh/quadratic_mesh.hpp"
@@ -86,12 +93,12 @@ struct ContactBodyState {
   Vec3 position = Vec3::Zero();  ///< reference point c(t)
   Vec3 force = Vec3::Zero();     ///< total force the sample exerts on the body, N
   Vec3 moment = Vec3::Zero();    ///< moment of that force about c(t), N m
-  int active_nodes = 0;          ///< active nodes (face points: active quadrature points)
+  int active_nodes = 0;          ///< active nodes (quadratic faces: active faces)
   double area = 0.0;  ///< sum over active nodes of the reference tributary area projected on n, m^2
   double radius_equivalent = 0.0;  ///< sqrt(area / pi) (axisymmetric bodies; 0 for the plane)
   double radius_max = 0.0;         ///< largest radial distance of an active contact point from the axis
-  double max_penetration = 0.0;    ///< max(0, -g) over the active nodes, m
-  double complementarity = 0.0;    ///< max over nodes of lambda |g|, N m
+  double max_penetration = 0.0;    ///< max(0, -g) over the active nodes (faces: their points), m
+  double complementarity = 0.0;    ///< max over nodes of lambda |g| (faces: A_f lambda_f |g_f|), N m
   double min_multiplier = 0.0;     ///< smallest normal multiplier (>= 0 for frictionless contact)
   std::vector<Index> nodes;        ///< active nodes (mesh indices), increasing
   std::vector<Vec3> nodal_force;   ///< force on the sample at each active node, N
@@ -153,7 +160,7 @@ class ContactStaticSolver {
   }
   /// Its kind and, for CHOLMOD, how many solves fell back to LDL^T (not positive definite).
   const ConstrainedLinearSolver& linear_solver() const { return *linear_; }
-  double stiffness() const { return eps_; }  ///< eps, N/m (face points: eps_a, Pa/m)
+  double stiffness() const { return eps_; }  ///< eps, N/m (faces: eps_a, Pa/m)
   double gap_tol() const { return gap_tol_; }
   const ContactOptions& options() const { return options_; }
   const std::vector<RigidBody>& bodies() const { return bodies_; }
@@ -175,12 +182,14 @@ class ContactStaticSolver {
   void restore_committed_state(const std::vector<double>& data, std::vector<ContactBodyState> outputs);
 
  private:
+  // Per constraint c (a node, or a quadratic face): lambda, bonded, candidates; per point q:
+  // lambda_b, anchor (nodal: the constraint is its one point, so both are per node).
   struct BodyData {
-    std::vector<double> lambda;     ///< normal multiplier per contact point (>= 0)
+    std::vector<double> lambda;     ///< normal multiplier per constraint (>= 0)
     std::vector<Vec3> lambda_b;     ///< bonded multiplier per contact point
-    std::vector<char> bonded;       ///< glued points
-    std::vector<Vec3> anchor;       ///< glued point in the body frame (relative to c(t))
-    std::vector<Index> candidates;  ///< contact points evaluated this outer iteration
+    std::vector<char> bonded;       ///< glued constraints
+    std::vector<Vec3> anchor;       ///< glued point in the body frame (relative to c(t)), per point
+    std::vector<Index> candidates;  ///< constraints evaluated this outer iteration
   };
 
   void find_candidates(double t, double margin, const VecX& u);
@@ -189,6 +198,11 @@ class ContactStaticSolver {
   void add_point_state(const RigidBody& body, const BodyData& d, double t, const VecX& u,
                        ContactBodyState& st) const;
   void check_initial(double t0, const VecX& u0);
+  /// Quadratic faces: the terms of face c (see the header comment), as add_contact_terms.
+  void add_face_terms(const RigidBody& body, const BodyData& d, double t, Index c, const VecX& u, VecX* r,
+                      SpMat* J, double* energy) const;
+  /// The weighted (mean) gap of face c, m.
+  double face_gap(const RigidBody& body, double t, Index c, const VecX& u) const;
 
   const MechanicalSystem& system_;
   const Mesh& mesh_;
@@ -201,7 +215,7 @@ class ContactStaticSolver {
   ContactPoints points_;
   SurfaceGrid grid_;
   double eps_ = 0.0;
-  double area_per_vertex_ = 1.0;  ///< face points: eps_a = eps / area_per_vertex_
+  double face_scale_ = 1.0;  ///< faces: eps_a = eps * face_scale_ (N_b / S, 1/m^2)
   double gap_tol_ = 0.0;
   std::vector<BodyData> committed_, trial_;
   std::vector<ContactBodyState> state_;
