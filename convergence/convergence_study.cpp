@@ -234,6 +234,13 @@ StudyPlan plan_study(const StudyOptions& o) {
     plan.t_end = plan.base.solver.t_end;
     loading = plan.t_end;
   }
+  if (!o.linear.empty()) {
+    if (o.linear != "ldlt" && o.linear != "cholmod")
+      throw Error("--linear " + o.linear + ": must be ldlt or cholmod");
+    if (plan.kind == "case" && plan.base.solver.type == SolverSpec::Type::Explicit)
+      throw Error("--linear " + o.linear + ": the case '" + plan.name +
+                  "' runs the explicit solver, which makes no linear solves");
+  }
   plan.available = recorded_series(names.conditions, names.probes, names.bodies);
   plan.quantities =
       o.quantities.empty() ? default_quantities(names.moving, names.probes, names.bodies) : o.quantities;
@@ -315,6 +322,8 @@ StudyResult run_study(const StudyPlan& plan, const StudyOptions& o, const fs::pa
     cfg.output.vtu = false;  // the study reads timeseries.h5 only; fields of fine levels are large
     cfg.output.xdmf = false;
     cfg.output.plots = false;
+    if (!o.linear.empty())  // checked by plan_study
+      cfg.solver.linear = o.linear == "cholmod" ? SolverSpec::Linear::Cholmod : SolverSpec::Linear::Ldlt;
     LevelResult r;
     r.level = l.level;
     r.cells = l.cells;

@@ -50,6 +50,8 @@ struct StudyOptions {
   double ratio = 2.0;                   ///< rig: the multiplier of cells and layers per level; case: 2 only
   std::vector<std::string> quantities;  ///< series names; empty: default_quantities()
   std::vector<double> times;            ///< s; empty: default_times()
+  /// The levels' solver.linear ("ldlt" | "cholmod"; empty: the case's or the rig's own, ldlt).
+  std::string linear;
   /// Level runs' own progress and report (the runner's log; nullptr: silent).
   std::ostream* run_log = nullptr;
   std::function<void(const std::string&)> log;  ///< one line per level (may be empty)
