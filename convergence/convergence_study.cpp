@@ -363,6 +363,14 @@ StudyPlan plan_study(const StudyOptions& o) {
     plan.t_end = plan.base.solver.t_end;
     loading = plan.t_end;
   }
+  if (!o.linear.empty()) {
+    if (o.linear != "ldlt" && o.linear != "cholmod")
+      throw Error("--linear " + o.linear + ": must be ldlt or cholmod");
+    if (plan.kind == "case" && plan.base.solver.type == SolverSpec::Type::Explicit)
+      throw Error("--linear " + o.linear + ": the case '" + plan.name +
+                  "' runs the explicit solver, which makes no linear solves");
+    plan.linear = o.linear;
+  }
   plan.available = recorded_series(names.conditions, names.probes, names.bodies);
   plan.quantities =
       o.quantities.empty() ? default_quantities(names.moving, names.probes, names.bodies) : o.quantities;
@@ -459,6 +467,9 @@ class LevelBuilder {
     c.cfg.output.vtu = false;  // the study reads timeseries.h5 only; fields of fine levels are large
     c.cfg.output.xdmf = false;
     c.cfg.output.plots = false;
+    if (!plan_.linear.empty())  // checked by plan_study
+      c.cfg.solver.linear =
+          plan_.linear == "cholmod" ? SolverSpec::Linear::Cholmod : SolverSpec::Linear::Ldlt;
     return c;
   }
 

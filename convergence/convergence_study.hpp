@@ -81,6 +81,8 @@ struct StudyOptions {
   double ratio = 2.0;
   std::vector<std::string> quantities;  ///< series names; empty: default_quantities()
   std::vector<double> times;            ///< s; empty: default_times()
+  /// The levels' solver.linear ("ldlt" | "cholmod"; empty: the case's or the rig's own, ldlt).
+  std::string linear;
   /// Level runs' own progress and report (the runner's log; nullptr: silent).
   std::ostream* run_log = nullptr;
   std::function<void(const std::string&)> log;  ///< one line per level (may be empty)
@@ -111,6 +113,7 @@ struct StudyPlan {
   std::vector<double> times;
   std::vector<std::string> available;  ///< the series the case records (what --quantity accepts)
   double t_end = 0.0;
+  std::string linear;  ///< the levels' solver.linear (StudyOptions::linear; empty: their own)
 };
 
 /// The series a case records per step (names of core/results/series_names.hpp): the scalars, each

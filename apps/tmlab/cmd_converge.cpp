@@ -50,6 +50,7 @@ convergence::StudyOptions study_options(const ParsedOptions& p, const std::strin
   o.refine = p.text("--refine-in") == "time" ? convergence::Refine::Time : convergence::Refine::Space;
   o.ratio = p.decimal("--ratio");
   o.quantities = p.all("--quantity");
+  if (p.given("--linear")) o.linear = p.text("--linear");
   for (const std::string& t : p.all("--time")) o.times.push_back(parse_double("--time", t));
   o.command_line = split_words(command_line);
   o.log = [](const std::string& m) { std::cerr << "tmlab converge: " << m << "\n"; };

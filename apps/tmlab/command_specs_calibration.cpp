@@ -123,6 +123,9 @@ CommandSpec converge_spec() {
                          "and the last time)")
                      .repeat()
                      .role(kResult),
+                 choice("--linear", {"ldlt", "cholmod"},
+                        "the levels' sparse direct solver (solver.linear; default: the case's)")
+                     .role(kManifest),
                  text("--out", "DIR", "the result folder (default <results>/converge/NAME)"),
                  text("--name", "N", "the rig's name (default: the test's)").role(kManifest),
                  flag("--resume",

@@ -406,5 +406,41 @@ TEST_F(ConvergenceStudy, ResumeReusesCompleteLevelsOfTheSamePlanOnly) {
   EXPECT_NE(mesh.find("levels/level-1 was run from another plan (its mesh"), std::string::npos) << mesh;
 }
 
+TEST_F(ConvergenceStudy, LinearSolverChoiceGivesTheSameLevels) {
+  // --linear sets every level's solver.linear: CHOLMOD and LDL^T solve the same Newton steps, so the
+  // levels agree to round-off (the cantilever's tangent is positive definite: no fallback).
+  StudyOptions o;
+  o.case_config = load_case(cantilever().string(), dir_.string());
+  o.levels = 3;
+  std::vector<std::vector<double>> values;
+  for (const char* linear : {"ldlt", "cholmod"}) {
+    o.linear = linear;
+    const StudyPlan plan = plan_study(o);
+    const fs::path out = dir_ / (std::string("study-") + linear);
+    fs::create_directories(out);
+    const StudyResult r = run_study(plan, o, out);
+    values.push_back(r.quantities[0].analysis.value);
+    const std::string summary = testing::read_file(out / r.levels[2].dir / "summary.json");
+    EXPECT_EQ(nlohmann::json::parse(summary)["solver"]["newton"]["linear"], linear) << summary;
+  }
+  for (std::size_t k = 0; k < 3; ++k) EXPECT_NEAR(values[1][k], values[0][k], 1e-9 * std::abs(values[0][k]));
+}
+
+TEST_F(ConvergenceStudy, LinearSolverIsCheckedBeforeAnythingRuns) {
+  StudyOptions o;
+  o.rig = small_rig();
+  o.linear = "lu";
+  EXPECT_NE(error_of([&] { plan_study(o); }).find("--linear lu"), std::string::npos);
+  // An explicit case makes no linear solves: refused, naming the option and the case.
+  CaseConfig c = load_case(cantilever().string(), dir_.string());
+  c.solver.type = SolverSpec::Type::Explicit;
+  StudyOptions e;
+  e.case_config = c;
+  e.linear = "cholmod";
+  const std::string msg = error_of([&] { plan_study(e); });
+  EXPECT_NE(msg.find("--linear cholmod"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("explicit"), std::string::npos) << msg;
+}
+
 }  // namespace
 }  // namespace tmlab::convergence
