@@ -4,6 +4,7 @@
 #include "runner/case_runner.hpp"
 #include "runner/contact_checkpoint.hpp"
 #include "runner/contact_log.hpp"
+#include "runner/linear_solve_log.hpp"
 #include "runner/newton_log.hpp"
 #include "runner/stepping.hpp"
 #include "tensormass/contact/contact_checks.hpp"
@@ -55,7 +56,8 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, solver.linear_solver().stats(), ck.resuming())},
           {"contact", contact_log.json("augmented_lagrangian_static", solver.stiffness(), solver.gap_tol(),
                                        solver.state())}};
 }
@@ -136,7 +138,9 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver, integ.contact().linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver",
+           linear_solver_json(cfg.solver, integ.contact().linear_solver().stats(), ck.resuming())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
           {"contact", contact_log.json("augmented_lagrangian_implicit", integ.contact().stiffness(),
                                        integ.contact().gap_tol(), integ.contact().state())}};

@@ -21,12 +21,12 @@ void NewtonLog::add(const NewtonResult& last, int iterations, int cutbacks, int 
   history_.push_back(last.history);
 }
 
-nlohmann::json NewtonLog::json(const SolverSpec& s, int fallbacks) const {
+nlohmann::json NewtonLog::json(const SolverSpec& s) const {
   int roundoff_steps = 0, max_its = 0;
   for (bool b : roundoff_) roundoff_steps += b ? 1 : 0;
   for (int i : iterations_) max_its = std::max(max_its, i);
   nlohmann::json j = {{"line_search", to_string(s.line_search)},
-                      {"linear", s.linear == SolverSpec::Linear::Cholmod ? "cholmod" : "ldlt"},
+                      {"linear", to_string(s.linear)},
                       {"rtol", s.rtol},
                       {"atol", s.atol},
                       {"max_iterations", s.max_iterations},
@@ -41,7 +41,6 @@ nlohmann::json NewtonLog::json(const SolverSpec& s, int fallbacks) const {
                         {"residual_target", target_},
                         {"at_roundoff", roundoff_},
                         {"residual_history_last_solve", history_}}}};
-  if (s.linear == SolverSpec::Linear::Cholmod && fallbacks >= 0) j["linear_fallbacks_to_ldlt"] = fallbacks;
   return j;
 }
 

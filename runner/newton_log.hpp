@@ -23,9 +23,8 @@ class NewtonLog {
   /// tmlab::Error naming the file).
   void save(CheckpointData& d) const;
   void restore(const CheckpointData& d);
-  /// `fallbacks`: the solves of a "cholmod" run that met a tangent that is not positive definite
-  /// and used LDL^T (since the start or the resume of the run; -1: not known).
-  nlohmann::json json(const SolverSpec& s, int fallbacks = -1) const;
+  /// The linear solves are the "solver.linear_solver" block's (runner/linear_solve_log.hpp).
+  nlohmann::json json(const SolverSpec& s) const;
 
  private:
   std::vector<int> iterations_, cutbacks_, sub_increments_, backtracks_;

@@ -3,6 +3,7 @@
 
 #include "runner/case_runner.hpp"
 #include "runner/contact_stepping.hpp"
+#include "runner/linear_solve_log.hpp"
 #include "runner/newton_log.hpp"
 #include "tensormass/solvers/implicit_dynamics.hpp"
 #include "tensormass/solvers/static_solver.hpp"
@@ -38,7 +39,8 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())}};
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, solver.linear_solver().stats(), ck.resuming())}};
 }
 
 /// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
@@ -97,7 +99,8 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver, integ.linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, integ.linear_solver().stats(), ck.resuming())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
 }
 
