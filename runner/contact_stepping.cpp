@@ -46,6 +46,7 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
     total_cutbacks += rep.solver.cutbacks;
     newton_log.add(rep.solver.newton, rep.solver.newton_iterations, rep.solver.cutbacks,
                    rep.solver.sub_increments, rep.solver.at_roundoff);
+    newton_log.set_linear(solver.linear_solver().stats());
     contact_log.add(rep);
     rec.record(k, t1, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
     t = t1;
@@ -57,7 +58,7 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
           {"newton", newton_log.json(cfg.solver)},
-          {"linear_solver", linear_solver_json(cfg.solver, solver.linear_solver().stats(), ck.resuming())},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())},
           {"contact", contact_log.json("augmented_lagrangian_static", solver.stiffness(), solver.gap_tol(),
                                        solver.state())}};
 }
@@ -126,6 +127,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
     t = integ.time();
     total_newton += rep.solver.newton_iterations;
     newton_log.add(rep.solver.newton, rep.solver.newton_iterations, 0, 1, rep.solver.at_roundoff);
+    newton_log.set_linear(integ.contact().linear_solver().stats());
     contact_log.add(rep);
     s.u = integ.displacement();
     s.v = integ.velocity();
@@ -139,8 +141,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
           {"steps", n_steps},
           {"newton_iterations", total_newton},
           {"newton", newton_log.json(cfg.solver)},
-          {"linear_solver",
-           linear_solver_json(cfg.solver, integ.contact().linear_solver().stats(), ck.resuming())},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
           {"contact", contact_log.json("augmented_lagrangian_implicit", integ.contact().stiffness(),
                                        integ.contact().gap_tol(), integ.contact().state())}};

@@ -9,7 +9,7 @@ NewtonLinearSolver newton_linear_solver(SolverSpec::Linear linear) {
   return linear == SolverSpec::Linear::Ldlt ? NewtonLinearSolver::Direct : NewtonLinearSolver::Cholmod;
 }
 
-nlohmann::json linear_solver_json(const SolverSpec& s, const LinearSolveStats& st, bool resumed) {
+nlohmann::json linear_solver_json(const SolverSpec& s, const LinearSolveStats& st) {
   nlohmann::json j = {
       {"kind", to_string(s.linear)},
       {"solves", st.solves},
@@ -19,8 +19,7 @@ nlohmann::json linear_solver_json(const SolverSpec& s, const LinearSolveStats& s
       {"fallbacks_to_ldlt", st.fallbacks()},
       {"fallbacks", {{"indefinite", st.fallbacks_indefinite}, {"round_off", st.fallbacks_round_off}}},
       {"fallbacks_by_newton_iteration", st.fallbacks_by_iteration},
-      {"max_negative_pivots", st.max_negative_pivots},
-      {"counted_since", resumed ? "resume" : "start"}};
+      {"max_negative_pivots", st.max_negative_pivots}};
   if (st.fallbacks() > 0) {
     const auto& by = st.fallbacks_by_iteration;
     std::string its;

@@ -15,8 +15,8 @@ NewtonLinearSolver newton_linear_solver(SolverSpec::Linear linear);
 /// summary.json's "solver.linear_solver": the case's choice (`kind`), the solves by solver, the
 /// symbolic analyses (one per sparsity pattern), the fallbacks to LDL^T by reason (indefinite:
 /// negative pivots in LDL^T; round_off: none) and by Newton iteration, and, when there were
-/// fallbacks, a `note` saying what they mean. The counts cover the process: since the start of the
-/// run, or since its resume (`counted_since`).
-nlohmann::json linear_solver_json(const SolverSpec& s, const LinearSolveStats& stats, bool resumed);
+/// fallbacks, a `note` saying what they mean. `stats`: the run's counts (NewtonLog::linear(), which
+/// carries them across a resume).
+nlohmann::json linear_solver_json(const SolverSpec& s, const LinearSolveStats& stats);
 
 }  // namespace tmlab::tm::runner

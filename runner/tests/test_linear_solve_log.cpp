@@ -27,7 +27,7 @@ TEST(LinearSolveLog, JsonCountsSolvesAnalysesAndFallbacksByReason) {
   st.fallbacks_round_off = 1;
   st.max_negative_pivots = 5;
   st.fallbacks_by_iteration = {2, 1, 0, 0};
-  const nlohmann::json j = linear_solver_json(SolverSpec{}, st, false);
+  const nlohmann::json j = linear_solver_json(SolverSpec{}, st);
   EXPECT_EQ(j["kind"], "auto");
   EXPECT_EQ(j["solves"], 12);
   EXPECT_EQ(j["solves_by"], nlohmann::json({{"cholmod", 9}, {"ldlt", 3}, {"lu", 0}}));
@@ -36,23 +36,21 @@ TEST(LinearSolveLog, JsonCountsSolvesAnalysesAndFallbacksByReason) {
   EXPECT_EQ(j["fallbacks"], nlohmann::json({{"indefinite", 2}, {"round_off", 1}}));
   EXPECT_EQ(j["fallbacks_by_newton_iteration"], nlohmann::json({2, 1, 0, 0}));
   EXPECT_EQ(j["max_negative_pivots"], 5);
-  EXPECT_EQ(j["counted_since"], "start");
   const std::string note = j.at("note");
   for (const char* part :
        {"3 of 12 solves", "2 indefinite (up to 5 negative eigenvalues)", "1 positive definite to round-off",
         "2 at iteration 1, 1 at iteration 2", "0 at iteration 4 or later", "docs/theory/newton.md"})
     EXPECT_NE(note.find(part), std::string::npos) << part << " in: " << note;
 
-  // No fallback: no note. A resumed run says its counts start at the resume.
+  // No fallback: no note.
   SolverSpec ldlt;
   ldlt.linear = SolverSpec::Linear::Ldlt;
   LinearSolveStats clean;
   clean.solves = clean.ldlt_solves = 4;
-  const nlohmann::json k = linear_solver_json(ldlt, clean, true);
+  const nlohmann::json k = linear_solver_json(ldlt, clean);
   EXPECT_EQ(k["kind"], "ldlt");
   EXPECT_EQ(k["fallbacks_to_ldlt"], 0);
   EXPECT_FALSE(k.contains("note"));
-  EXPECT_EQ(k["counted_since"], "resume");
 }
 
 }  // namespace

@@ -54,6 +54,56 @@ TEST(NewtonLog, CheckpointRoundTripIsExact) {
   EXPECT_EQ(back.json(s), two_steps().json(s));
 }
 
+TEST(NewtonLog, LinearSolveCountsCarryAcrossAResume) {
+  // The process before the stop: 10 solves, 2 fallbacks, one analysis. Its checkpoint restored in a
+  // new process that then does 5 solves (1 fallback, its own analysis of the same pattern): the run
+  // reports 15 solves, 3 fallbacks and one analysis, as an uninterrupted run does.
+  LinearSolveStats first;
+  first.solves = first.cholmod_solves = 10;
+  first.cholmod_analyses = 1;
+  first.ldlt_analyses = 1;
+  first.fallbacks_indefinite = 2;
+  first.max_negative_pivots = 7;
+  first.fallbacks_by_iteration = {2, 0, 0, 0};
+  NewtonLog before = two_steps();
+  before.set_linear(first);
+  CheckpointData d;
+  before.save(d);
+  NewtonLog back;
+  back.restore(d);
+  EXPECT_EQ(back.linear().solves, 10);
+  LinearSolveStats second;
+  second.solves = 5;
+  second.cholmod_solves = 4;
+  second.ldlt_solves = 1;
+  second.cholmod_analyses = 1;
+  second.ldlt_analyses = 1;
+  second.fallbacks_indefinite = 1;
+  second.max_negative_pivots = 3;
+  second.fallbacks_by_iteration = {0, 0, 1, 0};
+  back.set_linear(second);
+  const LinearSolveStats t = back.linear();
+  EXPECT_EQ(t.solves, 15);
+  EXPECT_EQ(t.cholmod_solves, 14);
+  EXPECT_EQ(t.ldlt_solves, 1);
+  EXPECT_EQ(t.cholmod_analyses, 1);
+  EXPECT_EQ(t.fallbacks_indefinite, 3);
+  EXPECT_EQ(t.max_negative_pivots, 7);
+  EXPECT_EQ(t.fallbacks_by_iteration, (std::vector<long>{2, 0, 1, 0}));
+  // A checkpoint without the counts (written before they existed) restores with none.
+  CheckpointData old;
+  two_steps().save(old);
+  CheckpointData stripped;
+  for (const char* k : {"newton.iterations", "newton.cutbacks", "newton.sub_increments", "newton.backtracks",
+                        "newton.roundoff", "newton.history_lengths"})
+    stripped.put(k, old.ints(k));
+  for (const char* k : {"newton.residual", "newton.target", "newton.history"})
+    stripped.put(k, old.doubles(k));
+  NewtonLog from_old;
+  from_old.restore(stripped);
+  EXPECT_EQ(from_old.linear().solves, 0);
+}
+
 TEST(NewtonLog, InconsistentHistoryIsRefused) {
   CheckpointData d;
   two_steps().save(d);
