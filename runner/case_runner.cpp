@@ -12,6 +12,7 @@
 #include "core/results/run_output.hpp"
 #include "core/results/run_protocol.hpp"
 #include "core/results/series_names.hpp"
+#include "runner/linear_solve_log.hpp"
 #include "runner/problem.hpp"
 #include "runner/run_checkpoint.hpp"
 #include "runner/step_recorder.hpp"
@@ -119,8 +120,7 @@ NewtonOptions newton_options(const SolverSpec& s) {
   o.rtol = s.rtol;
   o.atol = s.atol;
   o.line_search = s.line_search;
-  o.linear_solver =
-      s.linear == SolverSpec::Linear::Cholmod ? NewtonLinearSolver::Cholmod : NewtonLinearSolver::Direct;
+  o.linear_solver = runner::newton_linear_solver(s.linear);
   return o;
 }
 

@@ -4,6 +4,7 @@
 #include "runner/case_runner.hpp"
 #include "runner/contact_checkpoint.hpp"
 #include "runner/contact_log.hpp"
+#include "runner/linear_solve_log.hpp"
 #include "runner/newton_log.hpp"
 #include "runner/stepping.hpp"
 #include "tensormass/contact/contact_checks.hpp"
@@ -45,6 +46,7 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
     total_cutbacks += rep.solver.cutbacks;
     newton_log.add(rep.solver.newton, rep.solver.newton_iterations, rep.solver.cutbacks,
                    rep.solver.sub_increments, rep.solver.at_roundoff);
+    newton_log.set_linear(solver.linear_solver().stats());
     contact_log.add(rep);
     rec.record(k, t1, s.u, s.v, rep.solver.newton_iterations, field_step(cfg, k));
     t = t1;
@@ -55,7 +57,8 @@ nlohmann::json step_static_contact(const Problem& p, StepRecorder& rec, Progress
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())},
           {"contact", contact_log.json("augmented_lagrangian_static", solver.stiffness(), solver.gap_tol(),
                                        solver.state())}};
 }
@@ -124,6 +127,7 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
     t = integ.time();
     total_newton += rep.solver.newton_iterations;
     newton_log.add(rep.solver.newton, rep.solver.newton_iterations, 0, 1, rep.solver.at_roundoff);
+    newton_log.set_linear(integ.contact().linear_solver().stats());
     contact_log.add(rep);
     s.u = integ.displacement();
     s.v = integ.velocity();
@@ -136,7 +140,8 @@ nlohmann::json step_implicit_contact(const Problem& p, StepRecorder& rec, Progre
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver, integ.contact().linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}},
           {"contact", contact_log.json("augmented_lagrangian_implicit", integ.contact().stiffness(),
                                        integ.contact().gap_tol(), integ.contact().state())}};

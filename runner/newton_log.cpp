@@ -21,12 +21,12 @@ void NewtonLog::add(const NewtonResult& last, int iterations, int cutbacks, int 
   history_.push_back(last.history);
 }
 
-nlohmann::json NewtonLog::json(const SolverSpec& s, int fallbacks) const {
+nlohmann::json NewtonLog::json(const SolverSpec& s) const {
   int roundoff_steps = 0, max_its = 0;
   for (bool b : roundoff_) roundoff_steps += b ? 1 : 0;
   for (int i : iterations_) max_its = std::max(max_its, i);
   nlohmann::json j = {{"line_search", to_string(s.line_search)},
-                      {"linear", s.linear == SolverSpec::Linear::Cholmod ? "cholmod" : "ldlt"},
+                      {"linear", to_string(s.linear)},
                       {"rtol", s.rtol},
                       {"atol", s.atol},
                       {"max_iterations", s.max_iterations},
@@ -41,8 +41,28 @@ nlohmann::json NewtonLog::json(const SolverSpec& s, int fallbacks) const {
                         {"residual_target", target_},
                         {"at_roundoff", roundoff_},
                         {"residual_history_last_solve", history_}}}};
-  if (s.linear == SolverSpec::Linear::Cholmod && fallbacks >= 0) j["linear_fallbacks_to_ldlt"] = fallbacks;
   return j;
+}
+
+LinearSolveStats NewtonLog::linear() const {
+  const LinearSolveStats& a = before_;
+  const LinearSolveStats& b = process_;
+  LinearSolveStats t;
+  t.solves = a.solves + b.solves;
+  t.cholmod_solves = a.cholmod_solves + b.cholmod_solves;
+  t.ldlt_solves = a.ldlt_solves + b.ldlt_solves;
+  t.lu_solves = a.lu_solves + b.lu_solves;
+  t.cg_solves = a.cg_solves + b.cg_solves;
+  t.cholmod_analyses = std::max(a.cholmod_analyses, b.cholmod_analyses);
+  t.ldlt_analyses = std::max(a.ldlt_analyses, b.ldlt_analyses);
+  t.lu_analyses = std::max(a.lu_analyses, b.lu_analyses);
+  t.fallbacks_indefinite = a.fallbacks_indefinite + b.fallbacks_indefinite;
+  t.fallbacks_round_off = a.fallbacks_round_off + b.fallbacks_round_off;
+  t.max_negative_pivots = std::max(a.max_negative_pivots, b.max_negative_pivots);
+  for (std::size_t k = 0; k < t.fallbacks_by_iteration.size(); ++k)
+    t.fallbacks_by_iteration[k] = (k < a.fallbacks_by_iteration.size() ? a.fallbacks_by_iteration[k] : 0) +
+                                  (k < b.fallbacks_by_iteration.size() ? b.fallbacks_by_iteration[k] : 0);
+  return t;
 }
 
 void NewtonLog::save(CheckpointData& d) const {
@@ -62,6 +82,20 @@ void NewtonLog::save(CheckpointData& d) const {
   }
   d.put("newton.history", flat);
   d.put("newton.history_lengths", lengths);
+  const LinearSolveStats t = linear();
+  std::vector<std::int64_t> lin = {t.solves,
+                                   t.cholmod_solves,
+                                   t.ldlt_solves,
+                                   t.lu_solves,
+                                   t.cg_solves,
+                                   t.cholmod_analyses,
+                                   t.ldlt_analyses,
+                                   t.lu_analyses,
+                                   t.fallbacks_indefinite,
+                                   t.fallbacks_round_off,
+                                   t.max_negative_pivots};
+  lin.insert(lin.end(), t.fallbacks_by_iteration.begin(), t.fallbacks_by_iteration.end());
+  d.put("newton.linear", lin);
 }
 
 void NewtonLog::restore(const CheckpointData& d) {
@@ -86,6 +120,28 @@ void NewtonLog::restore(const CheckpointData& d) {
     history_.emplace_back(flat.begin() + static_cast<std::ptrdiff_t>(at),
                           flat.begin() + static_cast<std::ptrdiff_t>(at + static_cast<std::size_t>(n)));
     at += static_cast<std::size_t>(n);
+  }
+  before_ = LinearSolveStats{};
+  process_ = LinearSolveStats{};
+  if (d.has("newton.linear")) {  // checkpoints written before 2026-12-02 have no linear counts
+    const auto& v = d.ints("newton.linear");
+    LinearSolveStats& t = before_;
+    if (v.size() != 11 + t.fallbacks_by_iteration.size())
+      throw Error(d.source() + ": inconsistent linear-solve counts; run without --resume");
+    long* fields[] = {&t.solves,
+                      &t.cholmod_solves,
+                      &t.ldlt_solves,
+                      &t.lu_solves,
+                      &t.cg_solves,
+                      &t.cholmod_analyses,
+                      &t.ldlt_analyses,
+                      &t.lu_analyses,
+                      &t.fallbacks_indefinite,
+                      &t.fallbacks_round_off};
+    for (std::size_t k = 0; k < 10; ++k) *fields[k] = static_cast<long>(v[k]);
+    t.max_negative_pivots = static_cast<Eigen::Index>(v[10]);
+    for (std::size_t k = 0; k < t.fallbacks_by_iteration.size(); ++k)
+      t.fallbacks_by_iteration[k] = static_cast<long>(v[11 + k]);
   }
 }
 

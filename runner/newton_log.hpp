@@ -23,15 +23,23 @@ class NewtonLog {
   /// tmlab::Error naming the file).
   void save(CheckpointData& d) const;
   void restore(const CheckpointData& d);
-  /// `fallbacks`: the solves of a "cholmod" run that met a tangent that is not positive definite
-  /// and used LDL^T (since the start or the resume of the run; -1: not known).
-  nlohmann::json json(const SolverSpec& s, int fallbacks = -1) const;
+  /// The linear solves are the "solver.linear_solver" block's (runner/linear_solve_log.hpp).
+  nlohmann::json json(const SolverSpec& s) const;
+
+  /// The linear solver's counts after a step (ConstrainedLinearSolver::stats() of this process).
+  void set_linear(const LinearSolveStats& process) { process_ = process; }
+  /// The run's counts: those of the processes before a resume (from the checkpoint) plus this
+  /// one's; symbolic analyses and negative pivots the largest of them (a resumed process analyses
+  /// its pattern again: the factorisation is not checkpointed), so a resumed run reports what an
+  /// uninterrupted one does.
+  LinearSolveStats linear() const;
 
  private:
   std::vector<int> iterations_, cutbacks_, sub_increments_, backtracks_;
   std::vector<double> residual_, target_;
   std::vector<bool> roundoff_;
   std::vector<std::vector<double>> history_;
+  LinearSolveStats before_, process_;  ///< counts restored from the checkpoint; this process's
 };
 
 }  // namespace tmlab::tm::runner

@@ -3,6 +3,7 @@
 
 #include "runner/case_runner.hpp"
 #include "runner/contact_stepping.hpp"
+#include "runner/linear_solve_log.hpp"
 #include "runner/newton_log.hpp"
 #include "tensormass/solvers/implicit_dynamics.hpp"
 #include "tensormass/solvers/static_solver.hpp"
@@ -29,6 +30,7 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
     total_newton += rep.newton_iterations;
     total_cutbacks += rep.cutbacks;
     newton_log.add(rep.newton, rep.newton_iterations, rep.cutbacks, rep.sub_increments, rep.at_roundoff);
+    newton_log.set_linear(solver.linear_solver().stats());
     rec.record(k, t1, s.u, s.v, rep.newton_iterations, field_step(cfg, k));
     t = t1;
     ck.after_step(k, rec, loop);
@@ -38,7 +40,8 @@ nlohmann::json step_static(const Problem& p, StepRecorder& rec, Progress& progre
           {"load_steps", n_steps},
           {"newton_iterations", total_newton},
           {"cutbacks", total_cutbacks},
-          {"newton", newton_log.json(cfg.solver, solver.linear_solver().fallbacks())}};
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())}};
 }
 
 /// Explicit central differences; the series at most every steps/4000 steps, the fields as asked.
@@ -86,6 +89,7 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
     t = integ.time();
     total_newton += nr.iterations;
     newton_log.add(nr, nr.iterations, 0, 1, nr.at_roundoff);
+    newton_log.set_linear(integ.linear_solver().stats());
     s.u = integ.displacement();
     s.v = integ.velocity();
     rec.record(k, t, s.u, s.v, nr.iterations, field_step(cfg, k));
@@ -97,7 +101,8 @@ nlohmann::json step_implicit(const Problem& p, StepRecorder& rec, Progress& prog
           {"dt", cfg.solver.dt},
           {"steps", n_steps},
           {"newton_iterations", total_newton},
-          {"newton", newton_log.json(cfg.solver, integ.linear_solver().fallbacks())},
+          {"newton", newton_log.json(cfg.solver)},
+          {"linear_solver", linear_solver_json(cfg.solver, newton_log.linear())},
           {"damping", {{"alpha", cfg.solver.damping_alpha}, {"beta", cfg.solver.damping_beta}}}};
 }
 

@@ -54,7 +54,8 @@ std::string resolve(const std::string& file, const std::vector<std::string>& dir
 }
 
 const char* const kModelNames[] = {"tensor_mass", "tl_oracle",
-                                   "hyperelastic_tl"};  ///< CaseModel in declaration order
+                                   "hyperelastic_tl"};           ///< CaseModel in declaration order
+const char* const kLinearNames[] = {"auto", "ldlt", "cholmod"};  ///< SolverSpec::Linear in declaration order
 
 /// A choice named by a string: `fallback` when the key is absent; a name `parse` does not know is
 /// refused with "must be 'a', 'b' or 'c' (got 'x')", the list from `names`.
@@ -335,13 +336,8 @@ SolverSpec parse_solver(ConfigReader& root) {
   if (s.has("linear")) {
     if (solver.type == SolverSpec::Type::Explicit)
       throw s.error("linear", "is not used by the explicit solver (no linear solves)");
-    const std::string linear = s.get<std::string>("linear", "ldlt");
-    if (linear == "ldlt")
-      solver.linear = SolverSpec::Linear::Ldlt;
-    else if (linear == "cholmod")
-      solver.linear = SolverSpec::Linear::Cholmod;
-    else
-      throw s.error("linear", "must be \"ldlt\" or \"cholmod\" (got \"" + linear + "\")");
+    solver.linear = read_choice(s, "linear", SolverSpec::Linear::Auto, linear_solver_from_string,
+                                enum_names(kLinearNames));
   }
   s.finish();
   return solver;
@@ -375,6 +371,12 @@ OutputSpec parse_output(ConfigReader& root) {
 }  // namespace
 
 std::string to_string(CaseModel m) { return enum_name(kModelNames, m); }
+
+std::string to_string(SolverSpec::Linear l) { return enum_name(kLinearNames, l); }
+
+std::optional<SolverSpec::Linear> linear_solver_from_string(const std::string& name) {
+  return enum_from_name<SolverSpec::Linear>(kLinearNames, name);
+}
 
 std::optional<CaseModel> case_model_from_string(const std::string& name) {
   return enum_from_name<CaseModel>(kModelNames, name);
@@ -489,7 +491,7 @@ json solver_json(const SolverSpec& sv) {
     solver["damping"] = {{"alpha", sv.damping_alpha}, {"beta", sv.damping_beta}};
   }
   if (sv.type != SolverSpec::Type::Explicit) {
-    solver["linear"] = sv.linear == SolverSpec::Linear::Cholmod ? "cholmod" : "ldlt";
+    solver["linear"] = to_string(sv.linear);
     solver["newton"] = {{"max_iterations", sv.max_iterations},
                         {"rtol", sv.rtol},
                         {"atol", sv.atol},

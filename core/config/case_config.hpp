@@ -92,11 +92,16 @@ struct SolverSpec {
   LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_cutbacks = 8;
   bool check_stability = true;
-  /// solver.linear (static, implicit): the sparse direct solver of the Newton steps, "ldlt" (Eigen's
-  /// SimplicialLDLT, the default) | "cholmod" (SuiteSparse CHOLMOD LL^T; docs/case-files.md).
-  enum class Linear { Ldlt, Cholmod };
-  Linear linear = Linear::Ldlt;
+  /// solver.linear (static, implicit): the sparse direct solver of the Newton steps (docs/case-files.md):
+  /// "auto" (the default: SuiteSparse CHOLMOD's LL^T, Eigen's LDL^T for a tangent that is not positive
+  /// definite) | "cholmod" (the same solves: the name this choice had before it became the default) |
+  /// "ldlt" (Eigen's SimplicialLDLT for every tangent).
+  enum class Linear { Auto, Ldlt, Cholmod };
+  Linear linear = Linear::Auto;
 };
+/// "auto" | "ldlt" | "cholmod", and back (nothing for any other name).
+std::string to_string(SolverSpec::Linear l);
+std::optional<SolverSpec::Linear> linear_solver_from_string(const std::string& name);
 
 struct ProbeSpec {
   std::string name;

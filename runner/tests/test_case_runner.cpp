@@ -64,6 +64,15 @@ TEST_F(CaseRunnerTest, UniaxialStretchReactionMatchesClosedForm) {
   for (std::size_t k = 0; k < 4; ++k)
     EXPECT_LE(nw["per_step"]["residual_final"][k].get<double>(),
               1e3 * nw["per_step"]["residual_target"][k].get<double>());
+  // The linear solves (solver.linear "auto" by default): one per Newton iteration, all CHOLMOD's on
+  // one symbolic analysis (the uniaxial stretch's tangent stays positive definite), none fell back.
+  const auto& ls = r.summary["solver"]["linear_solver"];
+  EXPECT_EQ(ls["kind"], "auto");
+  EXPECT_EQ(ls["solves"], sum);
+  EXPECT_EQ(ls["solves_by"]["cholmod"], sum);
+  EXPECT_EQ(ls["symbolic_analyses"]["cholmod"], 1);
+  EXPECT_EQ(ls["fallbacks_to_ldlt"], 0);
+  EXPECT_FALSE(ls.contains("note"));
   // The manifest holds the effective configuration, defaults included.
   std::ifstream min(out / "manifest.json");
   const auto manifest = nlohmann::json::parse(min);

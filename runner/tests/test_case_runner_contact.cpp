@@ -5,6 +5,7 @@
 // stops the run with an error naming the case key and leaves no complete-looking result.
 #include "core/base/error.hpp"
 #include "core/io/hdf5_file.hpp"
+#include "core/mesh/mesh_generator.hpp"
 #include "core/results/result_compare.hpp"
 #include "core/results/run_output.hpp"
 #include "runner/case_runner.hpp"
@@ -101,6 +102,64 @@ TEST_F(ContactRunnerTest, StaticPlatenGivesTheUniaxialForceAndWritesTheContactOu
   const json c = compare_results(run(deeper).dir, r.dir);
   EXPECT_NEAR(c["contact"]["top"]["rel_diff_force"].get<double>(),
               (uniaxial_force(1.1 * d) - uniaxial_force(d)) / uniaxial_force(d), 1e-6);
+}
+
+/// A small sphere indentation of a bonded block, neo-Hookean, 2 load steps (the seed-like rig in
+/// miniature): run with solver.linear "auto" (the default) and "ldlt".
+TEST_F(ContactRunnerTest, SphereIndentationCountsItsLinearSolvesAndAutoGivesTheLdltAnswer) {
+  write_gmsh22(make_box_mesh(Vec3(-0.01, -0.01, 0), Vec3(0.01, 0.01, 0.01), 4, 4, 2),
+               (dir_ / "block.msh").string());
+  json j = json::parse(R"({
+    "name": "indent", "model": "hyperelastic_tl", "mesh": {"file": "block.msh"},
+    "material": {"law": "neo_hookean", "E": 3000, "nu": 0.45, "density": 1000},
+    "boundary": [{"name": "bottom", "nodes": {"plane": {"axis": "z", "value": 0}}}],
+    "contact": {"bodies": [{"name": "indenter", "type": "sphere", "center": [0, 0, 0.015], "radius": 0.005,
+                            "displacement": [0, 0, -0.001], "function": {"type": "ramp", "t0": 0, "t1": 1}}]},
+    "solver": {"type": "static", "steps": 2, "newton": {"rtol": 1e-12}}
+  })");
+  const RunResult a = run(j);
+  j["name"] = "indent-ldlt";
+  j["solver"]["linear"] = "ldlt";
+  const RunResult b = run(j);
+  // The same answer to the solver tolerance.
+  const double fa = a.summary["contact"]["bodies"][0]["final_force_N"][2].get<double>();
+  const double fb = b.summary["contact"]["bodies"][0]["final_force_N"][2].get<double>();
+  ASSERT_GT(fb, 0.0);
+  EXPECT_NEAR(fa, fb, 1e-8 * fb);
+  // summary.json counts every solve: one per Newton iteration (no cut-back here), CHOLMOD's or a
+  // fallback's, each fallback under its reason, one CHOLMOD analysis for the whole run (the contact
+  // terms stay on the mesh graph's pattern).
+  for (const RunResult* r : {&a, &b}) {
+    const json& s = r->summary["solver"];
+    ASSERT_EQ(s["cutbacks"], 0);
+    const json& ls = s["linear_solver"];
+    const long n = s["newton_iterations"].get<long>();
+    EXPECT_EQ(ls["solves"], n);
+    EXPECT_EQ(ls["solves_by"]["cholmod"].get<long>() + ls["solves_by"]["ldlt"].get<long>(), n);
+    const long fallbacks = ls["fallbacks_to_ldlt"].get<long>();
+    EXPECT_EQ(ls["fallbacks"]["indefinite"].get<long>() + ls["fallbacks"]["round_off"].get<long>(),
+              fallbacks);
+    long by_iteration = 0;
+    for (const auto& k : ls["fallbacks_by_newton_iteration"]) by_iteration += k.get<long>();
+    EXPECT_EQ(by_iteration, fallbacks);
+    EXPECT_EQ(ls.contains("note"), fallbacks > 0);
+  }
+  const json& auto_ls = a.summary["solver"]["linear_solver"];
+  EXPECT_EQ(auto_ls["kind"], "auto");
+  // The first iterate of a load step has the contact nodes penetrated by the sphere's whole
+  // increment: its trial forces make the curvature term -p H outweigh the tangential stiffness, an
+  // indefinite tangent that falls back (docs/theory/newton.md, "Linear solves"; measured: both steps).
+  EXPECT_GE(auto_ls["fallbacks_by_newton_iteration"][0].get<long>(), 1) << auto_ls.dump();
+  EXPECT_EQ(auto_ls["fallbacks"]["indefinite"], auto_ls["fallbacks_to_ldlt"]);
+  EXPECT_EQ(auto_ls["fallbacks"]["round_off"], 0);
+  EXPECT_GE(auto_ls["max_negative_pivots"].get<long>(), 1);
+  EXPECT_EQ(auto_ls["symbolic_analyses"]["cholmod"], 1);
+  EXPECT_EQ(auto_ls["solves_by"]["ldlt"], auto_ls["fallbacks_to_ldlt"]);
+  const json& ldlt_ls = b.summary["solver"]["linear_solver"];
+  EXPECT_EQ(ldlt_ls["kind"], "ldlt");
+  EXPECT_EQ(ldlt_ls["solves_by"]["cholmod"], 0);
+  EXPECT_EQ(ldlt_ls["fallbacks_to_ldlt"], 0);
+  EXPECT_EQ(ldlt_ls["symbolic_analyses"]["ldlt"], 1);
 }
 
 TEST_F(ContactRunnerTest, ViscoelasticPlatenMatchesThePrescribedDisplacementHistory) {

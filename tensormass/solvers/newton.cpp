@@ -17,8 +17,21 @@ struct ConstrainedLinearSolver::Cholmod {
     llt.cholmod().print = 0;
   }
   Eigen::CholmodSupernodalLLT<SpMat, Eigen::Lower> llt;
-  Eigen::Index nnz = -1;  ///< the pattern last analysed
+  Pattern pattern;  ///< the pattern last analysed
 };
+
+bool ConstrainedLinearSolver::Pattern::matches(const SpMat& A) const {
+  const auto n_outer = static_cast<std::size_t>(A.outerSize()) + 1;
+  const auto nnz = static_cast<std::size_t>(A.nonZeros());
+  return outer.size() == n_outer && inner.size() == nnz &&
+         std::equal(outer.begin(), outer.end(), A.outerIndexPtr()) &&
+         std::equal(inner.begin(), inner.end(), A.innerIndexPtr());
+}
+
+void ConstrainedLinearSolver::Pattern::take(const SpMat& A) {
+  outer.assign(A.outerIndexPtr(), A.outerIndexPtr() + A.outerSize() + 1);
+  inner.assign(A.innerIndexPtr(), A.innerIndexPtr() + A.nonZeros());
+}
 
 ConstrainedLinearSolver::ConstrainedLinearSolver() = default;
 ConstrainedLinearSolver::ConstrainedLinearSolver(Kind kind, double cg_rtol)
@@ -26,11 +39,12 @@ ConstrainedLinearSolver::ConstrainedLinearSolver(Kind kind, double cg_rtol)
 ConstrainedLinearSolver::~ConstrainedLinearSolver() = default;
 
 void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c,
-                                    bool symmetric, VecX& du) {
+                                    bool symmetric, VecX& du, int newton_iteration) {
   const auto& mask = bc.mask();
   // Right-hand side of the free rows: rhs_f - J_fc du_c; constrained rows carry du_c itself.
   VecX b = rhs;
   A_ = J;
+  A_.makeCompressed();  // the pattern comparisons read the compressed index arrays
   for (Eigen::Index col = 0; col < A_.outerSize(); ++col) {
     for (SpMat::InnerIterator it(A_, col); it; ++it) {
       const Eigen::Index row = it.row();
@@ -40,6 +54,7 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
   }
   for (Index d : bc.dofs()) b[d] = du_c[d];
 
+  ++stats_.solves;
   last_iterations_ = 0;
   if (kind_ == Kind::ConjugateGradient) {
     if (!symmetric)
@@ -55,49 +70,76 @@ void ConstrainedLinearSolver::solve(const SpMat& J, const VecX& rhs, const Diric
       throw Error("incomplete Cholesky preconditioner failed (tangent not positive definite?)");
     du = cg.solve(b);
     last_iterations_ = static_cast<int>(cg.iterations());
+    ++stats_.cg_solves;
     if (cg.info() != Eigen::Success)
       throw Error("conjugate gradients did not reach |r| <= " + std::to_string(cg_rtol_) + " |b| in " +
                   std::to_string(cg.iterations()) + " iterations (error " + std::to_string(cg.error()) + ")");
     if (!du.allFinite()) throw Error("conjugate gradients produced non-finite values");
     return;
   }
-  const Eigen::Index nnz = A_.nonZeros();
   if (symmetric && kind_ == Kind::Cholmod) {
     if (!cholmod_) cholmod_ = std::make_unique<Cholmod>();
     Cholmod& c = *cholmod_;
-    if (c.nnz != nnz) {
+    if (!c.pattern.matches(A_)) {
       c.llt.analyzePattern(A_);
-      c.nnz = nnz;
+      c.pattern.take(A_);
+      ++stats_.cholmod_analyses;
     }
     c.llt.factorize(A_);
     if (c.llt.info() == Eigen::Success) {
       du = c.llt.solve(b);
       if (c.llt.info() != Eigen::Success) throw Error("CHOLMOD solve failed");
-    } else {
-      ++fallbacks_;  // not positive definite: the LDL^T below handles indefinite tangents
-    }
-    if (c.llt.info() == Eigen::Success) {
+      ++stats_.cholmod_solves;
       if (!du.allFinite())
         throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
       return;
     }
+    // Not positive definite: the LDL^T below handles indefinite tangents and tells why.
+    solve_ldlt(b, du, true, newton_iteration);
+    return;
   }
   if (symmetric) {
-    if (ldlt_nnz_ != nnz) ldlt_.analyzePattern(A_);
-    ldlt_nnz_ = nnz;
-    ldlt_.factorize(A_);
-    if (ldlt_.info() != Eigen::Success)
-      throw Error(
-          "sparse LDL^T factorisation failed (singular tangent: is the body constrained against rigid "
-          "motion?)");
-    du = ldlt_.solve(b);
-  } else {
-    if (lu_nnz_ != nnz) lu_.analyzePattern(A_);
-    lu_nnz_ = nnz;
-    lu_.factorize(A_);
-    if (lu_.info() != Eigen::Success)
-      throw Error("sparse LU factorisation failed (singular tangent: " + lu_.lastErrorMessage() + ")");
-    du = lu_.solve(b);
+    solve_ldlt(b, du, false, newton_iteration);
+    return;
+  }
+  if (!lu_pattern_.matches(A_)) {
+    lu_.analyzePattern(A_);
+    lu_pattern_.take(A_);
+    ++stats_.lu_analyses;
+  }
+  lu_.factorize(A_);
+  if (lu_.info() != Eigen::Success)
+    throw Error("sparse LU factorisation failed (singular tangent: " + lu_.lastErrorMessage() + ")");
+  du = lu_.solve(b);
+  ++stats_.lu_solves;
+  if (!du.allFinite())
+    throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
+}
+
+void ConstrainedLinearSolver::solve_ldlt(const VecX& b, VecX& du, bool fallback, int newton_iteration) {
+  if (!ldlt_pattern_.matches(A_)) {
+    ldlt_.analyzePattern(A_);
+    ldlt_pattern_.take(A_);
+    ++stats_.ldlt_analyses;
+  }
+  ldlt_.factorize(A_);
+  if (ldlt_.info() != Eigen::Success)
+    throw Error(
+        "sparse LDL^T factorisation failed (singular tangent: is the body constrained against rigid "
+        "motion?)");
+  du = ldlt_.solve(b);
+  ++stats_.ldlt_solves;
+  if (fallback) {
+    // Without pivoting A = P^T L D L^T P is a congruence: D has as many negative entries as A has
+    // negative eigenvalues (Sylvester). None: CHOLMOD failed on round-off of a positive definite A.
+    const Eigen::Index negative = (ldlt_.vectorD().array() < 0.0).count();
+    if (negative > 0)
+      ++stats_.fallbacks_indefinite;
+    else
+      ++stats_.fallbacks_round_off;
+    stats_.max_negative_pivots = std::max(stats_.max_negative_pivots, negative);
+    auto& by = stats_.fallbacks_by_iteration;
+    if (newton_iteration >= 0) ++by[std::min(static_cast<std::size_t>(newton_iteration), by.size() - 1)];
   }
   if (!du.allFinite())
     throw Error("linear solve produced non-finite values (singular or ill-conditioned tangent)");
@@ -164,7 +206,7 @@ NewtonResult newton_solve(NonlinearSystem& system, const DirichletSet& bc, doubl
     }
     system.jacobian(u, J);
     VecX rhs = -r;
-    linear.solve(J, rhs, bc, du_c, system.symmetric(), du);
+    linear.solve(J, rhs, bc, du_c, system.symmetric(), du, k);
 
     // The line search scales the free part of the step from u_ref = u + du_c (the constrained DOFs
     // move to their prescribed values in full). Reference residual and potential at u_ref.

@@ -53,17 +53,39 @@ class NonlinearSystem {
   virtual bool potential(const VecX& /*u*/, double& /*value*/) { return false; }
 };
 
-/// The linear solver of the Newton steps (a case's solver.linear; docs/performance.md, "Implicit
-/// steps: CHOLMOD").
+/// The linear solver of the Newton steps (a case's solver.linear; docs/theory/newton.md, "Linear
+/// solves", and docs/performance.md, "Implicit steps: CHOLMOD").
 enum class NewtonLinearSolver {
-  Direct,             ///< Eigen's SimplicialLDLT (SparseLU for non-symmetric tangents): the default
+  Direct,             ///< Eigen's SimplicialLDLT (SparseLU for non-symmetric tangents)
   ConjugateGradient,  ///< incomplete-Cholesky preconditioned CG (symmetric tangents only)
-  /// SuiteSparse CHOLMOD's supernodal LL^T (Eigen's CholmodSupport), symbolic analysis reused while
-  /// the pattern is unchanged. LL^T exists only for positive definite matrices: a tangent that is
-  /// not (CHOLMOD meets a non-positive pivot: a buckling or softening state) is solved by the
-  /// Direct LDL^T instead and counted (ConstrainedLinearSolver::fallbacks()); non-symmetric tangents
-  /// (follower pressure) go to SparseLU as with Direct.
+  /// The default (a case's "auto"; "cholmod" names it too): SuiteSparse CHOLMOD's supernodal LL^T
+  /// (Eigen's CholmodSupport), its symbolic analysis done once per sparsity pattern and reused across
+  /// Newton iterations and steps. LL^T exists only for positive definite matrices: a tangent that is
+  /// not (CHOLMOD meets a non-positive pivot) is solved by the Direct LDL^T instead, and counted by
+  /// reason (LinearSolveStats); non-symmetric tangents (follower pressure) go to SparseLU as with
+  /// Direct.
   Cholmod,
+};
+
+/// What the solves of a ConstrainedLinearSolver did (summary.json's solver.linear_solver block).
+struct LinearSolveStats {
+  long solves = 0;          ///< every solve
+  long cholmod_solves = 0;  ///< by CHOLMOD's LL^T
+  long ldlt_solves = 0;     ///< by Eigen's LDL^T (Direct, or a Cholmod fallback)
+  long lu_solves = 0;       ///< non-symmetric tangents (SparseLU)
+  long cg_solves = 0;       ///< conjugate gradients
+  /// Symbolic analyses (orderings, elimination trees): one per sparsity pattern met, per factorisation.
+  long cholmod_analyses = 0, ldlt_analyses = 0, lu_analyses = 0;
+  /// Cholmod fallbacks to LDL^T, by reason. `indefinite`: LDL^T's D has negative entries, so the
+  /// tangent itself has that many negative eigenvalues (Sylvester's law of inertia); `round_off`:
+  /// D is positive, CHOLMOD met a non-positive pivot of a (nearly singular) positive definite matrix.
+  long fallbacks_indefinite = 0, fallbacks_round_off = 0;
+  Eigen::Index max_negative_pivots = 0;  ///< the most negative pivots of one fallback's LDL^T
+  /// Fallbacks by the Newton iteration that asked for the solve: [0] the first iteration of a solve,
+  /// [1] the second, ...; the last entry counts that iteration and every later one.
+  std::vector<long> fallbacks_by_iteration = std::vector<long>(4, 0);
+
+  long fallbacks() const { return fallbacks_indefinite + fallbacks_round_off; }
 };
 
 struct NewtonOptions {
@@ -73,7 +95,8 @@ struct NewtonOptions {
   LineSearch line_search = LineSearch::Energy;  ///< core/config/line_search.hpp
   int max_backtracks = 12;
   double stagnation_tol = 1e-13;  ///< relative step size below which a stalled residual is round-off
-  NewtonLinearSolver linear_solver = NewtonLinearSolver::Direct;  ///< what StaticSolver/ImplicitDynamics use
+  /// What StaticSolver, ImplicitDynamics and the contact solvers use: CHOLMOD with the LDL^T fallback.
+  NewtonLinearSolver linear_solver = NewtonLinearSolver::Cholmod;
 };
 
 struct NewtonResult {
@@ -89,43 +112,54 @@ struct NewtonResult {
   std::vector<double> alphas;   ///< accepted step length per iteration
 };
 
-/// Solves J du = rhs on the free DOFs with du prescribed on the constrained ones. Direct (the
-/// default): sparse LDL^T (LU for non-symmetric tangents), reusing the symbolic factorisation while
-/// the sparsity pattern is unchanged. Conjugate gradients: incomplete-Cholesky preconditioned CG to
+/// Solves J du = rhs on the free DOFs with du prescribed on the constrained ones. Cholmod (the
+/// default): CHOLMOD's supernodal LL^T, Eigen's LDL^T where the tangent is not positive definite,
+/// sparse LU for non-symmetric tangents. Direct: sparse LDL^T (LU for non-symmetric tangents). Each
+/// reuses its symbolic factorisation while the sparsity pattern (row and column indices, compared in
+/// full) is unchanged. Conjugate gradients: incomplete-Cholesky preconditioned CG to
 /// |r| <= cg_rtol |b|, for symmetric tangents too large to factorise (LDL^T fill-in grows fast in
 /// 3-D beyond ~2e4 DOFs); inexact Newton: Newton's own test decides convergence.
 class ConstrainedLinearSolver {
  public:
   using Kind = NewtonLinearSolver;
-  ConstrainedLinearSolver();
+  ConstrainedLinearSolver();  ///< Kind::Cholmod, the default
   explicit ConstrainedLinearSolver(Kind kind, double cg_rtol = 1e-12);
   ~ConstrainedLinearSolver();
   ConstrainedLinearSolver(const ConstrainedLinearSolver&) = delete;  // Eigen's factorisations are not
   ConstrainedLinearSolver& operator=(const ConstrainedLinearSolver&) = delete;
 
   /// Throws tmlab::Error when the factorisation fails (singular: e.g. an unconstrained body), when
-  /// CG does not converge, or when CG is asked to solve a non-symmetric system.
+  /// CG does not converge, or when CG is asked to solve a non-symmetric system. `newton_iteration`
+  /// (0 for the first of a Newton solve; -1 unknown) files a fallback under its iteration.
   void solve(const SpMat& J, const VecX& rhs, const DirichletSet& bc, const VecX& du_c, bool symmetric,
-             VecX& du);
+             VecX& du, int newton_iteration = -1);
   /// CG iterations of the last solve (0 for the direct solver).
   int last_iterations() const { return last_iterations_; }
   Kind kind() const { return kind_; }
   /// Cholmod: how many solves found the tangent not positive definite and used LDL^T instead.
-  int fallbacks() const { return fallbacks_; }
+  int fallbacks() const { return static_cast<int>(stats_.fallbacks()); }
+  /// Every solve so far, by solver, the symbolic analyses and the fallbacks by reason.
+  const LinearSolveStats& stats() const { return stats_; }
 
  private:
   struct Cholmod;  // CHOLMOD's factor (newton.cpp: cholmod.h stays out of this header)
-  Kind kind_ = Kind::Direct;
+  /// The sparsity pattern a factorisation last analysed: its symbolic analysis is reused while A_'s
+  /// pattern equals it.
+  struct Pattern {
+    std::vector<SpMat::StorageIndex> outer, inner;
+    bool matches(const SpMat& A) const;
+    void take(const SpMat& A);
+  };
+  void solve_ldlt(const VecX& b, VecX& du, bool fallback, int newton_iteration);
+  Kind kind_ = Kind::Cholmod;
   double cg_rtol_ = 1e-12;
   int last_iterations_ = 0;
-  int fallbacks_ = 0;
+  LinearSolveStats stats_;
   SpMat A_;
   Eigen::SimplicialLDLT<SpMat> ldlt_;
   Eigen::SparseLU<SpMat> lu_;
   std::unique_ptr<Cholmod> cholmod_;
-  // The pattern (its number of non-zeros) each factorisation last analysed: the symbolic analysis
-  // is reused while it is unchanged.
-  Eigen::Index ldlt_nnz_ = -1, lu_nnz_ = -1;
+  Pattern ldlt_pattern_, lu_pattern_;
 };
 
 /// Newton iteration from u (overwritten with the solution). `t` is the time at which the

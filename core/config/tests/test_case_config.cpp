@@ -146,6 +146,7 @@ TEST_F(CaseConfigTest, BadChoicesNameTheAcceptedValues) {
       {"convention", "nava",
        "key 'material.viscoelastic.prony.convention' must be 'long_term' or 'instantaneous' (got 'nava')"},
       {"solver", "crank", "key 'solver.scheme' must be 'newmark' or 'backward_euler' (got 'crank')"},
+      {"linear", "umfpack", "key 'solver.linear' must be 'auto', 'ldlt' or 'cholmod' (got 'umfpack')"},
   };
   for (const Bad& b : cases) {
     auto j = minimal();
@@ -157,8 +158,26 @@ TEST_F(CaseConfigTest, BadChoicesNameTheAcceptedValues) {
       j["material"]["viscoelastic"][section] = b.value;
     if (section == "convention") j["material"]["viscoelastic"]["prony"]["convention"] = b.value;
     if (section == "solver") j["solver"] = {{"type", "implicit"}, {"dt", 0.1}, {"scheme", b.value}};
+    if (section == "linear") j["solver"]["linear"] = b.value;
     EXPECT_NE(error_of(j).find(b.message), std::string::npos) << error_of(j);
   }
+}
+
+TEST_F(CaseConfigTest, LinearSolverIsAutoByDefaultAndReadsAsWritten) {
+  EXPECT_EQ(parse_case(minimal(), "case.json", {dir_.string()}).solver.linear, SolverSpec::Linear::Auto);
+  for (const auto& [name, value] :
+       {std::pair{"auto", SolverSpec::Linear::Auto}, std::pair{"ldlt", SolverSpec::Linear::Ldlt},
+        std::pair{"cholmod", SolverSpec::Linear::Cholmod}}) {
+    auto j = minimal();
+    j["solver"]["linear"] = name;
+    const CaseConfig c = parse_case(j, "case.json", {dir_.string()});
+    EXPECT_EQ(c.solver.linear, value) << name;
+    EXPECT_EQ(effective_case_json(c)["solver"]["linear"], name);  // the manifest names it as written
+  }
+  auto j = minimal();
+  j["solver"] = {{"type", "explicit"}, {"dt", 1e-3}, {"linear", "auto"}};
+  EXPECT_NE(error_of(j).find("key 'solver.linear' is not used by the explicit solver"), std::string::npos)
+      << error_of(j);
 }
 
 TEST_F(CaseConfigTest, JsonSyntaxErrorNamesFileAndLine) {
@@ -186,6 +205,7 @@ TEST_F(CaseConfigTest, EffectiveConfigHasEveryDefaultAndRoundTrips) {
   EXPECT_EQ(e["solver"]["newton"]["line_search"], "energy") << e.dump();
   EXPECT_EQ(e["solver"]["newton"]["max_iterations"], 25);
   EXPECT_EQ(e["solver"]["steps"], 10);
+  EXPECT_EQ(e["solver"]["linear"], "auto");  // CHOLMOD with the LDL^T fallback
   EXPECT_EQ(e["output"]["every"], 1);
   EXPECT_EQ(e["material"]["viscoelastic"]["history"], "nodal_force");
   EXPECT_EQ(e["material"]["viscoelastic"]["integration"], "midpoint");

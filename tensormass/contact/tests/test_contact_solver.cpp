@@ -356,6 +356,7 @@ struct ContactRun {
   Vec3 force = Vec3::Zero();
   NewtonLinearSolver kind = NewtonLinearSolver::Direct;
   int fallbacks = 0;
+  LinearSolveStats stats;
 };
 
 /// A rigid plane compressing the roller block by 10 % (3 increments): the contact tangent adds
@@ -398,6 +399,7 @@ ContactRun sphere_run(NewtonLinearSolver linear, bool implicit) {
     for (int k = 1; k <= 3; ++k) rep = solver.advance((k - 1) / 3.0, k / 3.0, out.u);
     out.kind = solver.linear_solver().kind();
     out.fallbacks = solver.linear_solver().fallbacks();
+    out.stats = solver.linear_solver().stats();
   } else {
     const double dt = 1e-4;
     sphere.function = TimeFunction::ramp(0.0, 4 * dt);
@@ -409,6 +411,7 @@ ContactRun sphere_run(NewtonLinearSolver linear, bool implicit) {
     out.u = integ.displacement();
     out.kind = integ.contact().linear_solver().kind();
     out.fallbacks = integ.contact().linear_solver().fallbacks();
+    out.stats = integ.contact().linear_solver().stats();
   }
   out.force = rep.bodies.at(0).force;
   return out;
@@ -436,6 +439,12 @@ TEST(ContactSolver, CholmodInTheContactSolvesGivesTheLdltAnswer) {
                        implicit ? "implicit" : "static");
     std::cout << (implicit ? "implicit" : "static") << " sphere: " << chol.fallbacks
               << " CHOLMOD solves fell back to LDL^T\n";
+    // Each fallback is a truly indefinite tangent (negative LDL^T pivots: the sphere's -p H), none
+    // a round-off failure, and CHOLMOD's own solves share one symbolic analysis.
+    EXPECT_EQ(chol.stats.fallbacks_indefinite, chol.fallbacks);
+    EXPECT_EQ(chol.stats.fallbacks_round_off, 0);
+    EXPECT_EQ(chol.stats.cholmod_analyses, 1);
+    EXPECT_EQ(chol.stats.cholmod_solves + chol.stats.ldlt_solves, chol.stats.solves);
   }
 }
 

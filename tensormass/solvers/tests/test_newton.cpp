@@ -240,7 +240,8 @@ TEST(Newton, ConjugateGradientLinearSolverGivesTheDirectAnswer) {
   Elastica e;
   const MechanicalSystem sys = e.system();
   VecX u_direct = VecX::Zero(sys.model().num_dofs()), u_cg = u_direct;
-  ConstrainedLinearSolver direct, cg(ConstrainedLinearSolver::Kind::ConjugateGradient, 1e-12);
+  ConstrainedLinearSolver direct(NewtonLinearSolver::Direct),
+      cg(ConstrainedLinearSolver::Kind::ConjugateGradient, 1e-12);
   for (double t : {0.025, 0.05}) {
     StaticResidual r1(sys, t, u_direct), r2(sys, t, u_cg);
     ASSERT_TRUE(newton_solve(r1, sys.bc(), t, u_direct, NewtonOptions{}, direct).converged);
@@ -263,74 +264,166 @@ namespace {
 
 TEST(Newton, CholmodLinearSolverGivesTheDirectAnswer) {
   // Oracle: the first two elastica load steps with CHOLMOD's LL^T inside Newton against Eigen's
-  // LDL^T (the default): the answers equal to round-off (the number of iterations may differ: the
-  // slender beam's round-off floor is reached along slightly different paths).
+  // LDL^T: the answers equal to round-off (the number of iterations may differ: the slender beam's
+  // round-off floor is reached along slightly different paths).
   Elastica e;
   const MechanicalSystem sys = e.system();
   VecX u_direct = VecX::Zero(sys.model().num_dofs()), u_chol = u_direct;
-  ConstrainedLinearSolver direct, chol(NewtonLinearSolver::Cholmod);
+  ConstrainedLinearSolver direct(NewtonLinearSolver::Direct), chol(NewtonLinearSolver::Cholmod);
+  int iterations = 0;
   for (double t : {0.025, 0.05}) {
     StaticResidual r1(sys, t, u_direct), r2(sys, t, u_chol);
     const NewtonResult a = newton_solve(r1, sys.bc(), t, u_direct, NewtonOptions{}, direct);
     const NewtonResult b = newton_solve(r2, sys.bc(), t, u_chol, NewtonOptions{}, chol);
     ASSERT_TRUE(a.converged);
     ASSERT_TRUE(b.converged);
+    iterations += b.iterations;
   }
   EXPECT_EQ(chol.fallbacks(), 0);
+  // Every solve was CHOLMOD's, on one symbolic analysis across the iterations and both load steps.
+  EXPECT_EQ(chol.stats().solves, iterations);
+  EXPECT_EQ(chol.stats().cholmod_solves, iterations);
+  EXPECT_EQ(chol.stats().cholmod_analyses, 1);
+  EXPECT_EQ(chol.stats().ldlt_solves, 0);
+  EXPECT_EQ(direct.stats().cholmod_solves, 0);
+  EXPECT_EQ(direct.stats().ldlt_analyses, 1);
   EXPECT_GT(u_direct.lpNorm<Eigen::Infinity>(), 0.0);
   EXPECT_LT((u_chol - u_direct).lpNorm<Eigen::Infinity>(), 1e-10 * u_direct.lpNorm<Eigen::Infinity>());
 
-  // The StaticSolver takes the choice from NewtonOptions.
+  // The StaticSolver takes the choice from NewtonOptions, where CHOLMOD is the default.
   NewtonOptions o;
-  o.linear_solver = NewtonLinearSolver::Cholmod;
+  EXPECT_EQ(o.linear_solver, NewtonLinearSolver::Cholmod);
+  EXPECT_EQ(ConstrainedLinearSolver().kind(), NewtonLinearSolver::Cholmod);
   StaticSolver solver(sys, o);
   VecX u = VecX::Zero(sys.model().num_dofs());
   ASSERT_TRUE(solver.advance(0.0, 0.025, u).newton.converged);
   EXPECT_EQ(solver.linear_solver().kind(), NewtonLinearSolver::Cholmod);
   VecX u_ref = VecX::Zero(sys.model().num_dofs());
   StaticResidual r(sys, 0.025, u_ref);
-  ConstrainedLinearSolver direct2;
+  ConstrainedLinearSolver direct2(NewtonLinearSolver::Direct);
   ASSERT_TRUE(newton_solve(r, sys.bc(), 0.025, u_ref, NewtonOptions{}, direct2).converged);
   EXPECT_LT((u - u_ref).lpNorm<Eigen::Infinity>(), 1e-10 * u_ref.lpNorm<Eigen::Infinity>());
 }
 
+/// A symmetric indefinite (non-singular) 6 x 6 tridiagonal matrix: one negative diagonal entry
+/// among dominant positive ones, so exactly one negative eigenvalue. DOF 3 (node 1, x) is constrained.
+struct Indefinite {
+  DirichletSet bc = [] {
+    DirichletCondition fix;
+    fix.name = "fix";
+    fix.nodes = {1};
+    fix.components = {true, false, false};
+    return DirichletSet(2, {fix});
+  }();
+  SpMat J = [] {
+    SpMat m(6, 6);
+    std::vector<Eigen::Triplet<double>> t;
+    const double d[6] = {2.0, -3.0, 5.0, 7.0, 4.0, 6.0};
+    for (int i = 0; i < 6; ++i) t.emplace_back(i, i, d[i]);
+    for (int i = 0; i + 1 < 6; ++i) {
+      t.emplace_back(i, i + 1, 0.5);
+      t.emplace_back(i + 1, i, 0.5);
+    }
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  }();
+  VecX rhs = (VecX(6) << 1.0, 2.0, -1.0, 0.0, 3.0, 0.5).finished();
+  VecX du_c = [] {
+    VecX v = VecX::Zero(6);
+    v[3] = 0.25;
+    return v;
+  }();
+};
+
 TEST(Newton, CholmodFallsBackToLdltOnAnIndefiniteTangent) {
-  // A symmetric indefinite (non-singular) matrix with one constrained DOF: LL^T does not exist,
-  // the solve is done by LDL^T (counted) and gives the exact solution; an SPD matrix is not counted.
-  DirichletCondition fix;
-  fix.name = "fix";
-  fix.nodes = {1};
-  fix.components = {true, false, false};
-  const DirichletSet bc(2, {fix});
-  SpMat J(6, 6);
-  std::vector<Eigen::Triplet<double>> t;
-  const double d[6] = {2.0, -3.0, 5.0, 7.0, 4.0, 6.0};  // DOF 3 (node 1, x) is constrained
-  for (int i = 0; i < 6; ++i) t.emplace_back(i, i, d[i]);
-  for (int i = 0; i + 1 < 6; ++i) {
-    t.emplace_back(i, i + 1, 0.5);
-    t.emplace_back(i + 1, i, 0.5);
-  }
-  J.setFromTriplets(t.begin(), t.end());
-  const VecX rhs = (VecX(6) << 1.0, 2.0, -1.0, 0.0, 3.0, 0.5).finished();
-  VecX du_c = VecX::Zero(6);
-  du_c[3] = 0.25;
-  ConstrainedLinearSolver chol(NewtonLinearSolver::Cholmod), direct;
+  // LL^T does not exist: the solve is done by LDL^T, counted with its reason (one negative pivot:
+  // indefinite) under the Newton iteration that asked, and gives the exact solution; an SPD matrix
+  // is not counted.
+  const Indefinite m{};
+  ConstrainedLinearSolver chol(NewtonLinearSolver::Cholmod), direct(NewtonLinearSolver::Direct);
   VecX a, b;
-  chol.solve(J, rhs, bc, du_c, true, a);
-  direct.solve(J, rhs, bc, du_c, true, b);
+  chol.solve(m.J, m.rhs, m.bc, m.du_c, true, a, 1);
+  direct.solve(m.J, m.rhs, m.bc, m.du_c, true, b);
   EXPECT_EQ(chol.fallbacks(), 1);
+  const LinearSolveStats& s = chol.stats();
+  EXPECT_EQ(s.fallbacks_indefinite, 1);
+  EXPECT_EQ(s.fallbacks_round_off, 0);
+  EXPECT_EQ(s.max_negative_pivots, 1);
+  EXPECT_EQ(s.fallbacks_by_iteration, (std::vector<long>{0, 1, 0, 0}));
+  EXPECT_EQ(s.ldlt_solves, 1);
+  EXPECT_EQ(s.cholmod_solves, 0);
+  EXPECT_EQ(direct.fallbacks(), 0);  // LDL^T asked for: no fallback
   EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-14);
   EXPECT_DOUBLE_EQ(a[3], 0.25);
   // The free rows hold: (J du)_f = rhs_f.
-  const VecX Jdu = J * a;
-  for (int i : {0, 1, 2, 4, 5}) EXPECT_NEAR(Jdu[i], rhs[i], 1e-13) << i;
+  const VecX Jdu = m.J * a;
+  for (int i : {0, 1, 2, 4, 5}) EXPECT_NEAR(Jdu[i], m.rhs[i], 1e-13) << i;
 
-  SpMat K = J;
+  SpMat K = m.J;
   K.coeffRef(1, 1) = 3.0;  // now positive definite
-  chol.solve(K, rhs, bc, du_c, true, a);
-  direct.solve(K, rhs, bc, du_c, true, b);
+  chol.solve(K, m.rhs, m.bc, m.du_c, true, a, 0);
+  direct.solve(K, m.rhs, m.bc, m.du_c, true, b);
   EXPECT_EQ(chol.fallbacks(), 1);
+  EXPECT_EQ(chol.stats().cholmod_solves, 1);
+  EXPECT_EQ(chol.stats().solves, 2);
   EXPECT_LT((a - b).lpNorm<Eigen::Infinity>(), 1e-14);
+  // Iterations past the histogram's end share its last entry.
+  chol.solve(m.J, m.rhs, m.bc, m.du_c, true, a, 17);
+  EXPECT_EQ(chol.stats().fallbacks_by_iteration, (std::vector<long>{0, 1, 0, 1}));
+}
+
+TEST(Newton, NewtonFilesEachFallbackUnderItsIteration) {
+  // A quadratic potential with an indefinite Hessian (no minimum, one saddle): Newton's first step
+  // lands on the stationary point; the one solve fell back, at iteration 1 (index 0).
+  struct Saddle final : NonlinearSystem {
+    Indefinite m;
+    void residual(const VecX& u, VecX& r) override { r = m.J * u - m.rhs; }
+    void jacobian(const VecX&, SpMat& J) override { J = m.J; }
+    bool symmetric() const override { return true; }
+    double force_scale() const override { return m.rhs.norm(); }
+  } saddle;
+  ConstrainedLinearSolver chol(NewtonLinearSolver::Cholmod);
+  VecX u = VecX::Zero(6);
+  const NewtonResult r = newton_solve(saddle, saddle.m.bc, 0.0, u, NewtonOptions{}, chol);
+  ASSERT_TRUE(r.converged);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_EQ(chol.stats().fallbacks_indefinite, 1);
+  EXPECT_EQ(chol.stats().fallbacks_by_iteration, (std::vector<long>{1, 0, 0, 0}));
+}
+
+TEST(Newton, SymbolicAnalysisIsRedoneOnlyWhenThePatternChanges) {
+  // The same pattern with new values: one analysis. A pattern with the same number of non-zeros in
+  // other places (which a count of non-zeros would take for the old one): analysed again.
+  const DirichletSet bc(2, {});
+  // Diagonal `diag`, 0.5 at the symmetric pairs (i, j): diagonally dominant, positive definite.
+  auto matrix = [](double diag, const std::vector<std::pair<int, int>>& pairs) {
+    SpMat m(6, 6);
+    std::vector<Eigen::Triplet<double>> t;
+    for (int i = 0; i < 6; ++i) t.emplace_back(i, i, diag);
+    for (const auto& [i, j] : pairs) {
+      t.emplace_back(i, j, 0.5);
+      t.emplace_back(j, i, 0.5);
+    }
+    m.setFromTriplets(t.begin(), t.end());
+    return m;
+  };
+  const std::vector<std::pair<int, int>> near = {{0, 1}, {1, 2}, {2, 3}, {3, 4}, {4, 5}};
+  const std::vector<std::pair<int, int>> other = {{0, 2}, {1, 3}, {2, 4}, {3, 5}, {0, 5}};
+  const VecX rhs = VecX::LinSpaced(6, 1.0, 2.0), zero = VecX::Zero(6);
+  for (const NewtonLinearSolver kind : {NewtonLinearSolver::Cholmod, NewtonLinearSolver::Direct}) {
+    ConstrainedLinearSolver s(kind);
+    VecX du;
+    s.solve(matrix(4.0, near), rhs, bc, zero, true, du);
+    s.solve(matrix(5.0, near), rhs, bc, zero, true, du);
+    const SpMat far = matrix(6.0, other);
+    ASSERT_EQ(far.nonZeros(), matrix(4.0, near).nonZeros());
+    s.solve(far, rhs, bc, zero, true, du);
+    EXPECT_LT((far * du - rhs).lpNorm<Eigen::Infinity>(), 1e-14);
+    const LinearSolveStats& st = s.stats();
+    const long analyses = kind == NewtonLinearSolver::Cholmod ? st.cholmod_analyses : st.ldlt_analyses;
+    EXPECT_EQ(analyses, 2) << (kind == NewtonLinearSolver::Cholmod ? "cholmod" : "ldlt");
+    EXPECT_EQ(st.solves, 3);
+  }
 }
 
 }  // namespace
