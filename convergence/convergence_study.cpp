@@ -364,8 +364,8 @@ StudyPlan plan_study(const StudyOptions& o) {
     loading = plan.t_end;
   }
   if (!o.linear.empty()) {
-    if (o.linear != "ldlt" && o.linear != "cholmod")
-      throw Error("--linear " + o.linear + ": must be ldlt or cholmod");
+    if (!linear_solver_from_string(o.linear))
+      throw Error("--linear " + o.linear + ": must be auto, ldlt or cholmod");
     if (plan.kind == "case" && plan.base.solver.type == SolverSpec::Type::Explicit)
       throw Error("--linear " + o.linear + ": the case '" + plan.name +
                   "' runs the explicit solver, which makes no linear solves");

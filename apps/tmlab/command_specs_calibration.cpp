@@ -123,7 +123,7 @@ CommandSpec converge_spec() {
                          "and the last time)")
                      .repeat()
                      .role(kResult),
-                 choice("--linear", {"ldlt", "cholmod"},
+                 choice("--linear", {"auto", "ldlt", "cholmod"},
                         "the levels' sparse direct solver (solver.linear; default: the case's)")
                      .role(kManifest),
                  text("--out", "DIR", "the result folder (default <results>/converge/NAME)"),
