@@ -35,7 +35,8 @@ inline Mat3 cofactor(const Mat3& F) {
 /// call and no branch, so a loop over the tets vectorises.
 inline double cube_root_near_one(double r) {
   double y = 0.4568123070944322 +
-             r * (0.8702924592016156 + r * (-0.4679502874559885 + r * (0.16543434764067025 + r * -0.024331129719280378)));
+             r * (0.8702924592016156 +
+                  r * (-0.4679502874559885 + r * (0.16543434764067025 + r * -0.024331129719280378)));
   double y3 = y * y * y;
   y *= (y3 + 2.0 * r) / (2.0 * y3 + r);
   y3 = y * y * y;
@@ -49,7 +50,9 @@ inline double cube_root(double r) { return near_one(r) ? cube_root_near_one(r) :
 /// The tet law of the elastic element: the Law at Ebar.
 struct LawTet {
   const Law* law;
-  void operator()(std::size_t, const Mat3& E, double* W, Mat3* S, Mat6* D) const { law->evaluate(E, W, S, D); }
+  void operator()(std::size_t, const Mat3& E, double* W, Mat3* S, Mat6* D) const {
+    law->evaluate(E, W, S, D);
+  }
 };
 
 /// The trial law of a viscoelastic step (AveragedPressureTet::TrialStress).
@@ -161,6 +164,18 @@ AveragedPressureTet::AveragedPressureTet(const Mesh& mesh, Law law)
     for (Index a : tets_[t]) node_tets_[sz(fill[sz(a)]++)] = static_cast<Index>(t);
   inv_node_volume_.resize(n);
   for (std::size_t a = 0; a < n; ++a) inv_node_volume_[a] = vol[a] > 0.0 ? 1.0 / vol[a] : 0.0;
+  geo_.resize(kGeo * tets_.size());
+  for (std::size_t t = 0; t < tets_.size(); ++t) {
+    geo_[kGeo * t] = rest_[t].volume;
+    for (std::size_t j = 1; j < 4; ++j)
+      for (std::size_t k = 0; k < 3; ++k)
+        geo_[kGeo * t + 3 * (j - 1) + 1 + k] = rest_[t].grad[j][static_cast<Eigen::Index>(k)];
+  }
+  inv_six_volume_.resize(tets_.size());
+  for (std::size_t t = 0; t < tets_.size(); ++t) inv_six_volume_[t] = 1.0 / (6.0 * rest_[t].volume);
+  points_.resize(3 * n);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t k = 0; k < 3; ++k) points_[3 * a + k] = mesh.points[a][static_cast<Eigen::Index>(k)];
   node_tet_weight_.resize(node_tets_.size());
   for (std::size_t a = 0; a < n; ++a)
     for (Index k = node_tet_start_[a]; k < node_tet_start_[a + 1]; ++k)
@@ -246,7 +261,8 @@ void AveragedPressureTet::averaged_volumes(const VecX& u, std::vector<double>& j
   const std::size_t nt = tets_.size(), n = sz(num_nodes_);
   j.resize(nt);
   jbar.resize(nt);
-  for (std::size_t t = 0; t < nt; ++t) j[t] = (Mat3::Identity() + grad(static_cast<Index>(t), u)).determinant();
+  for (std::size_t t = 0; t < nt; ++t)
+    j[t] = (Mat3::Identity() + grad(static_cast<Index>(t), u)).determinant();
   // J_a = sum_{e ∋ a} (V_e / sum V) J_e, a gather over the node -> tet list (as internal_force)
   std::vector<double> node_j(n);
   for (std::size_t a = 0; a < n; ++a) {
@@ -330,6 +346,9 @@ void AveragedPressureTet::tangent_with(const VecX& u, SpMat& K, const TrialStres
   if (!ts.s_hist) return tangent(u, K);
   tangent_impl(u, K, TrialTet{&law_, ts.gain, ts.s_hist});
 }
+void AveragedPressureTet::internal_force_reference(const VecX& u, VecX& f) const {
+  force_reference_impl(u, f, LawTet{&law_});
+}
 void AveragedPressureTet::internal_force_reference(const VecX& u, VecX& f, const TrialStress& ts) const {
   if (!ts.s_hist) return force_reference_impl(u, f, LawTet{&law_});
   force_reference_impl(u, f, TrialTet{&law_, ts.gain, ts.s_hist});
@@ -384,29 +403,61 @@ void AveragedPressureTet::force_reference_impl(const VecX& u, VecX& f, const TL&
   }
 }
 
+namespace {
+
+/// f_p += f_p of one tet's nodes, f_0 = -(f_1 + f_2 + f_3).
+[[gnu::always_inline]] inline void add_tet_forces(double* fd, const Tet& tet, const Vec3& f1, const Vec3& f2,
+                                                  const Vec3& f3) {
+  const Vec3 f0 = -(f1 + f2 + f3);
+  const Vec3* fp[4] = {&f0, &f1, &f2, &f3};
+  for (std::size_t p = 0; p < 4; ++p) {
+    double* dst = fd + 3 * tet[p];
+    dst[0] += (*fp[p])[0];
+    dst[1] += (*fp[p])[1];
+    dst[2] += (*fp[p])[2];
+  }
+}
+
+/// The deformed edges x_j - x_0 (j = 1..3) of a tet, x = X + u, as (X_j - X_0) + (u_j - u_0).
+[[gnu::always_inline]] inline void deformed_edges(const double* X, const double* ud, const Tet& tet, Vec3& e1,
+                                                  Vec3& e2, Vec3& e3) {
+  const double *x0 = X + 3 * tet[0], *u0 = ud + 3 * tet[0];
+  Vec3* e[3] = {&e1, &e2, &e3};
+  for (std::size_t j = 0; j < 3; ++j) {
+    const double *xj = X + 3 * tet[j + 1], *uj = ud + 3 * tet[j + 1];
+    for (Eigen::Index i = 0; i < 3; ++i) (*e[j])[i] = (xj[i] - x0[i]) + (uj[i] - u0[i]);
+  }
+}
+
+}  // namespace
+
 template <class TL>
 void AveragedPressureTet::force_impl(const VecX& u, VecX& f, const TL& tl) const {
   assert(u.size() == num_dofs());
   const std::size_t nt = tets_.size(), n = sz(num_nodes_);
   f.setZero(num_dofs());
-  // Workspace (sized once): per tet 18 values [F, then V P_iso | cof F], then per tet J_e, Jbar_e,
-  // s_e (then q_e / 4), then per node J_a and the pressure sums Q_a / sum V.
-  constexpr std::size_t kPerTet = 18;
-  work_.resize(kPerTet * nt + 3 * nt + 2 * n);
-  double* const mats = work_.data();
-  double* const tj = mats + kPerTet * nt;
+  // Workspace (sized once): per tet J_e, then Jbar_e (then p / J), then s_e (then q_e / 4); per
+  // node J_a and the pressure sums Q_a / sum V. No per-tet matrix is stored. The sweeps (1) and (4)
+  // work on the deformed edges (J_e = det[x_1 - x_0, x_2 - x_0, x_3 - x_0] / 6 V_e and
+  // V_e cof F_e a_p = dV(x)/dx_p, a cross product of two deformed edges / 6), so only (3b) streams
+  // the shape gradients.
+  work_.resize(3 * nt + 2 * n);
+  double* const tj = work_.data();
   double* const tjb = tj + nt;
   double* const ts = tjb + nt;
   double* const node_j = ts + nt;
   double* const node_q = node_j + n;
-  using MapM = Eigen::Map<Mat3>;
-  using CMapM = Eigen::Map<const Mat3>;
-  // (1) F_e, cof F_e, J_e.
+  const double* const ud = u.data();
+  const double* const X = points_.data();
+  double* const fd = f.data();
+  const Tet* const tets = tets_.data();
+  const double* const geo = geo_.data();
+  const double* const inv6v = inv_six_volume_.data();
+  // (1) J_e.
   for (std::size_t t = 0; t < nt; ++t) {
-    MapM F(mats + kPerTet * t), C(mats + kPerTet * t + 9);
-    F = Mat3::Identity() + grad(static_cast<Index>(t), u);
-    C = cofactor(F);
-    tj[t] = F.col(0).dot(C.col(0));
+    Vec3 e1, e2, e3;
+    deformed_edges(X, ud, tets[t], e1, e2, e3);
+    tj[t] = e1.dot(e2.cross(e3)) * inv6v[t];
   }
   // (2) J_a: a gather with the weights V_e / sum V.
   const Index* const nstart = node_tet_start_.data();
@@ -418,7 +469,6 @@ void AveragedPressureTet::force_impl(const VecX& u, VecX& f, const TL& tl) const
     node_j[a] = s;
   }
   // (3a) Jbar_e and s_e = (Jbar_e / J_e)^(1/3) (the near-one branch vectorises; the rest after).
-  const Tet* const tets = tets_.data();
   for (std::size_t t = 0; t < nt; ++t) {
     const Tet& tet = tets[t];
     const double jb =
@@ -428,23 +478,38 @@ void AveragedPressureTet::force_impl(const VecX& u, VecX& f, const TL& tl) const
   }
   for (std::size_t t = 0; t < nt; ++t)
     if (!near_one(tjb[t] / tj[t])) ts[t] = std::cbrt(tjb[t] / tj[t]);
-  // (3b) the law at Ebar = (s^2 C - I)/2, C = F^T F: V P_iso = V s^2 F S - (V p / J) cof F with
-  // p = (s^2 / 3) S : C, and q / 4 = p / (4 Jbar).
+  // (3b) the law at Ebar = (s^2 C - I)/2, C = F^T F; the isochoric force's first part
+  // V s^2 F S a_p scattered now, its second part -(V p / J) cof F a_p with the pressure in (4):
+  // V P_iso = V s^2 F S - (V p / J) cof F, p = (s^2 / 3) S : C, q / 4 = p / (4 Jbar).
   const bool stvk = law_.is_stvk();
   for (std::size_t t = 0; t < nt; ++t) {
-    MapM F(mats + kPerTet * t);
-    const CMapM Cof(mats + kPerTet * t + 9);
-    const double J = tj[t], Jb = tjb[t], V = rest_[t].volume;
+    const double J = tj[t], Jb = tjb[t];
+    const double* g = geo + kGeo * t;
+    const Tet& tet = tets[t];
+    const Eigen::Map<const Vec3> a1(g + 1), a2(g + 4), a3(g + 7);
+    Mat3 F;  // I + sum_j (u_j - u_0) (x) a_j
+    {
+      const double *u0 = ud + 3 * tet[0], *u1 = ud + 3 * tet[1], *u2 = ud + 3 * tet[2], *u3 = ud + 3 * tet[3];
+      for (Eigen::Index i = 0; i < 3; ++i) {
+        const double d1 = u1[i] - u0[i], d2 = u2[i] - u0[i], d3 = u3[i] - u0[i];
+        for (Eigen::Index k = 0; k < 3; ++k)
+          F(i, k) = (i == k ? 1.0 : 0.0) + d1 * a1[k] + d2 * a2[k] + d3 * a3[k];
+      }
+    }
     if (stvk ? J != 0.0 : (J > 0.0 && Jb > 0.0)) {
       const double s2 = ts[t] * ts[t];
       const Mat3 C = F.transpose() * F;
       Mat3 S;
       tl(t, 0.5 * (s2 * C - Mat3::Identity()), nullptr, &S, nullptr);
       const double p = s2 * ddot(S, C) / 3.0;
-      F = (V * s2) * (F * S) - (V * p / J) * Cof;
+      const Mat3 A = (g[0] * s2) * (F * S);
+      add_tet_forces(fd, tet, A * a1, A * a2, A * a3);
+      tjb[t] = p / J;
       ts[t] = 0.25 * p / Jb;  // q_e / 4: the gather's weights carry V_e
     } else {
-      F.setConstant(kNaN);
+      const Vec3 nan = Vec3::Constant(kNaN);
+      add_tet_forces(fd, tet, nan, nan, nan);
+      tjb[t] = kNaN;
       ts[t] = kNaN;
     }
   }
@@ -454,21 +519,15 @@ void AveragedPressureTet::force_impl(const VecX& u, VecX& f, const TL& tl) const
     for (Index k = nstart[a]; k < nstart[a + 1]; ++k) s += nw[k] * ts[ntets[k]];
     node_q[a] = s;
   }
-  // (4) (V P_iso + pi_e cof F_e) a_p into the nodes, pi_e = V_e sum_{a ∈ e} Q_a / sum V.
-  double* const fd = f.data();
+  // (4) (pi_e - V p / J) cof F_e a_p = (pi_e / V_e - p / J) dV(x)/dx_p into the nodes, with
+  // pi_e / V_e = sum_{a ∈ e} Q_a / sum V and dV/dx_1 = (e_2 x e_3) / 6 (cyclic).
   for (std::size_t t = 0; t < nt; ++t) {
     const Tet& tet = tets[t];
-    const TetRest& r = rest_[t];
-    const double pi =
-        r.volume * (node_q[sz(tet[0])] + node_q[sz(tet[1])] + node_q[sz(tet[2])] + node_q[sz(tet[3])]);
-    const Mat3 M = CMapM(mats + kPerTet * t) + pi * CMapM(mats + kPerTet * t + 9);
-    for (int p = 0; p < 4; ++p) {
-      const Vec3 fp = M * r.grad[sz(p)];
-      double* dst = fd + 3 * tet[sz(p)];
-      dst[0] += fp[0];
-      dst[1] += fp[1];
-      dst[2] += fp[2];
-    }
+    const double k =
+        ((node_q[sz(tet[0])] + node_q[sz(tet[1])] + node_q[sz(tet[2])] + node_q[sz(tet[3])]) - tjb[t]) / 6.0;
+    Vec3 e1, e2, e3;
+    deformed_edges(X, ud, tet, e1, e2, e3);
+    add_tet_forces(fd, tet, k * e2.cross(e3), k * e3.cross(e1), k * e1.cross(e2));
   }
 }
 

@@ -98,7 +98,8 @@ class AveragedPressureTet : public ElasticModel {
   void tangent_with(const VecX& u, SpMat& K, const TrialStress& ts) const;
   /// The direct (slow) force: per tet psi's gradient (P_iso, q) as psi_gradient(), then the nodal
   /// pressure sums and the scatter; the oracle of internal_force()'s fused passes.
-  void internal_force_reference(const VecX& u, VecX& f, const TrialStress& ts = {}) const;
+  void internal_force_reference(const VecX& u, VecX& f) const;
+  void internal_force_reference(const VecX& u, VecX& f, const TrialStress& ts) const;
 
   /// Nonzeros of the widened tangent pattern (9 per pair of nodes at most three edges apart).
   Index pattern_nonzeros() const { return static_cast<Index>(inner_.size()); }
@@ -148,9 +149,13 @@ class AveragedPressureTet : public ElasticModel {
   std::vector<double> inv_node_volume_;            ///< 1 / sum_{e ∋ a} V_e (0 for a node in no tet)
   std::vector<Index> node_tet_start_, node_tets_;  ///< CSR: tets around each node
   std::vector<double> node_tet_weight_;            ///< V_e / sum_{e' ∋ a} V_e' per CSR entry
-  std::vector<Index> node_adj_start_, node_adj_;   ///< CSR: sorted nodes sharing a tet (incl. self)
-  std::vector<StorageIndex> outer_, inner_;        ///< widened CSC pattern (3 DOFs per node)
-  mutable std::vector<double> work_;               ///< internal_force's workspace (see the .cpp)
+  static constexpr std::size_t kGeo = 10;
+  std::vector<double> geo_;  ///< internal_force's compact rest data per tet: V, a_1, a_2, a_3 (kGeo)
+  std::vector<double> inv_six_volume_;            ///< 1 / (6 V_e)
+  std::vector<double> points_;                    ///< rest positions X, 3 per node
+  std::vector<Index> node_adj_start_, node_adj_;  ///< CSR: sorted nodes sharing a tet (incl. self)
+  std::vector<StorageIndex> outer_, inner_;       ///< widened CSC pattern (3 DOFs per node)
+  mutable std::vector<double> work_;              ///< internal_force's workspace (see the .cpp)
 };
 
 }  // namespace tmlab::tm

@@ -19,21 +19,23 @@ inline Mat3 green(const Mat3& F) { return 0.5 * (F.transpose() * F - Mat3::Ident
 }  // namespace
 
 ViscoelasticAveragedPressureTet::ViscoelasticAveragedPressureTet(const Mesh& mesh, Law long_term,
-                                                                 PronySeries prony, ViscoelasticOptions options)
+                                                                 PronySeries prony,
+                                                                 ViscoelasticOptions options)
     : ViscoelasticBase(std::move(prony), options), elastic_(mesh, std::move(long_term)) {
   using Opt = ViscoelasticOptions;
   const std::string law = elastic_.law().name();
   if (options.history != Opt::History::Pk2)
-    throw Error("viscoelastic history '" + Opt::to_string(options.history) + "' is not available with law '" +
-                law +
-                "' on the p1_anp element (the general-law model relaxes its PK2 stress: use history \"pk2\")");
+    throw Error(
+        "viscoelastic history '" + Opt::to_string(options.history) + "' is not available with law '" + law +
+        "' on the p1_anp element (the general-law model relaxes its PK2 stress: use history \"pk2\")");
   if (options.relaxation != Opt::Relaxation::Full)
     throw Error("viscoelastic relaxation '" + Opt::to_string(options.relaxation) +
                 "' is not available with the general-law model on the p1_anp element (law '" + law +
                 "'): use \"full\"");
   if (options.fast_threads != 0)
-    throw Error("viscoelastic fast_threads is not available on the p1_anp element (the fast kernel is plain P1): "
-                "use 0");
+    throw Error(
+        "viscoelastic fast_threads is not available on the p1_anp element (the fast kernel is plain P1): "
+        "use 0");
   c0_ = elastic_.law().small_strain();
   const auto nt = static_cast<std::size_t>(num_tets());
   allocate_history(nt, 6);
@@ -58,12 +60,14 @@ void ViscoelasticAveragedPressureTet::trial_changed() {
 std::vector<double> ViscoelasticAveragedPressureTet::drivers(const VecX& u) const {
   const std::vector<Mat3> fbar = elastic_.averaged_deformation_gradients(u);
   std::vector<double> x(6 * fbar.size());
-  for (std::size_t t = 0; t < fbar.size(); ++t) to_voigt(elastic_.law().pk2_stress(green(fbar[t])), &x[6 * t]);
+  for (std::size_t t = 0; t < fbar.size(); ++t)
+    to_voigt(elastic_.law().pk2_stress(green(fbar[t])), &x[6 * t]);
   return x;
 }
 
 void ViscoelasticAveragedPressureTet::driver(std::size_t t, const VecX& u, double* x) const {
-  to_voigt(elastic_.law().pk2_stress(green(elastic_.averaged_deformation_gradient(static_cast<Index>(t), u))), x);
+  to_voigt(elastic_.law().pk2_stress(green(elastic_.averaged_deformation_gradient(static_cast<Index>(t), u))),
+           x);
 }
 
 void ViscoelasticAveragedPressureTet::commit_step(const VecX& u) {

@@ -101,9 +101,9 @@ double ViscoelasticHyperelasticP2::energy(const VecX& u) const {
     const HyperelasticP2::TetKinematics k = elastic_.kinematics(t, u);
     for (int q = 0; q < np; ++q) {
       to_voigt(elastic_.law().pk2_stress(green(k.Fe[static_cast<std::size_t>(q)])), x);
-      psi += trial_branch_energy(static_cast<std::size_t>(np) * static_cast<std::size_t>(t) +
-                                     static_cast<std::size_t>(q),
-                                 x, h.data());
+      psi += trial_branch_energy(
+          static_cast<std::size_t>(np) * static_cast<std::size_t>(t) + static_cast<std::size_t>(q), x,
+          h.data());
     }
   }
   return we + psi;

@@ -20,8 +20,8 @@
 #include <Eigen/SparseCholesky>
 
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -199,8 +199,9 @@ TEST(AveragedPressureTet, TrialStressForceAndTangentAreDerivatives) {
   std::mt19937 rng(14);
   const Mesh m = testing::jittered_box(2, 0.5, 0.2, rng);
   const auto us = states(m, rng);
-  for (const Law& law : {Law(NeoHookean::from_young_poisson(1000.0, 0.45)), Law(Yeoh(200.0, 80.0, 10.0, 5000.0)),
-                         Law(StVenantKirchhoff::from_young_poisson(1000.0, 0.3))}) {
+  for (const Law& law :
+       {Law(NeoHookean::from_young_poisson(1000.0, 0.45)), Law(Yeoh(200.0, 80.0, 10.0, 5000.0)),
+        Law(StVenantKirchhoff::from_young_poisson(1000.0, 0.3))}) {
     const AveragedPressureTet model(m, law);
     const std::vector<double> sh = random_history_stress(model.num_tets(), 0.2 * law.small_strain().mu, rng);
     const AveragedPressureTet::TrialStress ts{0.4, sh.data()};

@@ -33,8 +33,9 @@ TEST(ViscoelasticLawAnp, HomogeneousRelaxationEqualsTheP1Model) {
   G(0, 0) = 0.3;
   G(1, 1) = -0.1;
   G(0, 2) = 0.15;
-  for (const Law& law : {Law(NeoHookean::from_young_poisson(2000.0, 0.45)), Law(MooneyRivlin(300.0, 100.0, 8000.0)),
-                         Law(StVenantKirchhoff::from_young_poisson(2000.0, 0.3))}) {
+  for (const Law& law :
+       {Law(NeoHookean::from_young_poisson(2000.0, 0.45)), Law(MooneyRivlin(300.0, 100.0, 8000.0)),
+        Law(StVenantKirchhoff::from_young_poisson(2000.0, 0.3))}) {
     SCOPED_TRACE(law.name());
     ViscoelasticHyperelastic p1(m, law, prony());
     ViscoelasticAveragedPressureTet anp(m, law, prony());
@@ -73,7 +74,8 @@ TEST(ViscoelasticLawAnp, HomogeneousRelaxationEqualsTheP1Model) {
 TEST(ViscoelasticLawAnp, ForceIsTheGradientOfTheTrialPotentialWithHistory) {
   std::mt19937 rng(32);
   const Mesh m = testing::jittered_box(2, 0.5, 0.2, rng);
-  for (const Law& law : {Law(Yeoh(200.0, 80.0, 10.0, 5000.0)), Law(NeoHookean::from_young_poisson(1000.0, 0.49))}) {
+  for (const Law& law :
+       {Law(Yeoh(200.0, 80.0, 10.0, 5000.0)), Law(NeoHookean::from_young_poisson(1000.0, 0.49))}) {
     SCOPED_TRACE(law.name());
     ViscoelasticAveragedPressureTet model(m, law, prony());
     for (int step = 0; step < 3; ++step) {
