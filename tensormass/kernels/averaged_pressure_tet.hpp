@@ -22,15 +22,16 @@
 // place; tangent_apply() is matrix-free (the same passes as the force, linearised). Measured: 9.9x
 // P1's nonzeros on a 16^3 block (5,958,999 vs 602,649).
 //
-// The force pass (internal_force, the explicit step's cost). Written with psi's derivatives in terms
-// of t = s^2 and C = F^T F (Ebar = (t C - I)/2, p = (t/3) S : C, V P_iso = V t F S - (V p / J) cof F),
-// in four sweeps with no allocation after the first call: (1) per tet F_e and J_e; (2) per node the
-// volume-weighted mean J_a as a gather over the node -> tet list with precomputed weights
-// V_e / sum V; (3) per tet Jbar_e, s_e = (Jbar_e/J_e)^(1/3) (cube_root below, the same function in
-// every path), the law once at Ebar_e, the isochoric force matrix and q_e; the nodal pressure sums by
-// the same gather; (4) per tet pi_e and the scatter of (V P_iso + pi_e cof F_e) a_p. Measured cost
-// against HyperelasticTL in docs/elements.md; internal_force_reference() is the direct evaluation
-// (psi's gradient per tet, as psi_gradient), kept as the oracle of the fast pass.
+// The force pass (internal_force, the explicit step's cost). Written with t = s^2 and C = F^T F
+// (Ebar = (t C - I)/2, p = (t/3) S : C, V P_iso = V t F S - (V p / J) cof F) and with
+// V cof(F) a_p = dV(x)/dx_p, the derivative of the deformed volume (a cross product of two deformed
+// edges / 6), in sweeps that store no per-tet matrix (no allocation after the first call): (1) J_e
+// from the deformed edges; (2) per node J_a, a gather over the node -> tet list with precomputed
+// weights V_e / sum V; (3) per tet Jbar_e and s_e = (Jbar_e/J_e)^(1/3) (volume_cube_root, in a
+// vectorisable loop), then the law once at Ebar_e, V t F S a_p scattered, p_e / J_e and q_e kept; the
+// nodal pressure sums by the same gather; (4) (pi_e / V_e - p_e / J_e) dV(x)/dx_p scattered. Measured
+// about as fast as HyperelasticTL's force (0.94-1.04x, docs/elements.md); internal_force_reference()
+// is the direct evaluation (psi's gradient per tet, as psi_gradient), the oracle of the fast pass.
 //
 // No stabilisation parameter. The deviatoric part is each tet's own F_e (only the volumetric part is
 // averaged), so a displacement with zero stiffness must have, in every tet, a linearised strain that
