@@ -106,7 +106,7 @@ class AveragedPressureTet : public ElasticModel {
   Index pattern_nonzeros() const { return static_cast<Index>(inner_.size()); }
   /// Jbar_e / J_e of every tet at u (1 for an affine u), for tests and diagnostics.
   std::vector<double> volume_ratios(const VecX& u) const;
-  /// Fbar_e of tet t at u (one averaging pass over the mesh: for one tet).
+  /// Fbar_e of tet t at u (costs a whole averaging pass over the mesh).
   Mat3 averaged_deformation_gradient(Index t, const VecX& u) const;
   /// Fbar_e of every tet at u (one averaging pass).
   std::vector<Mat3> averaged_deformation_gradients(const VecX& u) const;
