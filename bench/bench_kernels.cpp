@@ -7,7 +7,9 @@
 // per-iteration refit on cubes of 24,576 / 105,456 / 196,608 tets.
 // The locking-free tet's explicit-step cost (docs/elements.md): internal force of AveragedPressureTet
 // against plain P1 (HyperelasticTL), same neo-Hookean law, same cube, same u (arg 0 = cells per side,
-// arg 1 = 0 for P1, 1 for the averaged-pressure tet; run both in one invocation to compare).
+// arg 1 = 0 for P1, 1 for the averaged-pressure tet; run both in one invocation to compare); the same
+// for their viscoelastic forms (BM_ViscoElementForce: the trial force after one committed step, two
+// Prony terms: ViscoelasticHyperelastic against ViscoelasticAveragedPressureTet).
 #include "core/mesh/gmsh_reader.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/contact/surface_grid.hpp"
@@ -20,6 +22,8 @@
 #include "tensormass/solvers/explicit_dynamics.hpp"
 #include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/system/mechanical_system.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law_anp.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include <benchmark/benchmark.h>
@@ -145,6 +149,23 @@ void BM_ElementForce(benchmark::State& state) {
     force_bench(state, s, HyperelasticTL(s.mesh, law));
   else
     force_bench(state, s, AveragedPressureTet(s.mesh, law));
+}
+
+template <class Model>
+void visco_element_bench(benchmark::State& state, const Setup& s, Model&& m) {
+  m.begin_step(0.01);
+  m.commit_step(s.u);
+  m.begin_step(0.01);
+  force_bench(state, s, m);
+}
+void BM_ViscoElementForce(benchmark::State& state) {
+  const Setup s = make_setup(static_cast<int>(state.range(0)));
+  const Law law = NeoHookean::from_young_poisson(3000.0, 0.45);
+  const PronySeries prony = PronySeries::from_long_term({0.8, 0.4}, {0.5, 5.0});
+  if (state.range(1) == 0)
+    visco_element_bench(state, s, ViscoelasticHyperelastic(s.mesh, law, prony));
+  else
+    visco_element_bench(state, s, ViscoelasticAveragedPressureTet(s.mesh, law, prony));
 }
 
 #define TM_SIZES ->Arg(8)->Arg(16)->Arg(32)->Unit(benchmark::kMicrosecond)
@@ -373,6 +394,7 @@ BENCHMARK(BM_LiverExplicitStep)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->
 BENCHMARK(BM_LiverFastKernel)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond)->MeasureProcessCPUTime();
 BENCHMARK(BM_OracleForce) TM_SIZES;
 BENCHMARK(BM_ElementForce)->ArgsProduct({{16, 32}, {0, 1}})->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_ViscoElementForce)->ArgsProduct({{16, 32}, {0, 1}})->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_ViscoSeedForce) TM_SIZES;
 BENCHMARK(BM_ViscoObjectiveForce) TM_SIZES;
 BENCHMARK(BM_TensorMassForce) TM_SIZES;

@@ -14,6 +14,7 @@
 #include "tensormass/system/lumped_mass.hpp"
 #include "tensormass/viscoelastic/prony_series.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law_anp.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law_p2.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
@@ -69,6 +70,17 @@ std::unique_ptr<ElasticModel> make_model(const CaseConfig& cfg, const Mesh& mesh
         } catch (const Error& e) {
           throw Error(cfg.file +
                       ": key 'material.viscoelastic' (model hyperelastic_tl, element p2): " + e.what());
+        }
+        visco = vm.get();
+        return vm;
+      }
+      if (cfg.mesh.element == ElementKind::P1Anp) {
+        std::unique_ptr<ViscoelasticAveragedPressureTet> vm;
+        try {
+          vm = std::make_unique<ViscoelasticAveragedPressureTet>(mesh, law, prony, vo);
+        } catch (const Error& e) {
+          throw Error(cfg.file +
+                      ": key 'material.viscoelastic' (model hyperelastic_tl, element p1_anp): " + e.what());
         }
         visco = vm.get();
         return vm;

@@ -25,7 +25,8 @@ VecX make_node_mass(const CaseConfig& cfg, const Mesh& mesh, const QuadraticMesh
 /// The elastic model a case asks for; `visco` is set when it is a viscoelastic one. tensor_mass and
 /// tl_oracle are St Venant-Kirchhoff models (the paper's and its oracle): another law is refused
 /// with the name of the model that runs it, hyperelastic_tl (HyperelasticTL, any law). The element
-/// (mesh.element, core/config/element_kind.hpp): p1 the above; p1_anp AveragedPressureTet; p2 and
+/// (mesh.element, core/config/element_kind.hpp): p1 the above; p1_anp AveragedPressureTet (or
+/// ViscoelasticAveragedPressureTet); p2 and
 /// p2_mean_dilatation HyperelasticP2 (or ViscoelasticHyperelasticP2) on `quadratic`, which must then
 /// be given (make_quadratic_mesh). Refusals throw tmlab::Error naming the case file and the key
 /// ('model', 'mesh.element', 'material.viscoelastic').

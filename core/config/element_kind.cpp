@@ -29,10 +29,6 @@ void check_element_support(const CaseConfig& cfg, CaseModel model) {
                 to_string(model) +
                 "' (tensor_mass and tl_oracle are linear-tet St Venant-Kirchhoff models): set \"model\": "
                 "\"hyperelastic_tl\" (or --model hyperelastic_tl), or \"element\": \"p1\"");
-  if (cfg.material.viscoelastic.enabled && e == ElementKind::P1Anp)
-    throw Error(cfg.file + ": " + elem +
-                " has no viscoelastic form, and key 'material.viscoelastic' is given: use \"element\": "
-                "\"p1\" or \"p2\" for a viscoelastic material");
   if (cfg.material.viscoelastic.enabled && e == ElementKind::P2MeanDilatation)
     throw Error(cfg.file + ": " + elem +
                 " has no viscoelastic form, and key 'material.viscoelastic' is given: use \"element\": "

@@ -23,7 +23,7 @@ inline bool is_quadratic(ElementKind e) { return e == ElementKind::P2 || e == El
 
 /// Refuses a case whose element the chosen model or material cannot run (tmlab::Error naming the
 /// case file and both keys): an element other than p1 with a model other than hyperelastic_tl,
-/// p1_anp with a viscoelastic material, follower pressure on a quadratic element, contact in
+/// p2_mean_dilatation with a viscoelastic material, follower pressure on a quadratic element, contact in
 /// explicit dynamics on a quadratic element. `model` is the model that will run (a command line's
 /// --model may override the case's).
 void check_element_support(const CaseConfig& cfg, CaseModel model);

@@ -4,11 +4,13 @@
 #include "core/mesh/mesh_generator.hpp"
 #include "runner/model_factory.hpp"
 #include "runner/tests/runner_test_case.hpp"
+#include "tensormass/kernels/averaged_pressure_tet.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
 #include "tensormass/kernels/tl_oracle.hpp"
 #include "tensormass/materials/law_factory.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
+#include "tensormass/viscoelastic/viscoelastic_law_anp.hpp"
 #include "tensormass/viscoelastic/viscoelastic_model.hpp"
 
 #include <gtest/gtest.h>
@@ -21,9 +23,11 @@ using json = nlohmann::json;
 class ModelFactoryTest : public RunnerTestCase {
  protected:
   /// The model of the uniaxial case with `model` and `material`; `visco` as make_model sets it.
-  std::unique_ptr<ElasticModel> build(const std::string& model, const json& material) {
+  std::unique_ptr<ElasticModel> build(const std::string& model, const json& material,
+                                      const std::string& element = "p1") {
     json j = uniaxial(0.001);
     j["model"] = model;
+    j["mesh"]["element"] = element;
     j["material"] = material;
     cfg_ = config(j);
     mesh_ = make_box_mesh(Vec3(0, 0, 0), Vec3(kL, kL, kL), 2, 2, 2);
@@ -74,6 +78,13 @@ TEST_F(ModelFactoryTest, ViscoelasticMaterialsBuildTheViscoelasticModels) {
   const auto tl = build("hyperelastic_tl", viscoelastic(neo_hookean()));
   EXPECT_NE(dynamic_cast<ViscoelasticHyperelastic*>(tl.get()), nullptr);
   EXPECT_EQ(visco_, dynamic_cast<const ViscoelasticBase*>(tl.get()));
+  // the locking-free linear tet: elastic, and its viscoelastic form
+  EXPECT_NE(dynamic_cast<AveragedPressureTet*>(build("hyperelastic_tl", neo_hookean(), "p1_anp").get()),
+            nullptr);
+  EXPECT_EQ(visco_, nullptr);
+  const auto anp = build("hyperelastic_tl", viscoelastic(neo_hookean()), "p1_anp");
+  EXPECT_NE(dynamic_cast<ViscoelasticAveragedPressureTet*>(anp.get()), nullptr);
+  EXPECT_EQ(visco_, dynamic_cast<const ViscoelasticBase*>(anp.get()));
 }
 
 TEST_F(ModelFactoryTest, StVKModelsRefuseOtherLawsNamingTheModelThatRunsThem) {

@@ -116,6 +116,14 @@ Mat3 HyperelasticP2::displacement_gradient(Index t, int q, const VecX& u) const 
   return H;
 }
 
+Mat3 HyperelasticP2::point_deformation_gradient(Index t, int q, const VecX& u) const {
+  const Mat3x10 U = relative_displacements(t, u);
+  const PointRest& r = point(t, q);
+  Mat3 F = Mat3::Identity();
+  for (int a = 1; a < kNodes; ++a) F.noalias() += U.col(a) * r.grad[static_cast<std::size_t>(a)].transpose();
+  return F;
+}
+
 HyperelasticP2::TetKinematics HyperelasticP2::kinematics(Index t, const VecX& u) const {
   TetKinematics k;
   const Mat3x10 U = relative_displacements(t, u);

@@ -81,8 +81,32 @@ void ViscoelasticHyperelasticP2::trial_changed() {
 
 void ViscoelasticHyperelasticP2::driver(std::size_t slot, const VecX& u, double* x) const {
   const auto np = static_cast<std::size_t>(num_points_per_tet());
-  const HyperelasticP2::TetKinematics k = elastic_.kinematics(static_cast<Index>(slot / np), u);
-  to_voigt(elastic_.law().pk2_stress(green(k.Fe[slot % np])), x);
+  const auto t = static_cast<Index>(slot / np);
+  const int q = static_cast<int>(slot % np);
+  if (!elastic_.mean_dilatation()) {  // F_q alone (kinematics() would compute all 14 points)
+    to_voigt(elastic_.law().pk2_stress(green(elastic_.point_deformation_gradient(t, q, u))), x);
+    return;
+  }
+  const HyperelasticP2::TetKinematics k = elastic_.kinematics(t, u);
+  to_voigt(elastic_.law().pk2_stress(green(k.Fe[static_cast<std::size_t>(q)])), x);
+}
+
+double ViscoelasticHyperelasticP2::energy(const VecX& u) const {
+  const double we = long_term_energy(u);
+  if (elastic_only()) return we;
+  const int np = num_points_per_tet();
+  std::vector<double> h(prony().size() * 6);
+  double x[6], psi = 0.0;
+  for (Index t = 0; t < num_tets(); ++t) {
+    const HyperelasticP2::TetKinematics k = elastic_.kinematics(t, u);
+    for (int q = 0; q < np; ++q) {
+      to_voigt(elastic_.law().pk2_stress(green(k.Fe[static_cast<std::size_t>(q)])), x);
+      psi += trial_branch_energy(
+          static_cast<std::size_t>(np) * static_cast<std::size_t>(t) + static_cast<std::size_t>(q), x,
+          h.data());
+    }
+  }
+  return we + psi;
 }
 
 void ViscoelasticHyperelasticP2::commit_step(const VecX& u) {

@@ -42,6 +42,9 @@ class ViscoelasticHyperelasticP2 : public ViscoelasticBase {
   /// The history update with one kinematics evaluation per tet (the same values as the base's
   /// per-slot loop).
   void commit_step(const VecX& u) override;
+  /// Long-term spring plus the trial branch energies, with one kinematics evaluation per tet (the
+  /// same value, bit for bit, as the base's per-slot loop ViscoelasticBase::energy).
+  double energy(const VecX& u) const override;
 
   /// W_trial(u) = sum_t sum_q w_q [ (1 + g) W(E_q) + S_hist_q : E_q ].
   double trial_potential(const VecX& u) const;
@@ -62,7 +65,8 @@ class ViscoelasticHyperelasticP2 : public ViscoelasticBase {
   double long_term_energy(const VecX& u) const override { return elastic_.energy(u); }
   double branch_form(std::size_t slot, const double* h, double* rate) const override;
   void trial_changed() override;
-  /// S_e at slot (t, q) (Voigt).
+  /// S_e at slot (t, q) (Voigt): the point's own F alone for the standard element, the tet's
+  /// kinematics with mean dilatation (Fbar_q needs every point's J).
   void driver(std::size_t slot, const VecX& u, double* x) const override;
 
   HyperelasticP2 elastic_;

@@ -4,7 +4,9 @@
 // gives exactly P1's (HyperelasticTL's) energy and force; rigid motions give no force; exactly six
 // zero modes at u = 0 on distorted patches; the patch test (boundary affine, interior solved); no
 // locking on the model-locking deep beam (nu 0.3 vs 0.499) where P1 locks; outside the domain
-// energy +inf and NaN force; the widened pattern's nonzeros against P1's on a 16^3 block.
+// energy +inf and NaN force; the widened pattern's nonzeros against P1's on a 16^3 block; the fused
+// force pass against the direct (reference) force, for the Law and for a viscoelastic trial law
+// (TrialStress, with its own finite-difference checks); the cube root against std::cbrt.
 #include "tensormass/kernels/averaged_pressure_tet.hpp"
 #include "tensormass/kernels/hyperelastic_tl.hpp"
 #include "tensormass/kernels/tangent_pattern.hpp"
@@ -19,6 +21,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -139,6 +142,94 @@ TEST(AveragedPressureTet, ForceAndTangentAreDerivativesForEveryLaw) {
       model.tangent(u, K2);
       EXPECT_EQ(K2.valuePtr(), before);
       EXPECT_EQ((MatrixXd(K2) - Kd).norm(), 0.0);
+    }
+  }
+}
+
+TEST(AveragedPressureTet, VolumeCubeRootIsTheRealCubeRoot) {
+  // Within 4 ulps of std::cbrt: on [1/2, 2] (the polynomial and Halley branch, 10^5 points) and
+  // outside it (std::cbrt itself, negative ratios included: St VK accepts J_e < 0).
+  const double ulp = std::numeric_limits<double>::epsilon();
+  double worst = 0.0;
+  for (int k = 0; k <= 100000; ++k) {
+    const double r = 0.5 + 1.5 * k / 100000.0;
+    worst = std::max(worst, std::abs(AveragedPressureTet::volume_cube_root(r) / std::cbrt(r) - 1.0));
+  }
+  std::printf("volume_cube_root on [1/2, 2]: max relative difference to std::cbrt %.2e (%.2f ulp)\n", worst,
+              worst / ulp);
+  EXPECT_LE(worst, 4.0 * ulp);
+  for (double r : {1e-6, 0.1, 0.4999, 2.0001, 8.0, 1e5, -0.3, -1.0, -5.0})
+    EXPECT_EQ(AveragedPressureTet::volume_cube_root(r), std::cbrt(r)) << r;
+  EXPECT_NEAR(AveragedPressureTet::volume_cube_root(1.0), 1.0, ulp);
+}
+
+/// A trial stress of a viscoelastic step: gain g and a random per-tet S_hist of order `scale`.
+std::vector<double> random_history_stress(Index num_tets, double scale, std::mt19937& rng) {
+  std::vector<double> s(6 * static_cast<std::size_t>(num_tets));
+  for (double& x : s) x = testing::uniform(rng, -scale, scale);
+  return s;
+}
+
+TEST(AveragedPressureTet, FusedForceEqualsTheReferenceForce) {
+  std::mt19937 rng(13);
+  const Mesh m = testing::jittered_box(3, 0.5, 0.25, rng);
+  const auto us = states(m, rng);
+  for (const Law& law : all_laws()) {
+    const AveragedPressureTet model(m, law);
+    const std::vector<double> sh = random_history_stress(model.num_tets(), 0.2 * law.small_strain().mu, rng);
+    const AveragedPressureTet::TrialStress ts{0.7, sh.data()};
+    for (const auto& [name, u] : us) {
+      SCOPED_TRACE(law.name() + ", " + name);
+      VecX f, fr;
+      model.internal_force(u, f);
+      model.internal_force_reference(u, fr);
+      EXPECT_LT((f - fr).norm(), 1e-12 * fr.norm());
+      model.internal_force_with(u, f, ts);
+      model.internal_force_reference(u, fr, ts);
+      EXPECT_LT((f - fr).norm(), 1e-12 * fr.norm());
+      // a second call reuses the workspace: the same result
+      VecX f2;
+      model.internal_force_with(u, f2, ts);
+      EXPECT_EQ(f2, f);
+    }
+  }
+}
+
+TEST(AveragedPressureTet, TrialStressForceAndTangentAreDerivatives) {
+  std::mt19937 rng(14);
+  const Mesh m = testing::jittered_box(2, 0.5, 0.2, rng);
+  const auto us = states(m, rng);
+  for (const Law& law :
+       {Law(NeoHookean::from_young_poisson(1000.0, 0.45)), Law(Yeoh(200.0, 80.0, 10.0, 5000.0)),
+        Law(StVenantKirchhoff::from_young_poisson(1000.0, 0.3))}) {
+    const AveragedPressureTet model(m, law);
+    const std::vector<double> sh = random_history_stress(model.num_tets(), 0.2 * law.small_strain().mu, rng);
+    const AveragedPressureTet::TrialStress ts{0.4, sh.data()};
+    for (const auto& [name, u] : us) {
+      SCOPED_TRACE(law.name() + ", " + name);
+      VecX f;
+      model.internal_force_with(u, f, ts);
+      SpMat K;
+      model.tangent_with(u, K, ts);
+      const VecX v = testing::random_displacement(m.num_points(), 1.0, rng);
+      const double h = 1e-4;
+      auto W = [&](double s) { return model.energy_with(u + s * v, ts); };
+      EXPECT_NEAR((-W(2 * h) + 8 * W(h) - 8 * W(-h) + W(-2 * h)) / (12 * h), f.dot(v),
+                  1e-8 * f.norm() * v.norm());
+      auto Fv = [&](double s) {
+        VecX g;
+        model.internal_force_with(u + s * v, g, ts);
+        return g;
+      };
+      const VecX fd_k = (-Fv(2 * h) + 8 * Fv(h) - 8 * Fv(-h) + Fv(-2 * h)) / (12 * h);
+      VecX Kv;
+      model.tangent_apply_with(u, v, Kv, ts);
+      EXPECT_LT(rel_err(fd_k, Kv), 1e-8);
+      EXPECT_LT(rel_err(VecX(K * v), Kv), 1e-13);
+      // the trial law differs from the law: the history stress is in the force
+      VecX fe;
+      model.internal_force(u, fe);
+      EXPECT_GT((f - fe).norm(), 1e-3 * fe.norm());
     }
   }
 }

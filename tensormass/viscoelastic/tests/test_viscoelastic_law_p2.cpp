@@ -5,7 +5,9 @@
 //   (finite differences, with committed history, both volumetric variants);
 // - committed/trial discipline: a rejected step (begin_step, evaluations, begin_step again) leaves
 //   the committed state as it was, bit for bit;
-// - an elastic series is HyperelasticP2; refused options.
+// - an elastic series is HyperelasticP2; refused options;
+// - the per-slot driver (one point's F) and the per-tet energy give the values of the full
+//   kinematics bit for bit.
 #include "core/base/error.hpp"
 #include "tensormass/testing/test_meshes.hpp"
 #include "tensormass/viscoelastic/viscoelastic_law.hpp"
@@ -144,6 +146,34 @@ TEST(ViscoelasticLawP2, RejectedStepDoesNotChangeTheHistory) {
   b.commit_step(u1);
   EXPECT_EQ(a.committed_state(), b.committed_state());
   EXPECT_EQ(a.committed_history().size(), static_cast<std::size_t>(qm.num_tets()) * 14 * 2 * 6);
+}
+
+TEST(ViscoelasticLawP2, PointDriverAndTetEnergyEqualTheFullKinematics) {
+  // The base's energy loop calls driver() per slot (one point's F, or the tet's kinematics with mean
+  // dilatation); the model's own energy() evaluates the kinematics once per tet. Equal bit for bit,
+  // and so is each point's F to the kinematics' F_q.
+  std::mt19937 rng(25);
+  const QuadraticMesh qm = make_quadratic(testing::jittered_box(2, 0.5, 0.2, rng));
+  for (P2Options::Volumetric vol : {P2Options::Volumetric::Standard, P2Options::Volumetric::MeanDilatation}) {
+    SCOPED_TRACE(P2Options::to_string(vol));
+    P2Options po;
+    po.volumetric = vol;
+    ViscoelasticHyperelasticP2 model(qm, NeoHookean::from_young_poisson(1000.0, 0.45), prony(), {}, po);
+    for (int step = 0; step < 3; ++step) {
+      model.begin_step(0.05);
+      model.commit_step(testing::random_displacement(qm.num_points(), 0.03, rng));
+    }
+    model.begin_step(0.07);
+    const VecX u = testing::random_displacement(qm.num_points(), 0.03, rng);
+    const double e = model.energy(u);
+    EXPECT_EQ(e, model.ViscoelasticBase::energy(u));
+    EXPECT_GT(e, model.elastic().energy(u));  // the branches hold energy
+    for (Index t = 0; t < model.num_tets(); ++t) {
+      const HyperelasticP2::TetKinematics k = model.elastic().kinematics(t, u);
+      for (int q = 0; q < model.num_points_per_tet(); ++q)
+        EXPECT_EQ(model.elastic().point_deformation_gradient(t, q, u), k.F[static_cast<std::size_t>(q)]);
+    }
+  }
 }
 
 TEST(ViscoelasticLawP2, ElasticSeriesIsTheElasticModelAndBadOptionsAreRefused) {
