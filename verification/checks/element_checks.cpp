@@ -241,22 +241,23 @@ Measurements cook_membrane(const CheckContext& ctx) {
     boundary.push_back({{"name", "clamped"}, {"nodes", {{"group", "clamped"}}}});
     for (const auto& f : fix_z)
       boundary.push_back({{"name", "plane_" + f}, {"nodes", {{"group", f}}}, {"components", "z"}});
-    const nlohmann::json doc = {{"name", "cook-" + name + "-" + std::to_string(c)},
-                                {"model", "hyperelastic_tl"},
-                                {"mesh", {{"file", mesh_file.string()}, {"element", name}}},
-                                {"material", {{"law", "stvk"}, {"E", E}, {"nu", nu}, {"density", 1000.0}}},
-                                {"boundary", boundary},
-                                {"loads",
-                                 {{{"type", "traction"},
-                                   {"name", "shear"},
-                                   {"faces", {{"group", "loaded"}}},
-                                   {"traction", {0.0, scale * traction, 0.0}}}}},
-                                {"solver", {{"type", "static"}, {"steps", 1}, {"newton", {{"rtol", 1e-10}}}}},
-                                {"output",
-                                 {{"vtu", false},
-                                  {"xdmf", false},
-                                  {"plots", false},
-                                  {"probes", {{{"name", "tip"}, {"point", {tip.x(), tip.y(), tip.z()}}}}}}}};
+    const nlohmann::json doc = {
+        {"name", "cook-" + name + "-" + std::to_string(c)},
+        {"model", "hyperelastic_tl"},
+        {"mesh", {{"file", mesh_file.string()}, {"element", name}}},
+        {"material", {{"law", "stvk"}, {"E", E}, {"nu", nu}, {"density", 1000.0}}},
+        {"boundary", boundary},
+        {"loads",
+         {{{"type", "traction"},
+           {"name", "shear"},
+           {"faces", {{"group", "loaded"}}},
+           {"traction", {0.0, scale * traction, 0.0}}}}},
+        {"solver", {{"type", "static"}, {"steps", 1}, {"linear", "cholmod"}, {"newton", {{"rtol", 1e-10}}}}},
+        {"output",
+         {{"vtu", false},
+          {"xdmf", false},
+          {"plots", false},
+          {"probes", {{{"name", "tip"}, {"point", {tip.x(), tip.y(), tip.z()}}}}}}}};
     CaseConfig cfg = parse_case(doc, (ctx.work_dir / "cook.json").string(), {ctx.work_dir.string()});
     if (cfg.mesh.element != kind) throw Error("element.cook_membrane: element not applied");
     tmlab::RunOptions o;
