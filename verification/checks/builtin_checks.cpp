@@ -15,6 +15,7 @@ void register_builtin_checks(CheckRegistry& registry) {
   register_law_checks(registry);
   register_reference_checks(registry);
   register_fit_checks(registry);
+  register_element_checks(registry);
 }
 
 }  // namespace tmlab::verify

@@ -20,5 +20,6 @@ void register_contact_checks(CheckRegistry& registry);
 void register_law_checks(CheckRegistry& registry);        ///< laws beyond St VK (law_checks.cpp)
 void register_reference_checks(CheckRegistry& registry);  ///< no-op without deal.II
 void register_fit_checks(CheckRegistry& registry);        ///< identification (calibration/fit)
+void register_element_checks(CheckRegistry& registry);    ///< the element kinds (mesh.element)
 
 }  // namespace tmlab::verify

@@ -9,6 +9,8 @@
 //                          Lee-Radok hereditary integral
 //   contact.finite_layer   sphere on bonded layers of thickness h: F(a/h) / F(reference a/h)
 //                          against the same ratio of the factors of Dimitriadis et al. (2002)
+//   contact.hertz_converge the Hertz problem as a case file through `tmlab converge`'s study
+//                          (convergence/): observed order and Richardson value of the force vs Hertz
 //
 // Geometry: quarter model [0, W]^2 x [-D, 0] (symmetry planes x = 0: u_x = 0, y = 0: u_y = 0,
 // bottom clamped, outer sides free); the indenter touches the top z = 0 at the origin at t = 0 and
@@ -32,9 +34,11 @@
 #include "verification/checks/check_support.hpp"
 
 #include "calibration/closed_forms/indentation.hpp"
+#include "convergence/convergence_study.hpp"
 #include "core/base/error.hpp"
 #include "core/base/format.hpp"
 #include "core/base/stopwatch.hpp"
+#include "core/config/case_config.hpp"
 #include "core/mesh/mesh_generator.hpp"
 #include "tensormass/contact/contact_solver.hpp"
 #include "tensormass/kernels/tensor_mass.hpp"
@@ -49,6 +53,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <ostream>
 #include <string>
@@ -59,6 +64,7 @@ namespace tmlab::verify {
 namespace {
 
 namespace cf = closed_forms;
+namespace fs = std::filesystem;
 using numerics::graded;
 using numerics::grading_rate;
 using tm::VecX;
@@ -469,13 +475,125 @@ Measurements finite_layer(const CheckContext& ctx) {
   return m;
 }
 
+// ---- Hertz through tmlab converge ----------------------------------------------------------------
+/// The contact.hertz problem at `cells` written as a case file (the block mesh with its face groups,
+/// the sphere as a contact body, eps from the patch as in contact.hertz), then the convergence study
+/// of `tmlab converge CASE --levels N` (convergence/convergence_study.hpp: uniform red refinement of
+/// the whole graded mesh, ratio 2) on the indenter force: its observed order, Richardson value and
+/// verdict, against Hertz.
+Measurements hertz_converge(const CheckContext& ctx) {
+  ConfigReader p = parameters(ctx);
+  const double E = p.positive("E"), nu = p.require<double>("nu");
+  const auto mat = tm::StVenantKirchhoff::from_young_poisson(E, nu);
+  const double R = p.positive("radius");
+  const double d = p.positive("depth_over_radius") * R;
+  const double a = cf::hertz_contact_radius(R, d);
+  BlockSpec block = read_block(p, p.positive("patch_over_contact_radius") * a);
+  const SolveOptions so = read_solve(p, block.L);
+  block.N = p.require<int>("cells");
+  if (block.N < 2) throw p.error("cells", "must be >= 2");
+  const int levels = p.require<int>("levels");
+  if (levels < 3 || levels > convergence::kMaxLevels) throw p.error("levels", "must be in [3, 8]");
+  const int increments = p.require<int>("increments");
+  if (increments < 1) throw p.error("increments", "must be >= 1");
+  p.finish();
+  if (!(so.patch_stiffness_factor > 0.0))
+    throw Error(ctx.vcase.spec_file().string() +
+                ": key 'parameters.patch_stiffness_factor' is required here");
+  const double F_h = cf::hertz_force(E, nu, R, d);
+
+  // Level 1: the block mesh and its contact stiffness (contact.hertz's rule, from this mesh).
+  const Mesh mesh = block_mesh(block);
+  const fs::path mesh_file = ctx.work_dir / "hertz_block.msh";
+  write_gmsh22(mesh, mesh_file.string());
+  double eps = 0.0;
+  {
+    tm::TensorMassStVK model(mesh, mat);
+    const VecX node_mass = tm::lumped_node_mass(mesh, 1000.0);
+    tm::MechanicalSystem system(model, tm::lumped_dof_mass(node_mass), Indentation::supports(mesh),
+                                tm::ExternalLoads(mesh, node_mass));
+    eps = so.patch_stiffness_factor * Indentation::patch_stiffness(mesh, system, block.L);
+  }
+  const nlohmann::json doc = {
+      {"name", "hertz-converge"},
+      {"model", "tensor_mass"},
+      {"mesh", {{"file", mesh_file.string()}}},
+      {"material", {{"law", "stvk"}, {"E", E}, {"nu", nu}, {"density", 1000.0}}},
+      {"boundary",
+       {{{"name", "symmetry_x"}, {"nodes", {{"group", "xmin"}}}, {"components", "x"}},
+        {{"name", "symmetry_y"}, {"nodes", {{"group", "ymin"}}}, {"components", "y"}},
+        {{"name", "bottom"}, {"nodes", {{"group", "zmin"}}}}}},
+      {"contact",
+       {{"stiffness", eps},
+        {"bodies",
+         {{{"name", "sphere"},
+           {"type", "sphere"},
+           {"center", {0.0, 0.0, R}},
+           {"radius", R},
+           {"displacement", {0.0, 0.0, -d}},
+           {"function", {{"type", "ramp"}, {"t0", 0.0}, {"t1", 1.0}}}}}}}},
+      {"solver", {{"type", "static"}, {"steps", increments}, {"newton", {{"rtol", so.rtol}}}}},
+      {"output", {{"vtu", false}, {"xdmf", false}, {"plots", false}}}};
+  const CaseConfig cfg =
+      parse_case(doc, (ctx.work_dir / "hertz-converge.json").string(), {ctx.work_dir.string()});
+
+  convergence::StudyOptions o;
+  o.case_config = cfg;
+  o.tmlab_root = ctx.source_root.string();
+  o.levels = levels;
+  o.quantities = {"contact_sphere_force_z"};
+  o.log = [&](const std::string& line) { ctx.log << "  " << line << "\n"; };
+  const convergence::StudyPlan plan = convergence::plan_study(o);
+  const fs::path dir = ctx.work_dir / "converge";
+  fs::create_directories(dir);
+  const convergence::StudyResult r = convergence::run_study(plan, o, dir);
+  const convergence::ConvergenceAnalysis& an = r.quantities.front().analysis;
+
+  Measurements m;
+  Series force;
+  force.x_label = "h = (V / tets)^(1/3) [m]";
+  force.y_label = "|F_h - F_Hertz| / F_Hertz";
+  nlohmann::json rows = nlohmann::json::array();
+  for (std::size_t k = 0; k < an.value.size(); ++k) {
+    const double F = 4.0 * std::abs(an.value[k]);
+    force.x.push_back(an.h[k]);
+    force.y.push_back(std::abs(F - F_h) / F_h);
+    rows.push_back({{"level", int(k) + 1},
+                    {"tets", r.levels[k].tets},
+                    {"h_m", an.h[k]},
+                    {"force_N", F},
+                    {"force_over_hertz", F / F_h},
+                    {"seconds", r.levels[k].wall_seconds}});
+    ctx.log << "  level " << k + 1 << " (" << r.levels[k].tets << " tets, h = a/" << fmt(a / an.h[k], 3)
+            << "): F/F_Hertz " << fmt(F / F_h, 6) << "\n";
+  }
+  for (std::size_t t = 0; t < an.triples.size(); ++t)
+    m.set("observed_order_triple_" + std::to_string(t + 1), an.triples[t].order);
+  m.set("observed_order", an.order);
+  m.set("asymptotic", an.asymptotic ? 1.0 : 0.0);
+  if (an.triples.size() > 1) m.set("order_spread", an.order_spread);
+  const double F_inf = 4.0 * std::abs(an.extrapolated);  // NaN when not asymptotic: fails its check
+  m.set("extrapolated_force_rel_error", std::abs(F_inf - F_h) / F_h);
+  m.set("finest_force_rel_error", force.y.back());
+  if (an.gci.size() == an.value.size()) m.set("finest_gci", an.gci.back());
+  m.series["force_rel_error"] = force;
+  m.data["levels"] = rows;
+  m.notes.push_back("tmlab converge verdict: " + an.verdict +
+                    (an.reason.empty() ? "" : " (" + an.reason + ")") +
+                    (an.note.empty() ? "" : "; " + an.note));
+  m.notes.push_back("Hertz: F = " + fmt(F_h, 6) + " N, a = " + fmt(a, 6) + " m; contact stiffness " +
+                    fmt(eps, 3) + " N/m (level 1)");
+  return m;
+}
+
 }  // namespace
 
 void register_contact_checks(CheckRegistry& registry) {
   registry.add({{"contact.hertz", hertz},
                 {"contact.sneddon", sneddon},
                 {"contact.lee_radok", lee_radok},
-                {"contact.finite_layer", finite_layer}});
+                {"contact.finite_layer", finite_layer},
+                {"contact.hertz_converge", hertz_converge}});
 }
 
 }  // namespace tmlab::verify

@@ -1,6 +1,7 @@
 // Checks against the deal.II reference (compiled to a no-op registration without deal.II).
 //
 //   reference.same_mesh   tensor-mass and deal.II P1 St VK on the same mesh, shipped case files
+//                         (or, with "element": "p2", the fast model's 10-node tets and deal.II P2)
 //                         (static and quasi-static viscoelastic, with or without rigid contact bodies):
 //                         nodal displacements, reactions and energy differences, and with contact each
 //                         body's force, area and active nodes (core result_compare), which must be the
@@ -14,7 +15,9 @@
 //                         box, and the Newton iteration counts of both under the default line search
 //   reference.locking     P1 (tensor-mass) against P2 (deal.II) on the same box mesh for Poisson ratios
 //                         towards 0.5 (volumetric locking of linear tets), with P2 on a refined mesh to
-//                         show that the reference itself has converged
+//                         show that the reference itself has converged; optionally other elements of the
+//                         fast model ("elements": p1_anp, p2, p2_mean_dilatation on hyperelastic_tl)
+//                         against the P2 reference on a finer "reference_level"
 //
 // The box problems are case files: a template in the case directory (verify.json's "template")
 // whose selectors use the face groups of make_box_mesh (xmin ... zmax); the check function writes
@@ -31,6 +34,7 @@
 #include "core/base/error.hpp"
 #include "core/base/stopwatch.hpp"
 #include "core/config/case_config.hpp"
+#include "core/config/element_kind.hpp"
 #include "core/config/fast_model.hpp"
 #include "core/io/hdf5_file.hpp"
 #include "core/mesh/mesh_generator.hpp"
@@ -135,6 +139,14 @@ Measurements same_mesh(const CheckContext& ctx) {
   ConfigReader p = parameters(ctx);
   const auto files = p.require<std::vector<std::string>>("cases");
   if (files.empty()) throw p.error("cases", "must name at least one case file");
+  // The fast model's element (default p1: the tensor-mass model against deal.II P1). A quadratic
+  // element runs on hyperelastic_tl against deal.II P2 on the same mesh; p1_anp has no counterpart.
+  const std::string element_name = p.get<std::string>("element", "p1");
+  const auto element = element_kind_from_string(element_name);
+  if (!element || *element == ElementKind::P1Anp || *element == ElementKind::P2MeanDilatation)
+    throw p.error("element", "must be 'p1' or 'p2' (the elements the deal.II reference has; got '" +
+                                 element_name + "')");
+  const int degree = is_quadratic(*element) ? 2 : 1;
   p.finish();
 
   Measurements m;
@@ -149,10 +161,18 @@ Measurements same_mesh(const CheckContext& ctx) {
     CaseConfig c = tmlab::load_case(file.string(), ctx.source_root.string());
     quiet_output(c);
     const auto t0 = std::chrono::steady_clock::now();
-    const tmlab::RunResult a = run_tensor_mass(ctx, c);
+    tmlab::RunResult a;
+    if (*element == ElementKind::P1) {
+      a = run_tensor_mass(ctx, c);
+    } else {
+      CaseConfig cf = c;
+      cf.model = CaseModel::HyperelasticTL;
+      cf.mesh.element = *element;
+      a = tm::run_case(cf, run_options(ctx));
+    }
     const double t_tm = seconds_since(t0);
     const auto t1 = std::chrono::steady_clock::now();
-    const tmlab::RunResult b = run_reference(ctx, c, 1, ref::LinearSolver::Direct, "-reference");
+    const tmlab::RunResult b = run_reference(ctx, c, degree, ref::LinearSolver::Direct, "-reference");
     const double t_ref = seconds_since(t1);
     const nlohmann::json cmp = compare_results(a.dir, b.dir);
     const double du = cmp.at("rel_diff_displacement").get<double>();
@@ -182,8 +202,8 @@ Measurements same_mesh(const CheckContext& ctx) {
     rows.push_back(
         {{"case", rel}, {"comparison", cmp}, {"tensor_mass_seconds", t_tm}, {"reference_seconds", t_ref}});
     ctx.log << "  " << c.name << ": displacement " << fmt(du) << ", reaction " << fmt(dr) << ", energy "
-            << fmt(dw) << contact_text << " (tensor-mass " << seconds_text(t_tm) << ", deal.II P1 "
-            << seconds_text(t_ref) << ")\n";
+            << fmt(dw) << contact_text << " (fast " << element_name << " " << seconds_text(t_tm)
+            << ", deal.II P" << degree << " " << seconds_text(t_ref) << ")\n";
     m.notes.push_back(c.name + ": " + std::to_string(c.solver.steps) + " steps, Newton rtol " +
                       fmt(c.solver.rtol, 1) + "; max rel. differences displacement " + fmt(du) +
                       ", reaction " + fmt(dr) + ", energy " + fmt(dw) + contact_text);
@@ -558,67 +578,111 @@ Measurements locking(const CheckContext& ctx) {
   const int fine = p.require<int>("p2_check_level");
   const auto nus = p.require<std::vector<double>>("poisson_ratios");
   const ref::LinearSolver solver = require_linear_solver(p);
+  // The fast model's elements (default: p1, the tensor-mass model) and the level of the deal.II P2
+  // reference (default: the elements' own mesh).
+  const auto names = p.get<std::vector<std::string>>("elements", {"p1"});
+  const int ref_level = p.get<int>("reference_level", level);
   p.finish();
   if (level < 1) throw p.error("level", "must be >= 1");
-  if (fine <= level || fine % level != 0)
-    throw p.error("p2_check_level", "must be a multiple of 'level' above it");
+  if (ref_level < level || ref_level % level != 0)
+    throw p.error("reference_level", "must be 'level' or a multiple of it");
+  if (fine <= ref_level || fine % level != 0)
+    throw p.error("p2_check_level", "must be a multiple of 'level' above 'reference_level'");
   if (nus.size() < 2) throw p.error("poisson_ratios", "needs at least two values");
   for (std::size_t i = 0; i < nus.size(); ++i) {
     if (!(nus[i] > 0.0 && nus[i] < 0.5)) throw p.error("poisson_ratios", "entries must be in (0, 0.5)");
     if (i > 0 && nus[i] <= nus[i - 1]) throw p.error("poisson_ratios", "must increase");
   }
+  if (names.empty()) throw p.error("elements", "must name at least one element");
+  std::vector<ElementKind> kinds;
+  for (const auto& n : names) {
+    const auto e = element_kind_from_string(n);
+    if (!e) throw p.error("elements", "unknown element '" + n + "' (p1 | p1_anp | p2 | p2_mean_dilatation)");
+    kinds.push_back(*e);
+  }
 
   Measurements m;
   nlohmann::json rows = nlohmann::json::array();
-  std::vector<double> p1_err, p2_probe;
-  double p2_worst = 0.0, p2_over_p1 = 0.0;
+  std::vector<std::vector<double>> err(names.size()), rms(names.size());
+  std::vector<double> p2_probe, p2_over(names.size(), 0.0), p2_over_rms(names.size(), 0.0);
+  double p2_worst = 0.0;
   for (double nu : nus) {
     const auto t0 = std::chrono::steady_clock::now();
     const CaseConfig c = box.config(ctx, level, nu);
-    const Eigen::VectorXd u1 = final_displacement(run_tensor_mass(ctx, c).dir);
-    const Eigen::VectorXd u2 = final_displacement(run_reference(ctx, c, 2, solver, "-p2").dir);
+    const Eigen::VectorXd u2 =
+        final_displacement(run_reference(ctx, box.config(ctx, ref_level, nu), 2, solver, "-p2").dir);
     const Eigen::VectorXd u2f =
         final_displacement(run_reference(ctx, box.config(ctx, fine, nu), 2, solver, "-p2").dir);
-    const NodalDiff e1 = nodal_diff(box, u1, level, u2, level, level);
-    const NodalDiff e2 = nodal_diff(box, u2, level, u2f, fine, level);
-    const Index pn = box.probe_node(level);
-    const Vec3 w1 = at(u1, pn), w2 = at(u2, pn), w2f = at(u2f, box.probe_node(fine));
-    const double deflection_ratio = w1.norm() / w2.norm();
+    const NodalDiff e2 = nodal_diff(box, u2, ref_level, u2f, fine, level);
+    const Vec3 w2 = at(u2, box.probe_node(ref_level)), w2f = at(u2f, box.probe_node(fine));
     const std::string tag = "nu" + short_number(nu);
-    m.set("p1_error_" + tag, e1.max_rel);
-    m.set("p1_probe_ratio_" + tag, deflection_ratio);
     m.set("p2_refinement_diff_" + tag, e2.max_rel);
-    p1_err.push_back(e1.max_rel);
+    m.set("p2_refinement_rms_diff_" + tag, e2.rms_rel);
     p2_probe.push_back(w2f.norm());
     p2_worst = std::max(p2_worst, e2.max_rel);
-    p2_over_p1 = std::max(p2_over_p1, e2.max_rel / e1.max_rel);
     const double lambda_over_mu = 2.0 * nu / (1.0 - 2.0 * nu);
-    rows.push_back({{"nu", nu},
-                    {"lambda_over_mu", lambda_over_mu},
-                    {"p1_max_nodal_error", e1.max_rel},
-                    {"p1_rms_nodal_error", e1.rms_rel},
-                    {"p1_over_p2_probe_displacement", deflection_ratio},
-                    {"p2_refinement_diff", e2.max_rel},
-                    {"probe_p1_m", w1.norm()},
-                    {"probe_p2_m", w2.norm()},
-                    {"probe_p2_refined_m", w2f.norm()}});
-    ctx.log << "  nu " << short_number(nu) << ": P1 error " << fmt(e1.max_rel) << " (probe |u| P1/P2 "
-            << fmt(deflection_ratio) << "), P2 vs P2 refined " << fmt(e2.max_rel) << " (" << seconds_text(t0)
-            << ")\n";
-    m.notes.push_back("nu = " + short_number(nu) + " (lambda/mu = " + fmt(lambda_over_mu, 2) +
-                      "): P1 max nodal error " + fmt(e1.max_rel) + ", P1/P2 probe displacement " +
-                      fmt(deflection_ratio) + ", P2 vs refined P2 " + fmt(e2.max_rel));
+    nlohmann::json row = {{"nu", nu},
+                          {"lambda_over_mu", lambda_over_mu},
+                          {"p2_refinement_diff", e2.max_rel},
+                          {"probe_p2_m", w2.norm()},
+                          {"probe_p2_refined_m", w2f.norm()}};
+    std::string note = "nu = " + short_number(nu) + " (lambda/mu = " + fmt(lambda_over_mu, 2) + "):";
+    for (std::size_t k = 0; k < names.size(); ++k) {
+      Eigen::VectorXd u1;
+      if (kinds[k] == ElementKind::P1) {
+        u1 = final_displacement(run_tensor_mass(ctx, c).dir);
+      } else {
+        CaseConfig ce = c;
+        ce.name += "-" + names[k];
+        ce.model = CaseModel::HyperelasticTL;
+        ce.mesh.element = kinds[k];
+        u1 = final_displacement(tm::run_case(ce, run_options(ctx)).dir);
+      }
+      const NodalDiff e1 = nodal_diff(box, u1, level, u2, ref_level, level);
+      const Vec3 w1 = at(u1, box.probe_node(level));
+      const double deflection_ratio = w1.norm() / w2.norm();
+      const std::string& el = names[k];
+      m.set(el + "_error_" + tag, e1.max_rel);
+      m.set(el + "_rms_error_" + tag, e1.rms_rel);
+      m.set(el + "_probe_ratio_" + tag, deflection_ratio);
+      err[k].push_back(e1.max_rel);
+      rms[k].push_back(e1.rms_rel);
+      p2_over[k] = std::max(p2_over[k], e2.max_rel / e1.max_rel);
+      p2_over_rms[k] = std::max(p2_over_rms[k], e2.rms_rel / e1.rms_rel);
+      row[el + "_max_nodal_error"] = e1.max_rel;
+      row[el + "_rms_nodal_error"] = e1.rms_rel;
+      row[el + "_over_p2_probe_displacement"] = deflection_ratio;
+      row["probe_" + el + "_m"] = w1.norm();
+      note += " " + el + " error " + fmt(e1.max_rel) + " (RMS " + fmt(e1.rms_rel) + ", probe ratio " +
+              fmt(deflection_ratio) + ");";
+    }
+    rows.push_back(row);
+    ctx.log << "  " << note << " P2 vs P2 refined " << fmt(e2.max_rel) << " (" << seconds_text(t0) << ")\n";
+    m.notes.push_back(note + " P2 reference vs P2 refined " + fmt(e2.max_rel));
   }
-  m.set("locking_ratio", p1_err.back() / p1_err.front());
-  double growth = 1e300;
-  for (std::size_t i = 1; i < p1_err.size(); ++i) growth = std::min(growth, p1_err[i] / p1_err[i - 1]);
-  m.set("p1_error_min_growth", growth);
+  for (std::size_t k = 0; k < names.size(); ++k) {
+    const std::string& el = names[k];
+    m.set(el + "_locking_ratio", err[k].back() / err[k].front());
+    m.set(el + "_rms_locking_ratio", rms[k].back() / rms[k].front());
+    for (std::size_t i = 1; i < nus.size(); ++i) {
+      const std::string tag = "nu" + short_number(nus[i]);
+      m.set(el + "_locking_ratio_" + tag, err[k][i] / err[k].front());
+      m.set(el + "_rms_locking_ratio_" + tag, rms[k][i] / rms[k].front());
+    }
+    m.set("p2_rms_diff_over_" + el + "_rms_error_max", p2_over_rms[k]);
+    double growth = 1e300;
+    for (std::size_t i = 1; i < err[k].size(); ++i) growth = std::min(growth, err[k][i] / err[k][i - 1]);
+    m.set(el + "_error_min_growth", growth);
+    m.set(el + "_error_last", err[k].back());
+    m.set("p2_diff_over_" + el + "_error_max", p2_over[k]);
+  }
+  m.set("locking_ratio", err.front().back() / err.front().front());
   const auto [lo, hi] = std::minmax_element(p2_probe.begin(), p2_probe.end());
   m.set("reference_probe_variation", (*hi - *lo) / *lo);
-  m.set("p1_error_last", p1_err.back());
   m.set("p2_refinement_diff_max", p2_worst);
-  m.set("p2_diff_over_p1_error_max", p2_over_p1);
   m.data["poisson_ratios"] = rows;
+  m.notes.push_back("elements on level " + std::to_string(level) + ", deal.II P2 reference on level " +
+                    std::to_string(ref_level) + ", its check on level " + std::to_string(fine));
   return m;
 }
 
