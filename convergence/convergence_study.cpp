@@ -211,6 +211,157 @@ std::string time_dependence(const CaseConfig& c) {
   return s;
 }
 
+namespace {
+
+/// The levels of a rig refined in time (plan_study's four kinds of study each fill `plan.levels`,
+/// `names` and `plan.t_end`, and return the end of the loading).
+double plan_rig_in_time(const StudyOptions& o, StudyPlan& plan, CaseNames& names) {
+  plan.kind = "rig";
+  plan.name = o.rig->name;
+  for (int k = 1; k <= o.levels; ++k) {
+    LevelPlan l;
+    l.level = k;
+    l.rig = rig_time_level(*o.rig, o.ratio, k);
+    l.cells = l.rig.cells;
+    l.layers = l.rig.layers;
+    try {
+      rigs::validate(l.rig);
+    } catch (const Error& e) {
+      throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" +
+                  std::to_string(l.rig.steps_per_sample) + " steps per segment): " + e.what() +
+                  " (fewer --levels or fewer --steps-per-segment)");
+    }
+    l.steps = static_cast<long>(rigs::rig_load_steps(l.rig));
+    l.dt = l.rig.history.t.back() / static_cast<double>(l.steps);
+    if (k > 1 && l.steps <= plan.levels.back().steps)
+      throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
+                  std::to_string(l.steps) + " load steps) does not refine level " + std::to_string(k - 1) +
+                  " (" + std::to_string(plan.levels.back().steps) +
+                  " load steps): give a larger ratio or more --steps-per-segment");
+    plan.levels.push_back(l);
+    if (k == 1) {  // validated: its case can be written
+      plan.time_dependence = rig_time_dependence(rigs::rig_case(l.rig, "mesh.msh"));
+      if (plan.time_dependence.empty())
+        throw Error("--refine-in time: the rig '" + plan.name +
+                    "' does not depend on its load steps (static, elastic and frictionless: its state at "
+                    "a time is the same whatever the steps); a time-step study needs a viscoelastic "
+                    "material (--material with a viscoelastic section), bonded contact "
+                    "(--indenter-contact bonded) or a case with dynamics");
+    }
+  }
+  names = names_of(rigs::rig_case(plan.levels.front().rig, "mesh.msh"));
+  plan.t_end = o.rig->history.t.back();
+  return loading_end(o.rig->history);
+}
+
+/// The levels of a case refined in time.
+double plan_case_in_time(const StudyOptions& o, StudyPlan& plan, CaseNames& names) {
+  plan.kind = "case";
+  plan.base = *o.case_config;
+  plan.name = plan.base.name;
+  plan.time_dependence = time_dependence(plan.base);
+  if (plan.time_dependence.empty())
+    throw Error("--refine-in time: the case '" + plan.name +
+                "' does not depend on its load steps (a static solve of an elastic material without "
+                "bonded contact: its state at a time is the same whatever solver.steps); a time-step "
+                "study needs dynamics (solver explicit or implicit), a viscoelastic material or bonded "
+                "contact");
+  const SolverSpec& sv = plan.base.solver;
+  const bool dynamic = sv.type != SolverSpec::Type::Static;
+  for (int k = 1; k <= o.levels; ++k) {
+    LevelPlan l;
+    l.level = k;
+    const double f = std::pow(o.ratio, k - 1);
+    const double steps = dynamic ? std::ceil(sv.t_end / (sv.dt / f) - 1e-9) : std::round(sv.steps * f);
+    const double limit = dynamic ? kMaxDynamicSteps : kMaxStaticSteps;
+    if (steps > limit)
+      throw Error("--levels " + std::to_string(o.levels) + ": level " + std::to_string(k) + " of " +
+                  plan.base.file + " would take " + number(steps) + (dynamic ? " time" : " load") +
+                  " steps, beyond the limit of " + number(limit) + ": give fewer levels or a smaller ratio");
+    l.steps = static_cast<long>(steps);
+    l.dt = dynamic ? sv.dt / f : sv.t_end / steps;
+    if (k > 1 && !(l.dt < plan.levels.back().dt && l.steps > plan.levels.back().steps))
+      throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
+                  std::to_string(l.steps) + " steps) does not refine level " + std::to_string(k - 1) + " (" +
+                  std::to_string(plan.levels.back().steps) + " steps): give a larger ratio");
+    plan.levels.push_back(l);
+  }
+  names = names_of(plan.base);
+  plan.t_end = sv.t_end;
+  return plan.t_end;
+}
+
+/// The levels of a rig refined in space.
+double plan_rig_in_space(const StudyOptions& o, StudyPlan& plan, CaseNames& names) {
+  plan.kind = "rig";
+  plan.name = o.rig->name;
+  for (int k = 1; k <= o.levels; ++k) {
+    LevelPlan l;
+    l.level = k;
+    l.rig = rig_level(*o.rig, o.ratio, k);
+    l.cells = l.rig.cells;
+    l.layers = l.rig.layers;
+    if (k > 1) {
+      const LevelPlan& prev = plan.levels.back();
+      if (l.cells > 0 && (l.cells <= prev.cells || l.layers < prev.layers))
+        throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
+                    std::to_string(l.cells) + " cells, " + std::to_string(l.layers) +
+                    " layers) does not refine level " + std::to_string(k - 1) + " (" +
+                    std::to_string(prev.cells) + " cells, " + std::to_string(prev.layers) +
+                    " layers): give a larger ratio or more cells");
+    }
+    try {
+      rigs::validate(l.rig);
+    } catch (const Error& e) {
+      const std::string size =
+          l.cells > 0 ? std::to_string(l.cells) + " cells, " + std::to_string(l.layers) + " layers"
+                      : "refinement " + number(l.rig.refinement);
+      throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" + size +
+                  "): " + e.what() + " (fewer --levels or a coarser first level)");
+    }
+    l.steps = static_cast<long>(rigs::rig_load_steps(l.rig));
+    l.dt = l.rig.history.t.back() / static_cast<double>(l.steps);
+    plan.levels.push_back(l);
+  }
+  const nlohmann::json doc = rigs::rig_case(plan.levels.front().rig, "level-1.msh");
+  names = names_of(doc);
+  plan.t_end = o.rig->history.t.back();
+  return loading_end(o.rig->history);
+}
+
+/// The levels of a case refined in space (uniform refinement of its mesh).
+double plan_case_in_space(const StudyOptions& o, StudyPlan& plan, CaseNames& names) {
+  plan.kind = "case";
+  if (o.ratio != 2.0)
+    throw Error("--ratio " + number(o.ratio) +
+                ": a case file's mesh is refined by splitting every tet into 8 (ratio 2); other ratios "
+                "need a rig (tmlab converge indentation|unconfined|confined|tension ...)");
+  plan.base = *o.case_config;
+  plan.name = plan.base.name;
+  // The mesh sizes: the case's tets times 8 per level.
+  const Mesh mesh = read_mesh(plan.base.mesh.file);
+  const double finest = static_cast<double>(mesh.num_tets()) * std::pow(8.0, o.levels - 1);
+  if (finest > kMaxLevelTets)
+    throw Error("--levels " + std::to_string(o.levels) + ": the finest level of " + plan.base.mesh.file +
+                " (" + std::to_string(mesh.num_tets()) + " tets x 8^" + std::to_string(o.levels - 1) + " = " +
+                number(finest) + " tets) exceeds the limit of " + number(kMaxLevelTets) +
+                " tets: give fewer levels");
+  for (int k = 1; k <= o.levels; ++k) {
+    LevelPlan l;
+    l.level = k;
+    l.refinements = k - 1;
+    l.steps = plan.base.solver.steps;
+    l.dt = plan.base.solver.type == SolverSpec::Type::Static ? plan.base.solver.t_end / plan.base.solver.steps
+                                                             : plan.base.solver.dt;
+    plan.levels.push_back(l);
+  }
+  names = names_of(plan.base);
+  plan.t_end = plan.base.solver.t_end;
+  return plan.t_end;
+}
+
+}  // namespace
+
 StudyPlan plan_study(const StudyOptions& o) {
   if (o.rig.has_value() == o.case_config.has_value())
     throw Error("converge: give either a rig or a case file (got " + std::string(o.rig ? "both" : "neither") +
@@ -225,144 +376,9 @@ StudyPlan plan_study(const StudyOptions& o) {
   plan.refine = o.refine;
   const bool in_time = o.refine == Refine::Time;
   CaseNames names;
-  double loading = 0.0;
-  if (o.rig && in_time) {
-    plan.kind = "rig";
-    plan.name = o.rig->name;
-    for (int k = 1; k <= o.levels; ++k) {
-      LevelPlan l;
-      l.level = k;
-      l.rig = rig_time_level(*o.rig, o.ratio, k);
-      l.cells = l.rig.cells;
-      l.layers = l.rig.layers;
-      try {
-        rigs::validate(l.rig);
-      } catch (const Error& e) {
-        throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" +
-                    std::to_string(l.rig.steps_per_sample) + " steps per segment): " + e.what() +
-                    " (fewer --levels or fewer --steps-per-segment)");
-      }
-      l.steps = static_cast<long>(rigs::rig_load_steps(l.rig));
-      l.dt = l.rig.history.t.back() / static_cast<double>(l.steps);
-      if (k > 1 && l.steps <= plan.levels.back().steps)
-        throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
-                    std::to_string(l.steps) + " load steps) does not refine level " + std::to_string(k - 1) +
-                    " (" + std::to_string(plan.levels.back().steps) +
-                    " load steps): give a larger ratio or more --steps-per-segment");
-      plan.levels.push_back(l);
-      if (k == 1) {  // validated: its case can be written
-        plan.time_dependence = rig_time_dependence(rigs::rig_case(l.rig, "mesh.msh"));
-        if (plan.time_dependence.empty())
-          throw Error("--refine-in time: the rig '" + plan.name +
-                      "' does not depend on its load steps (static, elastic and frictionless: its state at "
-                      "a time is the same whatever the steps); a time-step study needs a viscoelastic "
-                      "material (--material with a viscoelastic section), bonded contact "
-                      "(--indenter-contact bonded) or a case with dynamics");
-      }
-    }
-    names = names_of(rigs::rig_case(plan.levels.front().rig, "mesh.msh"));
-    plan.t_end = o.rig->history.t.back();
-    loading = loading_end(o.rig->history);
-  } else if (o.case_config && in_time) {
-    plan.kind = "case";
-    plan.base = *o.case_config;
-    plan.name = plan.base.name;
-    plan.time_dependence = time_dependence(plan.base);
-    if (plan.time_dependence.empty())
-      throw Error("--refine-in time: the case '" + plan.name +
-                  "' does not depend on its load steps (a static solve of an elastic material without "
-                  "bonded contact: its state at a time is the same whatever solver.steps); a time-step "
-                  "study needs dynamics (solver explicit or implicit), a viscoelastic material or bonded "
-                  "contact");
-    const SolverSpec& sv = plan.base.solver;
-    const bool dynamic = sv.type != SolverSpec::Type::Static;
-    for (int k = 1; k <= o.levels; ++k) {
-      LevelPlan l;
-      l.level = k;
-      const double f = std::pow(o.ratio, k - 1);
-      const double steps = dynamic ? std::ceil(sv.t_end / (sv.dt / f) - 1e-9) : std::round(sv.steps * f);
-      const double limit = dynamic ? kMaxDynamicSteps : kMaxStaticSteps;
-      if (steps > limit)
-        throw Error("--levels " + std::to_string(o.levels) + ": level " + std::to_string(k) + " of " +
-                    plan.base.file + " would take " + number(steps) + (dynamic ? " time" : " load") +
-                    " steps, beyond the limit of " + number(limit) +
-                    ": give fewer levels or a smaller ratio");
-      l.steps = static_cast<long>(steps);
-      l.dt = dynamic ? sv.dt / f : sv.t_end / steps;
-      if (k > 1 && !(l.dt < plan.levels.back().dt && l.steps > plan.levels.back().steps))
-        throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
-                    std::to_string(l.steps) + " steps) does not refine level " + std::to_string(k - 1) +
-                    " (" + std::to_string(plan.levels.back().steps) + " steps): give a larger ratio");
-      plan.levels.push_back(l);
-    }
-    names = names_of(plan.base);
-    plan.t_end = sv.t_end;
-    loading = plan.t_end;
-  } else if (o.rig) {
-    plan.kind = "rig";
-    plan.name = o.rig->name;
-    for (int k = 1; k <= o.levels; ++k) {
-      LevelPlan l;
-      l.level = k;
-      l.rig = rig_level(*o.rig, o.ratio, k);
-      l.cells = l.rig.cells;
-      l.layers = l.rig.layers;
-      if (k > 1) {
-        const LevelPlan& prev = plan.levels.back();
-        if (l.cells > 0 && (l.cells <= prev.cells || l.layers < prev.layers))
-          throw Error("--ratio " + number(o.ratio) + ": level " + std::to_string(k) + " (" +
-                      std::to_string(l.cells) + " cells, " + std::to_string(l.layers) +
-                      " layers) does not refine level " + std::to_string(k - 1) + " (" +
-                      std::to_string(prev.cells) + " cells, " + std::to_string(prev.layers) +
-                      " layers): give a larger ratio or more cells");
-      }
-      try {
-        rigs::validate(l.rig);
-      } catch (const Error& e) {
-        const std::string size =
-            l.cells > 0 ? std::to_string(l.cells) + " cells, " + std::to_string(l.layers) + " layers"
-                        : "refinement " + number(l.rig.refinement);
-        throw Error("level " + std::to_string(k) + " of " + std::to_string(o.levels) + " (" + size +
-                    "): " + e.what() + " (fewer --levels or a coarser first level)");
-      }
-      l.steps = static_cast<long>(rigs::rig_load_steps(l.rig));
-      l.dt = l.rig.history.t.back() / static_cast<double>(l.steps);
-      plan.levels.push_back(l);
-    }
-    const nlohmann::json doc = rigs::rig_case(plan.levels.front().rig, "level-1.msh");
-    names = names_of(doc);
-    plan.t_end = o.rig->history.t.back();
-    loading = loading_end(o.rig->history);
-  } else {
-    plan.kind = "case";
-    if (o.ratio != 2.0)
-      throw Error("--ratio " + number(o.ratio) +
-                  ": a case file's mesh is refined by splitting every tet into 8 (ratio 2); other ratios "
-                  "need a rig (tmlab converge indentation|unconfined|confined|tension ...)");
-    plan.base = *o.case_config;
-    plan.name = plan.base.name;
-    // The mesh sizes: the case's tets times 8 per level.
-    const Mesh mesh = read_mesh(plan.base.mesh.file);
-    const double finest = static_cast<double>(mesh.num_tets()) * std::pow(8.0, o.levels - 1);
-    if (finest > kMaxLevelTets)
-      throw Error("--levels " + std::to_string(o.levels) + ": the finest level of " + plan.base.mesh.file +
-                  " (" + std::to_string(mesh.num_tets()) + " tets x 8^" + std::to_string(o.levels - 1) +
-                  " = " + number(finest) + " tets) exceeds the limit of " + number(kMaxLevelTets) +
-                  " tets: give fewer levels");
-    for (int k = 1; k <= o.levels; ++k) {
-      LevelPlan l;
-      l.level = k;
-      l.refinements = k - 1;
-      l.steps = plan.base.solver.steps;
-      l.dt = plan.base.solver.type == SolverSpec::Type::Static
-                 ? plan.base.solver.t_end / plan.base.solver.steps
-                 : plan.base.solver.dt;
-      plan.levels.push_back(l);
-    }
-    names = names_of(plan.base);
-    plan.t_end = plan.base.solver.t_end;
-    loading = plan.t_end;
-  }
+  const double loading =
+      o.rig ? (in_time ? plan_rig_in_time(o, plan, names) : plan_rig_in_space(o, plan, names))
+            : (in_time ? plan_case_in_time(o, plan, names) : plan_case_in_space(o, plan, names));
   if (!o.linear.empty()) {
     if (!linear_solver_from_string(o.linear))
       throw Error("--linear " + o.linear + ": must be auto, ldlt or cholmod");
