@@ -182,6 +182,73 @@ struct CookLevel {
   double seconds = 0.0;
 };
 
+/// The load case of cook_membrane's runs (its parameters as read).
+struct CookLoad {
+  double E = 0.0, nu = 0.0;
+  double traction = 0.0;  ///< the benchmark's shear traction
+  double scale = 1.0;     ///< the fraction of it applied (the small-load regime)
+  int layers = 1;
+  std::vector<std::string> fix_z;  ///< faces with u_z = 0
+};
+
+/// One level of Cook's membrane: the mesh of `c` cells, the case with element `name` run through the
+/// case runner, the tip deflection scaled back to the full load (mm).
+CookLevel run_cook_level(const CheckContext& ctx, const CookLoad& load, ElementKind kind,
+                         const std::string& name, int c) {
+  const double E = load.E, nu = load.nu, traction = load.traction, scale = load.scale;
+  const int layers = load.layers;
+  const auto& fix_z = load.fix_z;
+  CookMembraneSpec spec;
+  spec.layers = layers;
+  spec.cells = c;
+  const Vec3 tip(spec.length, spec.left + spec.right, 0.0);
+  const double force_scale = 1000.0 / scale;  // m at the scaled load -> mm at the full load
+  const auto t0 = std::chrono::steady_clock::now();
+  const fs::path mesh_file =
+      ctx.work_dir / ("cook_" + std::to_string(c) + "x" + std::to_string(layers) + ".msh");
+  const Mesh mesh = make_cook_membrane_mesh(spec);
+  if (!fs::exists(mesh_file)) write_gmsh22(mesh, mesh_file.string());
+  nlohmann::json boundary = nlohmann::json::array();
+  boundary.push_back({{"name", "clamped"}, {"nodes", {{"group", "clamped"}}}});
+  for (const auto& f : fix_z)
+    boundary.push_back({{"name", "plane_" + f}, {"nodes", {{"group", f}}}, {"components", "z"}});
+  const nlohmann::json doc = {
+      {"name", "cook-" + name + "-" + std::to_string(c)},
+      {"model", "hyperelastic_tl"},
+      {"mesh", {{"file", mesh_file.string()}, {"element", name}}},
+      {"material", {{"law", "stvk"}, {"E", E}, {"nu", nu}, {"density", 1000.0}}},
+      {"boundary", boundary},
+      {"loads",
+       {{{"type", "traction"},
+         {"name", "shear"},
+         {"faces", {{"group", "loaded"}}},
+         {"traction", {0.0, scale * traction, 0.0}}}}},
+      {"solver", {{"type", "static"}, {"steps", 1}, {"linear", "cholmod"}, {"newton", {{"rtol", 1e-10}}}}},
+      {"output",
+       {{"vtu", false},
+        {"xdmf", false},
+        {"plots", false},
+        {"probes", {{{"name", "tip"}, {"point", {tip.x(), tip.y(), tip.z()}}}}}}}};
+  CaseConfig cfg = parse_case(doc, (ctx.work_dir / "cook.json").string(), {ctx.work_dir.string()});
+  if (cfg.mesh.element != kind) throw Error("element.cook_membrane: element not applied");
+  tmlab::RunOptions o;
+  o.results_root = (ctx.work_dir / "runs").string();
+  o.tmlab_root = ctx.source_root.string();
+  o.plots = false;
+  const tmlab::RunResult r = tm::run_case(cfg, o);
+  const auto& d = r.summary.at("probes").at("tip").at("displacement_m");
+  CookLevel L;
+  L.cells = c;
+  L.tets = mesh.num_tets();
+  L.nodes = static_cast<Index>(r.summary.at("mesh").value("nodes", static_cast<long>(mesh.num_points())));
+  L.h = spec.length / c;
+  L.deflection = d.at(1).get<double>() * force_scale;
+  L.seconds = seconds_since(t0);
+  ctx.log << "  " << name << ", " << c << " cells (" << L.tets << " tets, " << L.nodes
+          << " nodes): tip deflection " << fmt(L.deflection, 6) << " mm (" << fmt(L.seconds, 2) << " s)\n";
+  return L;
+}
+
 Measurements cook_membrane(const CheckContext& ctx) {
   ConfigReader p = parameters(ctx);
   const double E = p.positive("young");
@@ -225,62 +292,11 @@ Measurements cook_membrane(const CheckContext& ctx) {
     throw p.error("published", "needs [low, high], 0 < low <= high (mm)");
   p.finish();
 
-  CookMembraneSpec spec;
-  spec.layers = layers;
-  const Vec3 tip(spec.length, spec.left + spec.right, 0.0);
-  const double force_scale = 1000.0 / scale;  // m at the scaled load -> mm at the full load
-
-  auto run_level = [&](ElementKind kind, const std::string& name, int c) {
-    const auto t0 = std::chrono::steady_clock::now();
-    spec.cells = c;
-    const fs::path mesh_file =
-        ctx.work_dir / ("cook_" + std::to_string(c) + "x" + std::to_string(layers) + ".msh");
-    const Mesh mesh = make_cook_membrane_mesh(spec);
-    if (!fs::exists(mesh_file)) write_gmsh22(mesh, mesh_file.string());
-    nlohmann::json boundary = nlohmann::json::array();
-    boundary.push_back({{"name", "clamped"}, {"nodes", {{"group", "clamped"}}}});
-    for (const auto& f : fix_z)
-      boundary.push_back({{"name", "plane_" + f}, {"nodes", {{"group", f}}}, {"components", "z"}});
-    const nlohmann::json doc = {
-        {"name", "cook-" + name + "-" + std::to_string(c)},
-        {"model", "hyperelastic_tl"},
-        {"mesh", {{"file", mesh_file.string()}, {"element", name}}},
-        {"material", {{"law", "stvk"}, {"E", E}, {"nu", nu}, {"density", 1000.0}}},
-        {"boundary", boundary},
-        {"loads",
-         {{{"type", "traction"},
-           {"name", "shear"},
-           {"faces", {{"group", "loaded"}}},
-           {"traction", {0.0, scale * traction, 0.0}}}}},
-        {"solver", {{"type", "static"}, {"steps", 1}, {"linear", "cholmod"}, {"newton", {{"rtol", 1e-10}}}}},
-        {"output",
-         {{"vtu", false},
-          {"xdmf", false},
-          {"plots", false},
-          {"probes", {{{"name", "tip"}, {"point", {tip.x(), tip.y(), tip.z()}}}}}}}};
-    CaseConfig cfg = parse_case(doc, (ctx.work_dir / "cook.json").string(), {ctx.work_dir.string()});
-    if (cfg.mesh.element != kind) throw Error("element.cook_membrane: element not applied");
-    tmlab::RunOptions o;
-    o.results_root = (ctx.work_dir / "runs").string();
-    o.tmlab_root = ctx.source_root.string();
-    o.plots = false;
-    const tmlab::RunResult r = tm::run_case(cfg, o);
-    const auto& d = r.summary.at("probes").at("tip").at("displacement_m");
-    CookLevel L;
-    L.cells = c;
-    L.tets = mesh.num_tets();
-    L.nodes = static_cast<Index>(r.summary.at("mesh").value("nodes", static_cast<long>(mesh.num_points())));
-    L.h = spec.length / c;
-    L.deflection = d.at(1).get<double>() * force_scale;
-    L.seconds = seconds_since(t0);
-    ctx.log << "  " << name << ", " << c << " cells (" << L.tets << " tets, " << L.nodes
-            << " nodes): tip deflection " << fmt(L.deflection, 6) << " mm (" << fmt(L.seconds, 2) << " s)\n";
-    return L;
-  };
+  const CookLoad load{E, nu, traction, scale, layers, fix_z};
 
   std::vector<std::vector<CookLevel>> runs(names.size());
   for (std::size_t k = 0; k < names.size(); ++k)
-    for (int c : cells[k]) runs[k].push_back(run_level(kinds[k], names[k], c));
+    for (int c : cells[k]) runs[k].push_back(run_cook_level(ctx, load, kinds[k], names[k], c));
 
   // The converged value: Richardson on the finest three levels of `converged_from` (ratio 2).
   const auto& cr = runs[std::size_t(conv_it - names.begin())];
